@@ -1,0 +1,115 @@
+#pragma once
+// Devices: the hardware a host's I/O and computation go through, as fair-share resources
+// (MODEL.md §5). Bandwidths are bytes per second, sizes bytes, latencies seconds.
+//
+//   Disk    one time-shared resource with separate read and write bandwidths: a read at rate r
+//           uses r / read_bw of the disk, a write r / write_bw.
+//   Memory  an aggregate resource (what all cores together can move, read and write
+//           bandwidths) plus a per-flow bound (what one thread can copy).
+//   Link    a network link: bandwidth, plus a latency paid once per transfer.
+//   Cpu     c cores shared by runnable tasks: n tasks each progress at min(1, c / n) of a core.
+//
+// A transfer through several resources (a remote read: server disk then link) is one flow
+// whose FlowSpec lists each resource's usage; see Disk::read_usage() and friends.
+
+#include <pagecache/fair_share.hpp>
+#include <pagecache/task.hpp>
+
+#include <cstdint>
+#include <string>
+
+namespace pagecache {
+
+class Disk {
+ public:
+  /// `capacity` is the storage size in bytes (0: unlimited).
+  Disk(FairShare& share, std::string name, double read_bw, double write_bw, std::int64_t capacity = 0);
+
+  FlowAwaiter read(std::int64_t bytes) const;
+  FlowAwaiter write(std::int64_t bytes) const;
+  Usage read_usage() const noexcept { return {resource_, 1.0 / read_bw_}; }
+  Usage write_usage() const noexcept { return {resource_, 1.0 / write_bw_}; }
+
+  const std::string& name() const { return share_->name(resource_); }
+  ResourceId resource() const noexcept { return resource_; }
+  double read_bandwidth() const noexcept { return read_bw_; }
+  double write_bandwidth() const noexcept { return write_bw_; }
+  std::int64_t capacity() const noexcept { return capacity_; }
+
+ private:
+  FairShare* share_;
+  ResourceId resource_;
+  double read_bw_;
+  double write_bw_;
+  std::int64_t capacity_;
+};
+
+/// Memory bandwidths: per flow (one thread's copy) and aggregate (the whole memory system).
+struct MemoryBandwidth {
+  double read = 0.0;             ///< per-flow read (cache -> application buffer)
+  double write = 0.0;            ///< per-flow write (application buffer -> cache)
+  double aggregate_read = 0.0;   ///< all flows together, reading
+  double aggregate_write = 0.0;  ///< all flows together, writing
+
+  /// One channel shared by everything, as in the paper: the per-flow bounds equal the aggregate.
+  static MemoryBandwidth shared_channel(double bandwidth) { return {bandwidth, bandwidth, bandwidth, bandwidth}; }
+};
+
+class Memory {
+ public:
+  Memory(FairShare& share, std::string name, MemoryBandwidth bandwidth);
+
+  FlowAwaiter read(std::int64_t bytes) const;
+  FlowAwaiter write(std::int64_t bytes) const;
+  /// Flow specs for use in a multi-resource flow (bound included).
+  FlowSpec read_spec(std::int64_t bytes) const;
+  FlowSpec write_spec(std::int64_t bytes) const;
+
+  ResourceId resource() const noexcept { return resource_; }
+  const MemoryBandwidth& bandwidth() const noexcept { return bandwidth_; }
+
+ private:
+  FairShare* share_;
+  ResourceId resource_;
+  MemoryBandwidth bandwidth_;
+};
+
+class Link {
+ public:
+  Link(FairShare& share, std::string name, double bandwidth, double latency);
+
+  /// Sends `bytes` over the link alone: latency, then the transfer.
+  Task<void> send(std::int64_t bytes) const;
+  /// Sends `spec` (whose other resources are already listed) across the link too: latency,
+  /// then one flow through all of them.
+  Task<void> send_through(FlowSpec spec) const;
+  Usage usage() const noexcept { return {resource_, 1.0 / bandwidth_}; }
+
+  ResourceId resource() const noexcept { return resource_; }
+  double bandwidth() const noexcept { return bandwidth_; }
+  double latency() const noexcept { return latency_; }
+
+ private:
+  FairShare* share_;
+  ResourceId resource_;
+  double bandwidth_;
+  double latency_;
+};
+
+class Cpu {
+ public:
+  Cpu(FairShare& share, std::string name, int cores);
+
+  /// Runs `core_seconds` of computation on one core's worth of the CPU at most.
+  FlowAwaiter compute(double core_seconds) const;
+
+  ResourceId resource() const noexcept { return resource_; }
+  int cores() const noexcept { return cores_; }
+
+ private:
+  FairShare* share_;
+  ResourceId resource_;
+  int cores_;
+};
+
+}  // namespace pagecache

@@ -1,0 +1,97 @@
+#include <pagecache/devices.hpp>
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace pagecache {
+
+namespace {
+
+void require_positive(double value, const std::string& device, const char* what) {
+  if (!(value > 0.0) || !std::isfinite(value)) {
+    throw ConfigError(fmt::format("{}: {} must be a positive finite number, got {}", device, what, value));
+  }
+}
+
+void require_bytes(std::int64_t bytes, const char* operation) {
+  if (bytes < 0) throw SimulationError(fmt::format("{}: negative size {} bytes", operation, bytes));
+}
+
+}  // namespace
+
+Disk::Disk(FairShare& share, std::string name, double read_bw, double write_bw, std::int64_t capacity)
+    : share_(&share), read_bw_(read_bw), write_bw_(write_bw), capacity_(capacity) {
+  require_positive(read_bw, name, "read bandwidth");
+  require_positive(write_bw, name, "write bandwidth");
+  if (capacity < 0) throw ConfigError(fmt::format("{}: negative capacity {} bytes", name, capacity));
+  resource_ = share.add_resource(std::move(name));
+}
+
+FlowAwaiter Disk::read(std::int64_t bytes) const {
+  require_bytes(bytes, "disk read");
+  return share_->transfer(FlowSpec{.work = static_cast<double>(bytes)}.through(read_usage()));
+}
+
+FlowAwaiter Disk::write(std::int64_t bytes) const {
+  require_bytes(bytes, "disk write");
+  return share_->transfer(FlowSpec{.work = static_cast<double>(bytes)}.through(write_usage()));
+}
+
+Memory::Memory(FairShare& share, std::string name, MemoryBandwidth bandwidth)
+    : share_(&share), bandwidth_(bandwidth) {
+  require_positive(bandwidth.read, name, "read bandwidth");
+  require_positive(bandwidth.write, name, "write bandwidth");
+  require_positive(bandwidth.aggregate_read, name, "aggregate read bandwidth");
+  require_positive(bandwidth.aggregate_write, name, "aggregate write bandwidth");
+  resource_ = share.add_resource(std::move(name));
+}
+
+FlowSpec Memory::read_spec(std::int64_t bytes) const {
+  require_bytes(bytes, "memory read");
+  return FlowSpec{.work = static_cast<double>(bytes), .bound = bandwidth_.read}.through(
+      {resource_, 1.0 / bandwidth_.aggregate_read});
+}
+
+FlowSpec Memory::write_spec(std::int64_t bytes) const {
+  require_bytes(bytes, "memory write");
+  return FlowSpec{.work = static_cast<double>(bytes), .bound = bandwidth_.write}.through(
+      {resource_, 1.0 / bandwidth_.aggregate_write});
+}
+
+FlowAwaiter Memory::read(std::int64_t bytes) const { return share_->transfer(read_spec(bytes)); }
+FlowAwaiter Memory::write(std::int64_t bytes) const { return share_->transfer(write_spec(bytes)); }
+
+Link::Link(FairShare& share, std::string name, double bandwidth, double latency)
+    : share_(&share), bandwidth_(bandwidth), latency_(latency) {
+  require_positive(bandwidth, name, "bandwidth");
+  if (!(latency >= 0.0) || !std::isfinite(latency)) {
+    throw ConfigError(fmt::format("{}: latency must be >= 0, got {}", name, latency));
+  }
+  resource_ = share.add_resource(std::move(name));
+}
+
+Task<void> Link::send(std::int64_t bytes) const {
+  require_bytes(bytes, "link send");
+  co_await send_through(FlowSpec{.work = static_cast<double>(bytes)});
+}
+
+Task<void> Link::send_through(FlowSpec spec) const {
+  spec.through(usage());
+  if (latency_ > 0.0) co_await share_->simulator().sleep(latency_);
+  co_await share_->transfer(spec);
+}
+
+Cpu::Cpu(FairShare& share, std::string name, int cores) : share_(&share), cores_(cores) {
+  if (cores <= 0) throw ConfigError(fmt::format("{}: core count must be >= 1, got {}", name, cores));
+  resource_ = share.add_resource(std::move(name));
+}
+
+FlowAwaiter Cpu::compute(double core_seconds) const {
+  if (!(core_seconds >= 0.0)) throw SimulationError(fmt::format("compute: negative CPU time {} s", core_seconds));
+  // A task runs on one core at most (bound 1 core-second per second); the cores together are
+  // the capacity, so each core-second costs 1 / cores of it.
+  return share_->transfer(FlowSpec{.work = core_seconds, .bound = 1.0}.through({resource_, 1.0 / cores_}));
+}
+
+}  // namespace pagecache

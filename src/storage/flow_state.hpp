@@ -1,0 +1,88 @@
+#pragma once
+// FlowState: the fair-share model's record of one flow in progress. Pooled; owned by FairShare.
+//
+// A flow is in one of three modes:
+//  - Sharing: on a resource it crosses alone, not capped by its bound. Its progress is read off
+//    the resource's virtual clock: it finishes when the clock reaches `virtual_finish`.
+//  - Bounded: on a resource it crosses alone, running at its own bound. Rate is constant until
+//    the resource's flow set changes; it has its own completion event.
+//  - Explicit: in a component of resources coupled by multi-resource flows; its rate comes from
+//    progressive filling over the component; it has its own completion event.
+
+#include <pagecache/fair_share.hpp>
+
+#include <boost/heap/pairing_heap.hpp>
+
+#include <array>
+#include <cstdint>
+
+namespace pagecache::detail {
+
+struct FlowState;
+
+// Boost heaps are max-heaps: each comparator says which flow goes *after* the other.
+struct FinishesLater {
+  bool operator()(const FlowState* a, const FlowState* b) const noexcept;
+};
+struct HigherThreshold {
+  bool operator()(const FlowState* a, const FlowState* b) const noexcept;
+};
+struct LowerThreshold {
+  bool operator()(const FlowState* a, const FlowState* b) const noexcept;
+};
+
+using FinishHeap = boost::heap::pairing_heap<FlowState*, boost::heap::compare<FinishesLater>>;
+using LowestThresholdFirst = boost::heap::pairing_heap<FlowState*, boost::heap::compare<HigherThreshold>>;
+using HighestThresholdFirst = boost::heap::pairing_heap<FlowState*, boost::heap::compare<LowerThreshold>>;
+
+enum class FlowMode : std::uint8_t { Sharing, Bounded, Explicit };
+
+struct FlowState {
+  // What the flow is.
+  double weight = 1.0;
+  double bound = kUnbounded;
+  double threshold = kUnbounded;  // bound / weight: the fair-share level at which the bound bites
+  std::array<Usage, kMaxResourcesPerFlow> usages{};
+  std::uint8_t usage_count = 0;
+  std::uint64_t sequence = 0;  // start order, breaks ties deterministically
+
+  // Where it is in the resources' registries (index into each resource's flow list).
+  std::array<std::uint32_t, kMaxResourcesPerFlow> slots{};
+
+  // Progress.
+  FlowMode mode = FlowMode::Explicit;
+  double remaining = 0.0;      // Bounded/Explicit: work left at time `updated`
+  double rate = 0.0;           // Bounded/Explicit: current rate
+  double updated = 0.0;
+  double virtual_finish = 0.0;  // Sharing: resource virtual time at which it is done
+
+  FinishHeap::handle_type finish_handle;
+  LowestThresholdFirst::handle_type sharing_threshold_handle;
+  HighestThresholdFirst::handle_type bounded_threshold_handle;
+  EventHandle completion;  // Bounded/Explicit
+
+  // Who waits for it.
+  std::coroutine_handle<> waiting;
+  FlowAwaiter* awaiter = nullptr;
+
+  std::uint64_t visit = 0;  // component search stamp
+  void* owner = nullptr;    // the FairShare implementation holding it
+
+  double cost() const noexcept { return usages[0].cost; }  // for single-resource flows
+  double remaining_at(double now) const noexcept { return remaining - rate * (now - updated); }
+};
+
+inline bool FinishesLater::operator()(const FlowState* a, const FlowState* b) const noexcept {
+  if (a->virtual_finish != b->virtual_finish) return a->virtual_finish > b->virtual_finish;
+  return a->sequence > b->sequence;
+}
+inline bool HigherThreshold::operator()(const FlowState* a, const FlowState* b) const noexcept {
+  if (a->threshold != b->threshold) return a->threshold > b->threshold;
+  return a->sequence > b->sequence;
+}
+inline bool LowerThreshold::operator()(const FlowState* a, const FlowState* b) const noexcept {
+  if (a->threshold != b->threshold) return a->threshold < b->threshold;
+  return a->sequence < b->sequence;
+}
+
+}  // namespace pagecache::detail

@@ -5,10 +5,9 @@ namespace pagecache::detail {
 QueuedEvent* EventQueue::push(double time, EventCallback callback, void* context) {
   QueuedEvent* node = nodes_.take();
   node->time = time;
-  node->sequence = next_sequence_++;
   node->callback = callback;
   node->context = context;
-  node->handle = heap_.push(node);
+  node->handle = heap_.push({time, next_sequence_++, node});
   return node;
 }
 
@@ -20,13 +19,12 @@ void EventQueue::erase(QueuedEvent* node) noexcept {
 void EventQueue::update(QueuedEvent* node, double time) {
   const bool runs_later = time >= node->time;  // the new sequence number is always larger
   node->time = time;
-  node->sequence = next_sequence_++;
-  if (runs_later) heap_.decrease(node->handle);
-  else heap_.increase(node->handle);
+  if (runs_later) heap_.decrease(node->handle, {time, next_sequence_++, node});
+  else heap_.increase(node->handle, {time, next_sequence_++, node});
 }
 
 EventQueue::Fired EventQueue::pop() noexcept {
-  QueuedEvent* node = heap_.top();
+  QueuedEvent* node = heap_.top().event;
   heap_.pop();
   Fired fired{node->time, node->callback, node->context};
   nodes_.give_back(node);
@@ -35,7 +33,7 @@ EventQueue::Fired EventQueue::pop() noexcept {
 
 void EventQueue::clear() noexcept {
   while (!heap_.empty()) {
-    QueuedEvent* node = heap_.top();
+    QueuedEvent* node = heap_.top().event;
     heap_.pop();
     nodes_.give_back(node);
   }

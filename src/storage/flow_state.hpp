@@ -11,7 +11,7 @@
 
 #include <pagecache/fair_share.hpp>
 
-#include <boost/heap/pairing_heap.hpp>
+#include <boost/heap/d_ary_heap.hpp>
 
 #include <array>
 #include <cstdint>
@@ -20,20 +20,35 @@ namespace pagecache::detail {
 
 struct FlowState;
 
-// Boost heaps are max-heaps: each comparator says which flow goes *after* the other.
-struct FinishesLater {
-  bool operator()(const FlowState* a, const FlowState* b) const noexcept;
-};
-struct HigherThreshold {
-  bool operator()(const FlowState* a, const FlowState* b) const noexcept;
-};
-struct LowerThreshold {
-  bool operator()(const FlowState* a, const FlowState* b) const noexcept;
+// A flow's place in one of processor sharing's heaps. The key is copied into the heap node
+// so that comparisons do not chase the pointer to the flow (cache misses dominate with many
+// flows); the sequence number breaks ties in start order.
+struct KeyedFlow {
+  double key;
+  std::uint64_t sequence;
+  FlowState* flow;
 };
 
-using FinishHeap = boost::heap::pairing_heap<FlowState*, boost::heap::compare<FinishesLater>>;
-using LowestThresholdFirst = boost::heap::pairing_heap<FlowState*, boost::heap::compare<HigherThreshold>>;
-using HighestThresholdFirst = boost::heap::pairing_heap<FlowState*, boost::heap::compare<LowerThreshold>>;
+// Boost heaps are max-heaps: each comparator says which entry goes *after* the other.
+struct SmallestKeyFirst {
+  bool operator()(const KeyedFlow& a, const KeyedFlow& b) const noexcept {
+    if (a.key != b.key) return a.key > b.key;
+    return a.sequence > b.sequence;
+  }
+};
+struct LargestKeyFirst {
+  bool operator()(const KeyedFlow& a, const KeyedFlow& b) const noexcept {
+    if (a.key != b.key) return a.key < b.key;
+    return a.sequence < b.sequence;
+  }
+};
+
+template <class Order>
+using FlowHeap = boost::heap::d_ary_heap<KeyedFlow, boost::heap::arity<4>, boost::heap::mutable_<true>,
+                                         boost::heap::compare<Order>>;
+using FinishHeap = FlowHeap<SmallestKeyFirst>;
+using LowestThresholdFirst = FlowHeap<SmallestKeyFirst>;
+using HighestThresholdFirst = FlowHeap<LargestKeyFirst>;
 
 enum class FlowMode : std::uint8_t { Sharing, Bounded, Explicit };
 
@@ -71,18 +86,5 @@ struct FlowState {
   double cost() const noexcept { return usages[0].cost; }  // for single-resource flows
   double remaining_at(double now) const noexcept { return remaining - rate * (now - updated); }
 };
-
-inline bool FinishesLater::operator()(const FlowState* a, const FlowState* b) const noexcept {
-  if (a->virtual_finish != b->virtual_finish) return a->virtual_finish > b->virtual_finish;
-  return a->sequence > b->sequence;
-}
-inline bool HigherThreshold::operator()(const FlowState* a, const FlowState* b) const noexcept {
-  if (a->threshold != b->threshold) return a->threshold > b->threshold;
-  return a->sequence > b->sequence;
-}
-inline bool LowerThreshold::operator()(const FlowState* a, const FlowState* b) const noexcept {
-  if (a->threshold != b->threshold) return a->threshold < b->threshold;
-  return a->sequence < b->sequence;
-}
 
 }  // namespace pagecache::detail

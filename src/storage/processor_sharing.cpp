@@ -18,7 +18,7 @@ ProcessorSharing::~ProcessorSharing() { cancel_events(); }
 
 void ProcessorSharing::cancel_events() noexcept {
   sim_->cancel(head_event_);
-  for (FlowState* flow : bounded_) sim_->cancel(flow->completion);
+  for (const KeyedFlow& entry : bounded_) sim_->cancel(entry.flow->completion);
 }
 
 void ProcessorSharing::advance() noexcept {
@@ -30,15 +30,17 @@ void ProcessorSharing::advance() noexcept {
 void ProcessorSharing::insert_sharing(FlowState* flow, double remaining) {
   flow->mode = FlowMode::Sharing;
   flow->virtual_finish = virtual_time_ + std::max(remaining, 0.0) / flow->weight;
-  flow->finish_handle = sharing_.push(flow);
-  flow->sharing_threshold_handle = sharing_threshold_.push(flow);
+  flow->finish_handle = sharing_.push({flow->virtual_finish, flow->sequence, flow});
+  // An unbounded flow can never be capped: it need not be found by threshold.
+  if (std::isfinite(flow->threshold)) flow->sharing_threshold_handle = sharing_threshold_.push({flow->threshold, flow->sequence, flow});
   sharing_weighted_cost_ += flow->cost() * flow->weight;
 }
 
 double ProcessorSharing::erase_sharing(FlowState* flow) {
   const double remaining = std::max(0.0, (flow->virtual_finish - virtual_time_) * flow->weight);
-  sharing_.erase(flow->finish_handle);
-  sharing_threshold_.erase(flow->sharing_threshold_handle);
+  if (sharing_.top().flow == flow) sharing_.pop();  // the usual case: cheaper than erase
+  else sharing_.erase(flow->finish_handle);
+  if (std::isfinite(flow->threshold)) sharing_threshold_.erase(flow->sharing_threshold_handle);
   if (sharing_.empty()) {
     // Renormalise: keeps V small, and the sum free of accumulated rounding.
     virtual_time_ = 0.0;
@@ -54,7 +56,7 @@ void ProcessorSharing::insert_bounded(FlowState* flow, double remaining) {
   flow->remaining = std::max(remaining, 0.0);
   flow->rate = flow->bound;
   flow->updated = sim_->now();
-  flow->bounded_threshold_handle = bounded_.push(flow);
+  flow->bounded_threshold_handle = bounded_.push({flow->threshold, flow->sequence, flow});
   bounded_usage_ += flow->cost() * flow->bound;
   flow->completion = sim_->schedule_at(sim_->now() + flow->remaining / flow->rate, flow_due_, flow);
 }
@@ -90,9 +92,9 @@ void ProcessorSharing::take_finished(std::vector<FlowState*>& finished) {
   advance();
   PC_ASSERT(!sharing_.empty());
   // The head is due now by construction; pin V to it so rounding cannot leave it running.
-  virtual_time_ = std::max(virtual_time_, sharing_.top()->virtual_finish);
-  while (!sharing_.empty() && sharing_.top()->virtual_finish <= virtual_time_) {
-    FlowState* flow = sharing_.top();
+  virtual_time_ = std::max(virtual_time_, sharing_.top().key);
+  while (!sharing_.empty() && sharing_.top().key <= virtual_time_) {
+    FlowState* flow = sharing_.top().flow;
     erase_sharing(flow);
     finished.push_back(flow);
   }
@@ -113,13 +115,13 @@ void ProcessorSharing::rebalance() {
     } else {
       level = (1.0 - bounded_usage_) / sharing_weighted_cost_;
     }
-    if (!sharing_threshold_.empty() && sharing_threshold_.top()->threshold < level * (1.0 - precision::kRelativeRate)) {
-      FlowState* flow = sharing_threshold_.top();
+    if (!sharing_threshold_.empty() && sharing_threshold_.top().key < level * (1.0 - precision::kRelativeRate)) {
+      FlowState* flow = sharing_threshold_.top().flow;
       insert_bounded(flow, erase_sharing(flow));
       continue;
     }
-    if (!bounded_.empty() && (level <= 0.0 || bounded_.top()->threshold > level * (1.0 + precision::kRelativeRate))) {
-      FlowState* flow = bounded_.top();
+    if (!bounded_.empty() && (level <= 0.0 || bounded_.top().key > level * (1.0 + precision::kRelativeRate))) {
+      FlowState* flow = bounded_.top().flow;
       const double remaining = erase_bounded(flow);
       insert_sharing(flow, remaining);
       continue;
@@ -137,7 +139,7 @@ void ProcessorSharing::schedule_head() {
     return;
   }
   const double now = sim_->now();
-  const double due = now + std::max(0.0, sharing_.top()->virtual_finish - virtual_time_) / level_;
+  const double due = now + std::max(0.0, sharing_.top().key - virtual_time_) / level_;
   if (head_event_) sim_->reschedule(head_event_, due);
   else head_event_ = sim_->schedule_at(due, head_due_, head_context_);
 }
@@ -153,20 +155,23 @@ double ProcessorSharing::usage() const noexcept {
 void ProcessorSharing::check() const {
   double sharing_cost = 0.0;
   double min_sharing_threshold = kUnbounded;
-  for (const FlowState* flow : sharing_) {
+  for (const KeyedFlow& entry : sharing_) {
+    const FlowState* flow = entry.flow;
+    PC_ASSERT(entry.key == flow->virtual_finish);
     PC_ASSERT(flow->mode == FlowMode::Sharing);
     sharing_cost += flow->cost() * flow->weight;
     min_sharing_threshold = std::min(min_sharing_threshold, flow->threshold);
   }
   double bounded_cost = 0.0;
   double max_bounded_threshold = 0.0;
-  for (const FlowState* flow : bounded_) {
+  for (const KeyedFlow& entry : bounded_) {
+    const FlowState* flow = entry.flow;
     PC_ASSERT(flow->mode == FlowMode::Bounded);
     PC_ASSERT(static_cast<bool>(flow->completion));
     bounded_cost += flow->cost() * flow->bound;
     max_bounded_threshold = std::max(max_bounded_threshold, flow->threshold);
   }
-  PC_ASSERT(sharing_.size() == sharing_threshold_.size());
+  PC_ASSERT(sharing_threshold_.size() <= sharing_.size());
   const auto close = [](double a, double b) { return std::abs(a - b) <= 1e-9 * std::max({1.0, std::abs(a), std::abs(b)}); };
   PC_ASSERT_MSG(close(sharing_cost, sharing_weighted_cost_),
                 fmt::format("sharing cost {} vs {}", sharing_cost, sharing_weighted_cost_));

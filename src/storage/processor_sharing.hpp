@@ -71,7 +71,7 @@ class ProcessorSharing {
   void* head_context_;
 
   FinishHeap sharing_;                      // sharing flows by virtual finish
-  LowestThresholdFirst sharing_threshold_;  // sharing flows by threshold
+  LowestThresholdFirst sharing_threshold_;  // sharing flows with a finite threshold, by threshold
   HighestThresholdFirst bounded_;           // bounded flows by threshold
   double sharing_weighted_cost_ = 0.0;      // sum over sharing of cost * weight
   double bounded_usage_ = 0.0;              // sum over bounded of cost * bound
@@ -87,11 +87,11 @@ void ProcessorSharing::drain(Visit&& visit) {
   std::vector<std::pair<FlowState*, double>> flows;
   flows.reserve(size());
   while (!sharing_.empty()) {
-    FlowState* flow = sharing_.top();
+    FlowState* flow = sharing_.top().flow;
     flows.emplace_back(flow, erase_sharing(flow));
   }
   while (!bounded_.empty()) {
-    FlowState* flow = bounded_.top();
+    FlowState* flow = bounded_.top().flow;
     flows.emplace_back(flow, erase_bounded(flow));
   }
   sharing_weighted_cost_ = 0.0;

@@ -8,6 +8,7 @@
 #include <pagecache/simulator.hpp>
 
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -149,7 +150,7 @@ void compare_with_reference(std::uint64_t seed, int count, int resources, double
   Simulator sim;
   FairShare share(sim);
   std::vector<ResourceId> ids;
-  for (int r = 0; r < resources; ++r) ids.push_back(share.add_resource("r" + std::to_string(r)));
+  for (int r = 0; r < resources; ++r) ids.push_back(share.add_resource(fmt::format("r{}", r)));
   std::vector<double> finished(flows.size(), -1.0);
   for (std::size_t i = 0; i < flows.size(); ++i) {
     FlowSpec spec{.work = flows[i].work, .bound = flows[i].bound, .weight = flows[i].weight};

@@ -1,0 +1,76 @@
+// Fair share: N processes keep N flows running on one disk; each, when its flow finishes,
+// starts another. The figure is the wall time per flow start+finish; with processor sharing
+// it should grow like log N, not N.
+#include <pagecache/devices.hpp>
+#include <pagecache/fair_share.hpp>
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cstdint>
+
+namespace {
+
+pagecache::Task<void> reader(const pagecache::Disk& disk, std::int64_t flows, std::int64_t seed) {
+  std::uint64_t x = static_cast<std::uint64_t>(seed) * 2654435761u + 1;
+  for (std::int64_t i = 0; i < flows; ++i) {
+    x = x * 6364136223846793005ull + 1442695040888963407ull;  // sizes 1..100 MB
+    co_await disk.read(static_cast<std::int64_t>(1'000'000 + (x >> 33) % 99'000'000));
+  }
+}
+
+void BM_DiskConcurrentFlows(benchmark::State& state) {
+  const auto concurrent = state.range(0);
+  // About 2*10^5 flows per iteration whatever N, so every N measures a long steady state.
+  const std::int64_t per_process = std::max<std::int64_t>(2, 200'000 / concurrent);
+  std::int64_t flows = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    pagecache::Simulator sim;
+    pagecache::FairShare share(sim);
+    pagecache::Disk disk(share, "disk", 500e6, 400e6);
+    for (std::int64_t p = 0; p < concurrent; ++p) sim.spawn(reader(disk, per_process, p));
+    state.ResumeTiming();
+    sim.run();
+    flows += concurrent * per_process;
+  }
+  state.SetItemsProcessed(flows);
+  state.counters["time_per_flow"] =
+      benchmark::Counter(static_cast<double>(flows), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_DiskConcurrentFlows)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The same with a per-flow bound that binds for part of the flows (memory copies under an
+// aggregate limit): exercises the bounded group of processor sharing.
+pagecache::Task<void> copier(const pagecache::Memory& memory, std::int64_t flows, std::int64_t seed) {
+  std::uint64_t x = static_cast<std::uint64_t>(seed) * 2654435761u + 3;
+  for (std::int64_t i = 0; i < flows; ++i) {
+    x = x * 6364136223846793005ull + 1442695040888963407ull;
+    const std::int64_t bytes = static_cast<std::int64_t>(1'000'000 + (x >> 33) % 99'000'000);
+    if ((x >> 20) & 1) co_await memory.read(bytes);
+    else co_await memory.write(bytes);
+  }
+}
+
+void BM_MemoryConcurrentFlows(benchmark::State& state) {
+  const auto concurrent = state.range(0);
+  const std::int64_t per_process = std::max<std::int64_t>(2, 200'000 / concurrent);
+  std::int64_t flows = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    pagecache::Simulator sim;
+    pagecache::FairShare share(sim);
+    // Aggregate about 5 flows' worth: with more flows the aggregate binds.
+    pagecache::Memory memory(share, "memory", pagecache::MemoryBandwidth{6.8e9, 2.7e9, 34e9, 14e9});
+    for (std::int64_t p = 0; p < concurrent; ++p) sim.spawn(copier(memory, per_process, p));
+    state.ResumeTiming();
+    sim.run();
+    flows += concurrent * per_process;
+  }
+  state.SetItemsProcessed(flows);
+  state.counters["time_per_flow"] =
+      benchmark::Counter(static_cast<double>(flows), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_MemoryConcurrentFlows)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 
 namespace {
 
@@ -21,17 +22,22 @@ pagecache::Task<void> reader(const pagecache::Disk& disk, std::int64_t flows, st
 
 void BM_DiskConcurrentFlows(benchmark::State& state) {
   const auto concurrent = state.range(0);
-  // About 2*10^5 flows per iteration whatever N, so every N measures a long steady state.
-  const std::int64_t per_process = std::max<std::int64_t>(2, 200'000 / concurrent);
+  // At least 2*10^5 flows per iteration and 20 per process, so that every N measures a long
+  // steady state (each finish followed by a start) rather than the initial burst.
+  const std::int64_t per_process = std::max<std::int64_t>(20, 200'000 / concurrent);
   std::int64_t flows = 0;
   for (auto _ : state) {
     state.PauseTiming();
-    pagecache::Simulator sim;
-    pagecache::FairShare share(sim);
-    pagecache::Disk disk(share, "disk", 500e6, 400e6);
-    for (std::int64_t p = 0; p < concurrent; ++p) sim.spawn(reader(disk, per_process, p));
+    auto sim = std::make_unique<pagecache::Simulator>();
+    auto share = std::make_unique<pagecache::FairShare>(*sim);
+    pagecache::Disk disk(*share, "disk", 500e6, 400e6);
+    for (std::int64_t p = 0; p < concurrent; ++p) sim->spawn(reader(disk, per_process, p));
     state.ResumeTiming();
-    sim.run();
+    sim->run();
+    state.PauseTiming();  // teardown is not part of the figure
+    share.reset();
+    sim.reset();
+    state.ResumeTiming();
     flows += concurrent * per_process;
   }
   state.SetItemsProcessed(flows);
@@ -54,17 +60,21 @@ pagecache::Task<void> copier(const pagecache::Memory& memory, std::int64_t flows
 
 void BM_MemoryConcurrentFlows(benchmark::State& state) {
   const auto concurrent = state.range(0);
-  const std::int64_t per_process = std::max<std::int64_t>(2, 200'000 / concurrent);
+  const std::int64_t per_process = std::max<std::int64_t>(20, 200'000 / concurrent);
   std::int64_t flows = 0;
   for (auto _ : state) {
     state.PauseTiming();
-    pagecache::Simulator sim;
-    pagecache::FairShare share(sim);
+    auto sim = std::make_unique<pagecache::Simulator>();
+    auto share = std::make_unique<pagecache::FairShare>(*sim);
     // Aggregate about 5 flows' worth: with more flows the aggregate binds.
-    pagecache::Memory memory(share, "memory", pagecache::MemoryBandwidth{6.8e9, 2.7e9, 34e9, 14e9});
-    for (std::int64_t p = 0; p < concurrent; ++p) sim.spawn(copier(memory, per_process, p));
+    pagecache::Memory memory(*share, "memory", pagecache::MemoryBandwidth{6.8e9, 2.7e9, 34e9, 14e9});
+    for (std::int64_t p = 0; p < concurrent; ++p) sim->spawn(copier(memory, per_process, p));
     state.ResumeTiming();
-    sim.run();
+    sim->run();
+    state.PauseTiming();
+    share.reset();
+    sim.reset();
+    state.ResumeTiming();
     flows += concurrent * per_process;
   }
   state.SetItemsProcessed(flows);

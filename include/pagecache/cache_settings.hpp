@@ -1,0 +1,64 @@
+#pragma once
+// CacheSettings: how one host's page cache behaves (MODEL.md §3, §6).
+//
+// The kernel knobs keep the kernel's names and are stored in SI units (ratios as fractions,
+// times in seconds). The remaining switches choose between the kernel's behaviour and the
+// way WRENCH-cache, the paper's implementation, reads the paper (../shared/design/
+// WRENCH-NOTES.md). CacheSettings::paper() reproduces WRENCH-cache (the `paper` profile);
+// CacheSettings::kernel() follows the kernel (the `linux` profile; not named linux(), which
+// GNU dialects of C++ predefine as a macro).
+
+namespace pagecache {
+
+enum class WriteMode { Writeback, Writethrough };
+
+struct CacheSettings {
+  WriteMode write_mode = WriteMode::Writeback;
+  /// vm.dirty_ratio: a writer may dirty at most this fraction of dirtyable memory.
+  double dirty_ratio = 0.2;
+  /// vm.dirty_background_ratio: above this fraction background writeback starts.
+  double dirty_background_ratio = 0.1;
+  /// vm.dirty_expire_centisecs, in seconds: dirty data older than this is written back.
+  double dirty_expire = 30.0;
+  /// vm.dirty_writeback_centisecs, in seconds: period of the flusher.
+  double writeback_interval = 5.0;
+
+  /// Dirty thresholds are fractions of free + cached memory, as the kernel's dirtyable memory
+  /// (mm/page-writeback.c, global_dirtyable_memory). Off: free + cached - dirty, the paper's.
+  bool dirtyable_memory = true;
+  /// Eviction makes room from clean inactive data only, and a read's "evictable" memory is
+  /// that clean inactive data (mm/vmscan.c scans the inactive list). Off, as WRENCH-cache:
+  /// eviction continues on the active list and "evictable" counts every inactive byte.
+  bool reclaim_inactive_only = true;
+  /// A partly flushed block is split in place. Off, as WRENCH-cache: its flushed part moves
+  /// to the most-recently-used end of the inactive list.
+  bool flush_splits_in_place = true;
+  /// The lists are balanced (active <= 2 x inactive) after every change. Off, as
+  /// WRENCH-cache: after reads only.
+  bool balance_after_every_change = true;
+
+  /// The periodic flusher marks a block clean when its write ends; until then the block
+  /// still counts as dirty and an application's flush may write it too. Off: clean when the
+  /// write starts (the kernel's pages are in writeback then, no longer dirty).
+  bool flusher_cleans_after_write = false;
+
+  /// The paper's model as WRENCH-cache implements it: dirty ratio 0.4, 5 s interval, 30 s
+  /// expiry, and WRENCH-cache's reading of the paper where the paper is ambiguous.
+  static CacheSettings paper() {
+    CacheSettings s;
+    s.dirty_ratio = 0.4;
+    s.dirty_background_ratio = 0.1;
+    s.dirty_expire = 30.0;
+    s.writeback_interval = 5.0;
+    s.dirtyable_memory = false;
+    s.reclaim_inactive_only = false;
+    s.flush_splits_in_place = false;
+    s.balance_after_every_change = false;
+    s.flusher_cleans_after_write = true;
+    return s;
+  }
+  /// The kernel's behaviour with its default knobs.
+  static CacheSettings kernel() { return CacheSettings{}; }
+};
+
+}  // namespace pagecache

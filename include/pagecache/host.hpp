@@ -1,0 +1,103 @@
+#pragma once
+// Host: one machine of a simulated platform — cores, memory with its page cache, disks — and
+// the operations applications run on it: chunked file reads and writes through the page
+// cache, computation, and the release of application memory.
+//
+// Sizes are bytes, times seconds, bandwidths bytes per second. A Host owns its devices and
+// its page cache (the paper's Memory Manager), its I/O Controller and its periodic flusher;
+// it must be created after, and destroyed before, the Simulator and FairShare it uses.
+//
+//   pagecache::Simulator sim;
+//   pagecache::FairShare share(sim);
+//   pagecache::Host host(sim, share, {.memory = 268'000'000'000, ...});
+//   auto disk = host.add_disk("sda", 465e6, 465e6);
+//   auto input = host.add_file("file_1", 20'000'000'000, disk);
+//   // in a process:  co_await host.read_file(input, 100'000'000);
+
+#include <pagecache/cache_settings.hpp>
+#include <pagecache/devices.hpp>
+#include <pagecache/fair_share.hpp>
+#include <pagecache/memory_state.hpp>
+#include <pagecache/simulator.hpp>
+#include <pagecache/task.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+namespace pagecache {
+
+struct HostSpec {
+  std::string name = "host";
+  int cores = 1;
+  std::int64_t memory = 0;  ///< bytes of RAM
+  MemoryBandwidth memory_bandwidth;
+  CacheSettings cache;
+};
+
+/// A disk of a host (index in the order of add_disk).
+struct DiskRef {
+  std::uint32_t index = 0;
+};
+/// A file known to a host (index in the order of add_file).
+struct FileRef {
+  std::uint32_t index = 0;
+  friend bool operator==(FileRef, FileRef) = default;
+};
+
+/// What an I/O phase moved and when.
+struct IoResult {
+  double start = 0.0;
+  double end = 0.0;
+  std::int64_t bytes = 0;
+  std::int64_t cache_bytes = 0;  ///< read from, or written into, the page cache
+  std::int64_t disk_bytes = 0;   ///< read from, or written through to, the disk
+};
+
+class Host {
+ public:
+  Host(Simulator& sim, FairShare& share, HostSpec spec);
+  ~Host();
+  Host(const Host&) = delete;
+  Host& operator=(const Host&) = delete;
+
+  const std::string& name() const noexcept;
+  const CacheSettings& cache_settings() const noexcept;
+
+  DiskRef add_disk(std::string name, double read_bw, double write_bw, std::int64_t capacity = 0);
+  const Disk& disk(DiskRef disk) const;
+  /// A file of `size` bytes on `disk`; `cached_at_start` puts it in the page cache (clean,
+  /// inactive) at time 0.
+  FileRef add_file(std::string name, std::int64_t size, DiskRef disk, bool cached_at_start = false);
+  const std::string& file_name(FileRef file) const;
+  std::int64_t file_size(FileRef file) const;
+  std::size_t file_count() const noexcept;
+
+  /// Reads the whole file in chunks of `chunk_size` bytes; each chunk's copy is kept in
+  /// application memory until release_memory().
+  Task<IoResult> read_file(FileRef file, std::int64_t chunk_size);
+  /// Writes the file's whole size in chunks of `chunk_size` bytes.
+  Task<IoResult> write_file(FileRef file, std::int64_t chunk_size);
+  /// Runs `core_seconds` of computation on one core's worth of the host's CPU at most.
+  Task<void> compute(double core_seconds);
+  /// Frees application memory (a task's buffers at its end).
+  void release_memory(std::int64_t bytes);
+
+  MemoryState memory() const noexcept;
+  std::int64_t cached(FileRef file) const noexcept;
+  std::int64_t dirty(FileRef file) const noexcept;
+  /// Bytes written to disk to make room or keep the dirty ratio, and by the periodic flusher.
+  std::int64_t forced_flush_bytes() const noexcept;
+  std::int64_t periodic_flush_bytes() const noexcept;
+
+  /// Checks every page-cache invariant after each operation (tests, debugging). Slow.
+  void set_checking(bool on);
+  /// Checks every page-cache invariant now; throws InvariantError.
+  void check_invariants() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace pagecache

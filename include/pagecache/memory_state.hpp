@@ -1,0 +1,22 @@
+#pragma once
+// MemoryState: one host's memory at an instant, in bytes (MODEL.md §1).
+//   total = free + anonymous + cached,  cached = active + inactive,
+//   dirty + writeback <= cached.
+
+#include <cstdint>
+
+namespace pagecache {
+
+struct MemoryState {
+  std::int64_t total = 0;
+  std::int64_t free = 0;
+  std::int64_t anonymous = 0;  ///< application buffers
+  std::int64_t cached = 0;     ///< page cache
+  std::int64_t dirty = 0;      ///< cached data not yet written to its device
+  std::int64_t writeback = 0;  ///< cached data being written to its device
+  std::int64_t active = 0;     ///< cached data on the active list
+  std::int64_t inactive = 0;   ///< cached data on the inactive list
+  friend bool operator==(const MemoryState&, const MemoryState&) = default;
+};
+
+}  // namespace pagecache

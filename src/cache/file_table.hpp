@@ -1,0 +1,38 @@
+#pragma once
+// FileTable: the files a host's page cache knows: name, size and the device holding them.
+
+#include "cache/block.hpp"
+
+#include <pagecache/devices.hpp>
+#include <pagecache/error.hpp>
+
+#include <fmt/format.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace pagecache::cache {
+
+struct FileInfo {
+  std::string name;
+  std::int64_t size = 0;
+  const Disk* disk = nullptr;
+};
+
+class FileTable {
+ public:
+  FileId add(std::string name, std::int64_t size, const Disk& disk) {
+    if (size < 0) throw ConfigError(fmt::format("file '{}': negative size {} bytes", name, size));
+    files_.push_back({std::move(name), size, &disk});
+    return static_cast<FileId>(files_.size() - 1);
+  }
+  const FileInfo& operator[](FileId file) const { return files_.at(file); }
+  FileInfo& operator[](FileId file) { return files_.at(file); }
+  std::size_t size() const noexcept { return files_.size(); }
+
+ private:
+  std::vector<FileInfo> files_;
+};
+
+}  // namespace pagecache::cache

@@ -1,0 +1,45 @@
+#pragma once
+// Flusher: the periodic writeback process (paper Algorithm 1). Every writeback_interval it
+// writes, one block at a time, the dirty data older than dirty_expire, inactive list first,
+// sharing the disks with everything else; then it sleeps for what is left of the interval.
+//
+// When no dirty data is left it parks instead of ticking, and is woken by notify_dirty(); it
+// then resumes on the same cadence (its ticks stay at the same times as if it had ticked all
+// along), so a simulation without dirty data ends instead of ticking forever.
+
+#include "cache/file_table.hpp"
+#include "cache/page_cache.hpp"
+
+#include <pagecache/event.hpp>
+#include <pagecache/simulator.hpp>
+
+#include <optional>
+
+namespace pagecache::cache {
+
+class Flusher {
+ public:
+  Flusher(Simulator& sim, PageCache& cache, const FileTable& files) noexcept
+      : sim_(&sim), cache_(&cache), files_(&files) {}
+  Flusher(const Flusher&) = delete;
+  Flusher& operator=(const Flusher&) = delete;
+
+  /// Starts the periodic process; its first tick is at now().
+  void start();
+  /// New dirty data: wakes the flusher if it is parked.
+  void notify_dirty();
+  /// Bytes written back by the flusher so far.
+  std::int64_t flushed_bytes() const noexcept { return flushed_; }
+
+ private:
+  Task<void> periodic();
+
+  Simulator* sim_;
+  PageCache* cache_;
+  const FileTable* files_;
+  std::optional<Event> wake_;
+  std::int64_t flushed_ = 0;
+  bool started_ = false;
+};
+
+}  // namespace pagecache::cache

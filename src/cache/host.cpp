@@ -1,0 +1,112 @@
+#include <pagecache/host.hpp>
+
+#include "cache/file_table.hpp"
+#include "cache/flusher.hpp"
+#include "cache/io_controller.hpp"
+#include "cache/page_cache.hpp"
+
+#include <fmt/format.h>
+
+#include <deque>
+
+namespace pagecache {
+
+struct Host::Impl {
+  Impl(Simulator& s, FairShare& fs, HostSpec sp)
+      : sim(s),
+        share(fs),
+        spec(std::move(sp)),
+        cpu(fs, spec.name + ":cpu", spec.cores),
+        memory(fs, spec.name + ":memory", spec.memory_bandwidth),
+        cache(spec.memory, spec.cache),
+        flusher(s, cache, files),
+        io(s, cache, memory, files, flusher) {}
+
+  Simulator& sim;
+  FairShare& share;
+  HostSpec spec;
+  Cpu cpu;
+  Memory memory;
+  std::deque<Disk> disks;  // stable addresses: files point at their disk
+  cache::FileTable files;
+  cache::PageCache cache;
+  cache::Flusher flusher;
+  cache::IoController io;
+
+  cache::FileId id(FileRef file) const {
+    if (file.index >= files.size()) throw ConfigError(fmt::format("host '{}': unknown file #{}", spec.name, file.index));
+    return file.index;
+  }
+};
+
+Host::Host(Simulator& sim, FairShare& share, HostSpec spec) : impl_(std::make_unique<Impl>(sim, share, std::move(spec))) {
+  impl_->flusher.start();
+}
+
+Host::~Host() = default;
+
+const std::string& Host::name() const noexcept { return impl_->spec.name; }
+const CacheSettings& Host::cache_settings() const noexcept { return impl_->cache.settings(); }
+
+DiskRef Host::add_disk(std::string name, double read_bw, double write_bw, std::int64_t capacity) {
+  impl_->disks.emplace_back(impl_->share, std::move(name), read_bw, write_bw, capacity);
+  return DiskRef{static_cast<std::uint32_t>(impl_->disks.size() - 1)};
+}
+
+const Disk& Host::disk(DiskRef disk) const {
+  if (disk.index >= impl_->disks.size()) throw ConfigError(fmt::format("host '{}': unknown disk #{}", name(), disk.index));
+  return impl_->disks[disk.index];
+}
+
+FileRef Host::add_file(std::string name, std::int64_t size, DiskRef disk_ref, bool cached_at_start) {
+  const Disk& d = disk(disk_ref);
+  if (d.capacity() > 0 && size > d.capacity()) {
+    throw ConfigError(fmt::format("file '{}' ({} bytes) does not fit on disk '{}' ({} bytes)", name, size, d.name(), d.capacity()));
+  }
+  const cache::FileId id = impl_->files.add(std::move(name), size, d);
+  if (cached_at_start) impl_->cache.add_clean(id, size, impl_->sim.now());
+  return FileRef{id};
+}
+
+const std::string& Host::file_name(FileRef file) const { return impl_->files[impl_->id(file)].name; }
+std::int64_t Host::file_size(FileRef file) const { return impl_->files[impl_->id(file)].size; }
+std::size_t Host::file_count() const noexcept { return impl_->files.size(); }
+
+Task<IoResult> Host::read_file(FileRef file, std::int64_t chunk_size) {
+  const cache::FileId id = impl_->id(file);
+  IoResult result;
+  result.start = impl_->sim.now();
+  const cache::IoTally tally = co_await impl_->io.read_file(id, chunk_size);
+  result.end = impl_->sim.now();
+  result.bytes = tally.bytes;
+  result.cache_bytes = tally.cache_bytes;
+  result.disk_bytes = tally.disk_bytes;
+  co_return result;
+}
+
+Task<IoResult> Host::write_file(FileRef file, std::int64_t chunk_size) {
+  const cache::FileId id = impl_->id(file);
+  IoResult result;
+  result.start = impl_->sim.now();
+  const cache::IoTally tally = co_await impl_->io.write_file(id, impl_->files[id].size, chunk_size);
+  result.end = impl_->sim.now();
+  result.bytes = tally.bytes;
+  result.cache_bytes = tally.cache_bytes;
+  result.disk_bytes = tally.disk_bytes;
+  co_return result;
+}
+
+Task<void> Host::compute(double core_seconds) { co_await impl_->cpu.compute(core_seconds); }
+
+void Host::release_memory(std::int64_t bytes) { impl_->cache.release_anonymous(bytes); }
+
+MemoryState Host::memory() const noexcept { return impl_->cache.memory(); }
+std::int64_t Host::cached(FileRef file) const noexcept { return impl_->cache.cached(file.index); }
+std::int64_t Host::dirty(FileRef file) const noexcept { return impl_->cache.dirty(file.index); }
+std::int64_t Host::forced_flush_bytes() const noexcept { return impl_->io.flushed_bytes(); }
+std::int64_t Host::periodic_flush_bytes() const noexcept { return impl_->flusher.flushed_bytes(); }
+
+void Host::set_checking(bool on) { impl_->cache.set_checking(on); }
+void Host::check_invariants() const { impl_->cache.check_invariants(); }
+
+}  // namespace pagecache

@@ -1,0 +1,73 @@
+#pragma once
+// IoController: turns chunked file reads and writes into page-cache changes and timed
+// transfers (paper Algorithms 2 and 3, MODEL.md §4).
+//
+// Every step reads the cache state as it is when the step runs; other processes may change
+// it while this one waits for a transfer. The cache bookkeeping of a chunk (new blocks,
+// re-accesses, application memory) is done when the chunk starts, before its transfers, so
+// that the memory a chunk needs is taken from `free` at once and concurrent readers cannot
+// count on it too.
+
+#include "cache/file_table.hpp"
+#include "cache/flusher.hpp"
+#include "cache/page_cache.hpp"
+
+#include <pagecache/devices.hpp>
+#include <pagecache/simulator.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace pagecache::cache {
+
+/// What one chunk or one whole-file operation moved, and from where.
+struct IoTally {
+  std::int64_t bytes = 0;
+  std::int64_t cache_bytes = 0;  ///< served by (read) or written to (write) the page cache
+  std::int64_t disk_bytes = 0;   ///< read from or written through to the device
+  IoTally& operator+=(const IoTally& other) {
+    bytes += other.bytes;
+    cache_bytes += other.cache_bytes;
+    disk_bytes += other.disk_bytes;
+    return *this;
+  }
+};
+
+class IoController {
+ public:
+  IoController(Simulator& sim, PageCache& cache, const Memory& memory, FileTable& files, Flusher& flusher) noexcept
+      : sim_(&sim), cache_(&cache), memory_(&memory), files_(&files), flusher_(&flusher) {}
+
+  /// Reads the next `chunk` bytes of `file` (Algorithm 2). The chunk's copy stays in
+  /// application memory until released.
+  Task<IoTally> read_chunk(FileId file, std::int64_t chunk);
+  /// Writes `chunk` bytes to `file` (Algorithm 3 in writeback mode; disk then cache in
+  /// writethrough mode).
+  Task<IoTally> write_chunk(FileId file, std::int64_t chunk);
+  /// Reads a whole file in chunks of `chunk_size` bytes.
+  Task<IoTally> read_file(FileId file, std::int64_t chunk_size);
+  /// Writes `bytes` to `file` in chunks of `chunk_size` bytes.
+  Task<IoTally> write_file(FileId file, std::int64_t bytes, std::int64_t chunk_size);
+
+  /// Bytes written to devices to make room or to respect the dirty ratio (not counting the
+  /// periodic flusher's).
+  std::int64_t flushed_bytes() const noexcept { return flushed_; }
+
+ private:
+  /// Flushes up to `amount` dirty bytes (skipping `excluded`) and waits for their writes.
+  Task<std::int64_t> write_back(std::int64_t amount, FileId excluded);
+  Task<IoTally> write_chunk_writeback(FileId file, std::int64_t chunk);
+  /// Copies `bytes` into the cache: the memory transfer, then a new dirty block.
+  Task<void> write_to_cache(FileId file, std::int64_t bytes);
+  Task<IoTally> write_chunk_writethrough(FileId file, std::int64_t chunk);
+
+  Simulator* sim_;
+  PageCache* cache_;
+  const Memory* memory_;
+  FileTable* files_;
+  Flusher* flusher_;
+  std::int64_t flushed_ = 0;
+  std::vector<PageCache::Flushed> flush_scratch_;
+};
+
+}  // namespace pagecache::cache

@@ -1,0 +1,119 @@
+#include "cache/lru_list.hpp"
+
+#include "engine/check.hpp"
+
+#include <fmt/format.h>
+
+namespace pagecache::cache {
+
+LruList::~LruList() {
+  for (auto& list : by_state_) list.clear();
+  blocks_.clear();
+}
+
+void LruList::link_state(Block& block) {
+  // The block's place in its state sub-list: right after the nearest block before it in the
+  // LRU list that has the same state. Usually a neighbour; at worst the blocks of other states
+  // in between are walked.
+  StateOrder& list = by_state_[index(block.state)];
+  auto it = blocks_.iterator_to(block);
+  while (it != blocks_.begin()) {
+    --it;
+    if (it->state == block.state) {
+      list.insert(std::next(list.iterator_to(*it)), block);
+      return;
+    }
+  }
+  list.push_front(block);
+}
+
+void LruList::push_back(Block& block) {
+  PC_ASSERT(block.size > 0);
+  block.list = kind_;
+  blocks_.push_back(block);
+  by_state_[index(block.state)].push_back(block);
+  bytes_ += block.size;
+  state_bytes_[index(block.state)] += block.size;
+}
+
+void LruList::insert_after(Block& position, Block& block) {
+  PC_ASSERT(block.size > 0 && position.list == kind_);
+  block.list = kind_;
+  blocks_.insert(std::next(blocks_.iterator_to(position)), block);
+  if (block.state == position.state) {
+    StateOrder& list = by_state_[index(block.state)];
+    list.insert(std::next(list.iterator_to(position)), block);
+  } else {
+    link_state(block);
+  }
+  bytes_ += block.size;
+  state_bytes_[index(block.state)] += block.size;
+}
+
+void LruList::erase(Block& block) {
+  PC_ASSERT(block.list == kind_ && block.lru_hook.is_linked());
+  blocks_.erase(blocks_.iterator_to(block));
+  StateOrder& list = by_state_[index(block.state)];
+  list.erase(list.iterator_to(block));
+  bytes_ -= block.size;
+  state_bytes_[index(block.state)] -= block.size;
+}
+
+void LruList::set_state(Block& block, BlockState state) {
+  if (block.state == state) return;
+  StateOrder& from = by_state_[index(block.state)];
+  from.erase(from.iterator_to(block));
+  state_bytes_[index(block.state)] -= block.size;
+  block.state = state;
+  state_bytes_[index(state)] += block.size;
+  link_state(block);
+}
+
+void LruList::resize(Block& block, std::int64_t new_size) {
+  PC_ASSERT(new_size > 0);
+  bytes_ += new_size - block.size;
+  state_bytes_[index(block.state)] += new_size - block.size;
+  block.size = new_size;
+}
+
+Block* LruList::next(Block& block) noexcept {
+  auto it = std::next(blocks_.iterator_to(block));
+  return it == blocks_.end() ? nullptr : &*it;
+}
+
+Block* LruList::front(BlockState state) noexcept {
+  StateOrder& list = by_state_[index(state)];
+  return list.empty() ? nullptr : &list.front();
+}
+
+Block* LruList::next(Block& block, BlockState state) noexcept {
+  StateOrder& list = by_state_[index(state)];
+  auto it = std::next(list.iterator_to(block));
+  return it == list.end() ? nullptr : &*it;
+}
+
+void LruList::check() const {
+  std::int64_t total = 0;
+  std::array<std::int64_t, 3> per_state{};
+  std::array<std::size_t, 3> counts{};
+  for (const Block& b : blocks_) {
+    PC_ASSERT(b.size > 0 && b.list == kind_);
+    total += b.size;
+    per_state[index(b.state)] += b.size;
+    ++counts[index(b.state)];
+  }
+  PC_ASSERT_MSG(total == bytes_, fmt::format("list bytes {} != block sum {}", bytes_, total));
+  for (std::size_t s = 0; s < 3; ++s) {
+    PC_ASSERT(per_state[s] == state_bytes_[s]);
+    PC_ASSERT(counts[s] == by_state_[s].size());
+    // Each sub-list follows the LRU order of the main list.
+    auto sub = by_state_[s].begin();
+    for (const Block& b : blocks_) {
+      if (index(b.state) != s) continue;
+      PC_ASSERT_MSG(&*sub == &b, "state sub-list out of LRU order");
+      ++sub;
+    }
+  }
+}
+
+}  // namespace pagecache::cache

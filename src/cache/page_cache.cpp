@@ -1,0 +1,326 @@
+#include "cache/page_cache.hpp"
+
+#include "engine/check.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace pagecache::cache {
+
+PageCache::PageCache(std::int64_t total_memory, const CacheSettings& settings)
+    : settings_(settings), total_(total_memory) {
+  if (total_memory <= 0) throw ConfigError(fmt::format("memory size must be > 0, got {} bytes", total_memory));
+}
+
+PageCache::~PageCache() {
+  for (LruList* list : {&inactive_, &active_}) {
+    while (Block* block = list->front()) destroy(*block);
+  }
+}
+
+MemoryState PageCache::memory() const noexcept {
+  return MemoryState{.total = total_,
+                     .free = free(),
+                     .anonymous = anonymous_,
+                     .cached = cached(),
+                     .dirty = dirty(),
+                     .writeback = writeback(),
+                     .active = active_.bytes(),
+                     .inactive = inactive_.bytes()};
+}
+
+std::int64_t PageCache::writeback() const noexcept {
+  return inactive_.bytes(BlockState::Writeback) + active_.bytes(BlockState::Writeback);
+}
+
+std::int64_t PageCache::dirtyable() const noexcept {
+  return settings_.dirtyable_memory ? free() + cached() : free() + cached() - dirty() - writeback();
+}
+
+std::int64_t PageCache::evictable() const noexcept {
+  return settings_.reclaim_inactive_only ? inactive_.bytes(BlockState::Clean) : inactive_.bytes();
+}
+
+void PageCache::allocate_anonymous(std::int64_t bytes) {
+  PC_ASSERT(bytes >= 0);
+  if (bytes > free()) {
+    throw SimulationError(fmt::format("out of memory: {} bytes of application memory requested, {} free", bytes, free()));
+  }
+  anonymous_ += bytes;
+  settle();
+}
+
+void PageCache::release_anonymous(std::int64_t bytes) {
+  PC_ASSERT(bytes >= 0 && bytes <= anonymous_);
+  anonymous_ -= bytes;
+  settle();
+}
+
+// --- Per file -------------------------------------------------------------------------------
+
+PageCache::FileEntry& PageCache::file_entry(FileId file) {
+  PC_ASSERT(file != kNoFile);
+  if (file >= files_.size()) files_.resize(static_cast<std::size_t>(file) + 1);
+  return files_[file];
+}
+
+std::int64_t PageCache::cached(FileId file) const noexcept {
+  if (file >= files_.size()) return 0;
+  return files_[file].inactive_bytes + files_[file].active_bytes;
+}
+
+std::int64_t PageCache::cached(FileId file, ListKind kind) const noexcept {
+  if (file >= files_.size()) return 0;
+  return kind == ListKind::Inactive ? files_[file].inactive_bytes : files_[file].active_bytes;
+}
+
+std::int64_t PageCache::dirty(FileId file) const noexcept {
+  return file < files_.size() ? files_[file].dirty_bytes : 0;
+}
+
+// --- Block bookkeeping: every list and counter changes here and only here -------------------
+
+Block& PageCache::new_block(FileId file, std::int64_t size, BlockState state, double now) {
+  Block* block = pool_.take();
+  block->file = file;
+  block->size = size;
+  block->state = state;
+  block->last_access = now;
+  block->entry_time = now;
+  return *block;
+}
+
+void PageCache::append(Block& block, ListKind kind) {
+  FileEntry& entry = file_entry(block.file);
+  list_of(kind).push_back(block);
+  file_list(entry, kind).push_back(block);
+  (kind == ListKind::Inactive ? entry.inactive_bytes : entry.active_bytes) += block.size;
+  if (block.state == BlockState::Dirty) entry.dirty_bytes += block.size;
+}
+
+void PageCache::unlink(Block& block) {
+  FileEntry& entry = files_[block.file];
+  list_of(block.list).erase(block);
+  FileOrder& flist = file_list(entry, block.list);
+  flist.erase(flist.iterator_to(block));
+  (block.list == ListKind::Inactive ? entry.inactive_bytes : entry.active_bytes) -= block.size;
+  if (block.state == BlockState::Dirty) entry.dirty_bytes -= block.size;
+}
+
+void PageCache::destroy(Block& block) {
+  unlink(block);
+  pool_.give_back(&block);
+}
+
+void PageCache::set_state(Block& block, BlockState state) {
+  FileEntry& entry = files_[block.file];
+  if (block.state == BlockState::Dirty) entry.dirty_bytes -= block.size;
+  if (state == BlockState::Dirty) entry.dirty_bytes += block.size;
+  list_of(block.list).set_state(block, state);
+}
+
+Block& PageCache::split_front(Block& block, std::int64_t head_size) {
+  PC_ASSERT(head_size > 0 && head_size < block.size);
+  Block& tail = *pool_.take();
+  tail.file = block.file;
+  tail.size = block.size - head_size;
+  tail.state = block.state;
+  tail.last_access = block.last_access;
+  tail.entry_time = block.entry_time;
+  tail.referenced = block.referenced;
+  tail.writeback_batch = block.writeback_batch;
+  LruList& list = list_of(block.list);
+  list.resize(block, head_size);
+  list.insert_after(block, tail);
+  FileOrder& flist = file_list(files_[block.file], block.list);
+  flist.insert(std::next(flist.iterator_to(block)), tail);
+  // Per-file byte counters are unchanged: the file holds the same bytes in the same list.
+  return block;
+}
+
+void PageCache::settle() {
+  if (settings_.balance_after_every_change) balance();
+  if (checking_) check_invariants();
+}
+
+// --- Cache contents -------------------------------------------------------------------------
+
+void PageCache::add_clean(FileId file, std::int64_t bytes, double now) {
+  PC_ASSERT(bytes >= 0);
+  if (bytes == 0) return;
+  if (bytes > free()) {
+    throw SimulationError(fmt::format("cannot cache {} bytes: only {} free", bytes, free()));
+  }
+  append(new_block(file, bytes, BlockState::Clean, now), ListKind::Inactive);
+  settle();
+}
+
+void PageCache::add_dirty(FileId file, std::int64_t bytes, double now) {
+  PC_ASSERT(bytes >= 0);
+  if (bytes == 0) return;
+  if (bytes > free()) {
+    throw SimulationError(fmt::format("cannot cache {} bytes: only {} free", bytes, free()));
+  }
+  append(new_block(file, bytes, BlockState::Dirty, now), ListKind::Inactive);
+  settle();
+}
+
+void PageCache::reaccess(FileId file, std::int64_t bytes, double now) {
+  PC_ASSERT(bytes >= 0 && bytes <= cached(file));
+  FileEntry& entry = file_entry(file);
+  std::int64_t left = bytes;
+  std::int64_t merged_clean = 0;
+  for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
+    FileOrder& flist = file_list(entry, kind);
+    while (left > 0 && !flist.empty()) {
+      Block& front = flist.front();
+      Block& block = front.size > left ? split_front(front, left) : front;
+      left -= block.size;
+      if (block.state == BlockState::Clean) {
+        merged_clean += block.size;
+        destroy(block);
+      } else {
+        // Dirty (or under writeback) data moves on its own, keeping its entry time. A block
+        // already on the active list is taken from the front of the file's active list, so
+        // appending it again cannot meet it twice.
+        unlink(block);
+        append(block, ListKind::Active);
+      }
+    }
+  }
+  PC_ASSERT(left == 0);
+  if (merged_clean > 0) append(new_block(file, merged_clean, BlockState::Clean, now), ListKind::Active);
+  balance();  // after every read, in both profiles
+  settle();
+}
+
+std::int64_t PageCache::flush(std::int64_t amount, FileId excluded, std::vector<Flushed>& out) {
+  std::int64_t flushed = 0;
+  for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
+    LruList& list = list_of(kind);
+    Block* block = list.front(BlockState::Dirty);
+    while (block != nullptr && flushed < amount) {
+      Block* next = list.next(*block, BlockState::Dirty);
+      if (block->file != excluded) {
+        const bool partial = block->size > amount - flushed;
+        Block& target = partial ? split_front(*block, amount - flushed) : *block;
+        flushed += target.size;
+        if (!out.empty() && out.back().file == target.file) out.back().bytes += target.size;
+        else out.push_back({target.file, target.size});
+        set_state(target, BlockState::Clean);
+        if (partial && !settings_.flush_splits_in_place) {
+          // WRENCH-cache moves the flushed part of a split block to the MRU end of the
+          // inactive list.
+          unlink(target);
+          append(target, ListKind::Inactive);
+        }
+      }
+      block = next;
+    }
+  }
+  settle();
+  return flushed;
+}
+
+PageCache::Flushed PageCache::begin_expired(double cutoff) {
+  for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
+    LruList& list = list_of(kind);
+    for (Block* block = list.front(BlockState::Dirty); block != nullptr; block = list.next(*block, BlockState::Dirty)) {
+      if (block->entry_time > cutoff) continue;
+      const Flushed taken{block->file, block->size, next_token_++};
+      if (settings_.flusher_cleans_after_write) {
+        block->writeback_batch = taken.token;
+        set_state(*block, BlockState::Writeback);
+      } else {
+        set_state(*block, BlockState::Clean);
+      }
+      settle();
+      return taken;
+    }
+  }
+  return {kNoFile, 0};
+}
+
+void PageCache::end_expired(const Flushed& taken) {
+  if (!settings_.flusher_cleans_after_write || taken.bytes == 0) return;
+  FileEntry& entry = file_entry(taken.file);
+  for (FileOrder* flist : {&entry.inactive, &entry.active}) {
+    for (Block& block : *flist) {
+      if (block.writeback_batch != taken.token) continue;
+      block.writeback_batch = 0;
+      if (block.state != BlockState::Clean) set_state(block, BlockState::Clean);
+    }
+  }
+  settle();
+}
+
+std::int64_t PageCache::evict(std::int64_t amount, FileId excluded) {
+  std::int64_t evicted = 0;
+  for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
+    if (kind == ListKind::Active && settings_.reclaim_inactive_only) break;
+    LruList& list = list_of(kind);
+    Block* block = list.front(BlockState::Clean);
+    while (block != nullptr && evicted < amount) {
+      Block* next = list.next(*block, BlockState::Clean);
+      if (block->file != excluded) {
+        Block& victim = block->size > amount - evicted ? split_front(*block, amount - evicted) : *block;
+        evicted += victim.size;
+        destroy(victim);
+      }
+      block = next;
+    }
+  }
+  settle();
+  return evicted;
+}
+
+void PageCache::balance() {
+  const std::int64_t excess = active_.bytes() - 2 * inactive_.bytes();
+  if (excess <= 0) return;
+  // Moving x bytes leaves active - x <= 2 (inactive + x): x >= excess / 3, rounded up.
+  std::int64_t to_move = (excess + 2) / 3;
+  while (to_move > 0) {
+    Block* front = active_.front();
+    PC_ASSERT(front != nullptr);
+    Block& block = front->size > to_move ? split_front(*front, to_move) : *front;
+    to_move -= block.size;
+    unlink(block);
+    append(block, ListKind::Inactive);
+  }
+}
+
+void PageCache::check_invariants() const {
+  inactive_.check();
+  active_.check();
+  PC_ASSERT_MSG(anonymous_ >= 0, fmt::format("anonymous {} < 0", anonymous_));
+  PC_ASSERT_MSG(free() >= 0, fmt::format("free {} < 0 (total {}, anonymous {}, cached {})", free(), total_, anonymous_, cached()));
+  PC_ASSERT(dirty() >= 0 && dirty() + writeback() <= cached());
+  std::size_t blocks_in_files = 0;
+  for (std::size_t f = 0; f < files_.size(); ++f) {
+    const FileEntry& entry = files_[f];
+    std::int64_t bytes[2] = {0, 0};
+    std::int64_t dirty_bytes = 0;
+    for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
+      const FileOrder& flist = kind == ListKind::Inactive ? entry.inactive : entry.active;
+      // The file's list follows the LRU list's order.
+      const LruList& lru = list(kind);
+      auto lru_it = lru.blocks().begin();
+      for (const Block& b : flist) {
+        PC_ASSERT_MSG(b.file == f && b.list == kind, "block on the wrong file or list");
+        while (lru_it != lru.blocks().end() && &*lru_it != &b) ++lru_it;
+        PC_ASSERT_MSG(lru_it != lru.blocks().end(), "file list out of LRU order");
+        bytes[static_cast<int>(kind)] += b.size;
+        if (b.state == BlockState::Dirty) dirty_bytes += b.size;
+        ++blocks_in_files;
+      }
+    }
+    PC_ASSERT_MSG(bytes[0] == entry.inactive_bytes && bytes[1] == entry.active_bytes,
+                  fmt::format("file {} byte counters disagree with its blocks", f));
+    PC_ASSERT(dirty_bytes == entry.dirty_bytes);
+  }
+  PC_ASSERT_MSG(blocks_in_files == inactive_.size() + active_.size(), "a block is missing from its file's list");
+  PC_ASSERT(pool_.in_use() == inactive_.size() + active_.size());
+}
+
+}  // namespace pagecache::cache

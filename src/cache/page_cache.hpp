@@ -1,0 +1,144 @@
+#pragma once
+// PageCache: the state of one host's memory as the paper's Memory Manager keeps it (MODEL.md
+// §1-§3): anonymous memory, and the cached data blocks on the inactive and active LRU lists.
+//
+// Synchronous and engine-free: every operation takes the current time and returns at once,
+// so it can be tested without a simulator. Timing (disk and memory transfers) is the
+// IoController's and the Flusher's business: they ask PageCache what to move, then charge the
+// transfer to the devices.
+//
+// Invariants (checked by check_invariants(), and after every operation when
+// set_checking(true)): total = free + anonymous + cached, free >= 0, 0 <= dirty <= cached,
+// cached = inactive + active, every list's byte counter equals its block sum, every block is
+// in exactly one LRU list and in its file's list for that LRU list.
+
+#include "cache/block.hpp"
+#include "cache/lru_list.hpp"
+#include "engine/object_pool.hpp"
+
+#include <pagecache/cache_settings.hpp>
+#include <pagecache/memory_state.hpp>
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace pagecache::cache {
+
+inline constexpr FileId kNoFile = std::numeric_limits<FileId>::max();
+
+class PageCache {
+ public:
+  PageCache(std::int64_t total_memory, const CacheSettings& settings);
+  PageCache(const PageCache&) = delete;
+  PageCache& operator=(const PageCache&) = delete;
+  ~PageCache();
+
+  const CacheSettings& settings() const noexcept { return settings_; }
+  /// Runs check_invariants() after every mutating operation (tests, debug runs).
+  void set_checking(bool on) noexcept { checking_ = on; }
+
+  // --- Memory -----------------------------------------------------------------------------
+  MemoryState memory() const noexcept;
+  std::int64_t total() const noexcept { return total_; }
+  std::int64_t free() const noexcept { return total_ - anonymous_ - cached(); }
+  std::int64_t anonymous() const noexcept { return anonymous_; }
+  std::int64_t cached() const noexcept { return inactive_.bytes() + active_.bytes(); }
+  std::int64_t dirty() const noexcept { return inactive_.bytes(BlockState::Dirty) + active_.bytes(BlockState::Dirty); }
+  std::int64_t writeback() const noexcept;
+  const LruList& list(ListKind kind) const noexcept { return kind == ListKind::Inactive ? inactive_ : active_; }
+
+  /// Memory the dirty thresholds are fractions of: free + cached (kernel) or
+  /// free + cached - dirty (paper), per settings().dirtyable_memory.
+  std::int64_t dirtyable() const noexcept;
+  /// Memory a read may count on freeing by eviction before it must flush: clean inactive data
+  /// (kernel) or every inactive byte (WRENCH-cache), the excluded file's included.
+  std::int64_t evictable() const noexcept;
+
+  /// Takes `bytes` of free memory for application buffers. Throws SimulationError if there
+  /// is not that much free memory (the caller makes room first).
+  void allocate_anonymous(std::int64_t bytes);
+  void release_anonymous(std::int64_t bytes);
+
+  // --- Per file ---------------------------------------------------------------------------
+  std::int64_t cached(FileId file) const noexcept;
+  std::int64_t cached(FileId file, ListKind kind) const noexcept;
+  std::int64_t dirty(FileId file) const noexcept;
+  /// Number of files known (ids are 0 .. file_count() - 1).
+  std::size_t file_count() const noexcept { return files_.size(); }
+
+  // --- Cache contents ---------------------------------------------------------------------
+  /// New data read from a device: a clean block at the MRU end of the inactive list.
+  void add_clean(FileId file, std::int64_t bytes, double now);
+  /// New data written: a dirty block (entry time `now`) at the MRU end of the inactive list.
+  void add_dirty(FileId file, std::int64_t bytes, double now);
+  /// Re-access of `bytes` cached bytes of `file` by a read: inactive blocks first, then
+  /// active ones, least recently used first. Clean data read is merged into one block at the
+  /// MRU end of the active list; dirty blocks move there individually, keeping their entry
+  /// times. A block read only in part is split and only the part read moves.
+  void reaccess(FileId file, std::int64_t bytes, double now);
+
+  /// Bytes of one file taken for writing to its device.
+  struct Flushed {
+    FileId file;
+    std::int64_t bytes;
+    std::uint64_t token = 0;  // identifies a flusher write in progress
+  };
+  /// Marks up to `amount` dirty bytes clean, least recently used first, inactive list then
+  /// active list, skipping `excluded`; appends what was taken, per file, to `out` and returns
+  /// the total. The caller writes them to their devices.
+  std::int64_t flush(std::int64_t amount, FileId excluded, std::vector<Flushed>& out);
+  /// The periodic flusher writes expired data one block at a time: begin_expired picks the
+  /// least recently used dirty block whose entry time is <= `cutoff` (inactive list first),
+  /// returns it ({kNoFile, 0} if none) and, unless settings().flusher_cleans_after_write, marks
+  /// it clean at once. end_expired is called when its write is done: with
+  /// flusher_cleans_after_write, the data still dirty from that block (it may have been split,
+  /// moved or flushed by an application meanwhile) becomes clean then.
+  Flushed begin_expired(double cutoff);
+  void end_expired(const Flushed& taken);
+  /// Deletes up to `amount` bytes of clean data, least recently used first (inactive list,
+  /// then, unless settings().reclaim_inactive_only, the active list), skipping `excluded`.
+  /// Returns how many. Takes no simulated time.
+  std::int64_t evict(std::int64_t amount, FileId excluded);
+  /// Moves least recently used active data to the inactive list until active <= 2 x inactive.
+  void balance();
+
+  /// Throws InvariantError naming the first broken invariant.
+  void check_invariants() const;
+
+ private:
+  struct FileEntry {
+    FileOrder inactive;
+    FileOrder active;
+    std::int64_t inactive_bytes = 0;
+    std::int64_t active_bytes = 0;
+    std::int64_t dirty_bytes = 0;
+  };
+
+  FileEntry& file_entry(FileId file);
+  LruList& list_of(ListKind kind) noexcept { return kind == ListKind::Inactive ? inactive_ : active_; }
+  FileOrder& file_list(FileEntry& entry, ListKind kind) noexcept { return kind == ListKind::Inactive ? entry.inactive : entry.active; }
+
+  Block& new_block(FileId file, std::int64_t size, BlockState state, double now);
+  void append(Block& block, ListKind kind);
+  void unlink(Block& block);
+  void destroy(Block& block);
+  void set_state(Block& block, BlockState state);
+  /// Cuts the first `head_size` bytes of `block` off into a new block placed right before the
+  /// rest, in every list; returns the head.
+  Block& split_front(Block& block, std::int64_t head_size);
+  /// After a mutation: balance if the settings say so, then check if checking.
+  void settle();
+
+  CacheSettings settings_;
+  std::int64_t total_;
+  std::int64_t anonymous_ = 0;
+  LruList inactive_{ListKind::Inactive};
+  LruList active_{ListKind::Active};
+  std::vector<FileEntry> files_;
+  detail::ObjectPool<Block> pool_;
+  std::uint64_t next_token_ = 1;
+  bool checking_ = false;
+};
+
+}  // namespace pagecache::cache

@@ -37,11 +37,6 @@ struct CacheSettings {
   /// WRENCH-cache: after reads only.
   bool balance_after_every_change = true;
 
-  /// The periodic flusher marks a block clean when its write ends; until then the block
-  /// still counts as dirty and an application's flush may write it too. Off: clean when the
-  /// write starts (the kernel's pages are in writeback then, no longer dirty).
-  bool flusher_cleans_after_write = false;
-
   /// The paper's model as WRENCH-cache implements it: dirty ratio 0.4, 5 s interval, 30 s
   /// expiry, and WRENCH-cache's reading of the paper where the paper is ambiguous.
   static CacheSettings paper() {
@@ -54,7 +49,6 @@ struct CacheSettings {
     s.reclaim_inactive_only = false;
     s.flush_splits_in_place = false;
     s.balance_after_every_change = false;
-    s.flusher_cleans_after_write = true;
     return s;
   }
   /// The kernel's behaviour with its default knobs.

@@ -1,7 +1,10 @@
 #pragma once
 // MemoryState: one host's memory at an instant, in bytes (MODEL.md §1).
-//   total = free + anonymous + cached,  cached = active + inactive,
+//   total = free + anonymous + cached + reserved,  cached = active + inactive,
 //   dirty + writeback <= cached.
+// `reserved` is memory taken for copies in flight into the page cache: a chunk being written
+// holds its pages from the start of its memory transfer, and joins `cached` (as a dirty
+// block) when the transfer ends. It is zero between I/O operations.
 
 #include <cstdint>
 
@@ -16,6 +19,7 @@ struct MemoryState {
   std::int64_t writeback = 0;  ///< cached data being written to its device
   std::int64_t active = 0;     ///< cached data on the active list
   std::int64_t inactive = 0;   ///< cached data on the inactive list
+  std::int64_t reserved = 0;   ///< pages being filled by transfers in flight
   friend bool operator==(const MemoryState&, const MemoryState&) = default;
 };
 

@@ -33,11 +33,11 @@ Task<void> Flusher::periodic() {
     }
     const double cutoff = tick - expire;
     for (;;) {
-      const PageCache::Flushed taken = cache_->begin_expired(cutoff);
+      const PageCache::Flushed taken = cache_->flush_expired_block(cutoff);
       if (taken.bytes == 0) break;
       flushed_ += taken.bytes;
       co_await (*files_)[taken.file].disk->write(taken.bytes);
-      cache_->end_expired(taken);
+      cache_->end_writeback(taken);
     }
     // A tick that took longer than the interval is followed by the next one at once.
     tick = std::max(tick + interval, sim_->now());

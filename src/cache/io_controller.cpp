@@ -11,13 +11,11 @@ namespace pagecache::cache {
 
 Task<std::int64_t> IoController::write_back(std::int64_t amount, FileId excluded) {
   if (amount <= 0) co_return 0;
-  // The flushed bytes may belong to files on different devices: one write per device, in
-  // the order the data was taken.
   std::vector<PageCache::Flushed> taken;
-  taken.swap(flush_scratch_);
-  taken.clear();
   const std::int64_t total = cache_->flush(amount, excluded, taken);
   flushed_ += total;
+  // The data may belong to files on different devices: one write per device, in the order
+  // the data was taken.
   std::vector<std::pair<const Disk*, std::int64_t>> writes;
   for (const auto& part : taken) {
     const Disk* disk = (*files_)[part.file].disk;
@@ -25,9 +23,8 @@ Task<std::int64_t> IoController::write_back(std::int64_t amount, FileId excluded
     if (it == writes.end()) writes.emplace_back(disk, part.bytes);
     else it->second += part.bytes;
   }
-  taken.clear();
-  flush_scratch_.swap(taken);
   for (const auto& [disk, bytes] : writes) co_await disk->write(bytes);
+  for (const auto& part : taken) cache_->end_writeback(part);
   co_return total;
 }
 
@@ -58,8 +55,11 @@ Task<IoTally> IoController::write_chunk(FileId file, std::int64_t chunk) {
 }
 
 Task<void> IoController::write_to_cache(FileId file, std::int64_t bytes) {
+  // The pages are taken now and hold the data once the copy is done: the dirty block's entry
+  // time is the end of the copy.
+  cache_->reserve(bytes);
   co_await memory_->write(bytes);
-  cache_->add_dirty(file, bytes, sim_->now());
+  cache_->commit_dirty(file, bytes, sim_->now());
   flusher_->notify_dirty();
 }
 
@@ -69,7 +69,7 @@ Task<IoTally> IoController::write_chunk_writeback(FileId file, std::int64_t chun
     return static_cast<std::int64_t>(std::floor(settings.dirty_ratio * static_cast<double>(cache_->dirtyable())));
   };
   std::int64_t to_memory = 0;
-  const std::int64_t remain_dirty = limit() - cache_->dirty() - cache_->writeback();
+  const std::int64_t remain_dirty = limit() - cache_->dirty_and_writeback();
   if (remain_dirty > 0) {
     cache_->evict(std::min(chunk, remain_dirty) - cache_->free(), file);
     // Not capped by remain_dirty: as in the paper, a chunk may overshoot the ratio.

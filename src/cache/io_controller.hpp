@@ -67,7 +67,6 @@ class IoController {
   FileTable* files_;
   Flusher* flusher_;
   std::int64_t flushed_ = 0;
-  std::vector<PageCache::Flushed> flush_scratch_;
 };
 
 }  // namespace pagecache::cache

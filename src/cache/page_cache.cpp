@@ -27,7 +27,8 @@ MemoryState PageCache::memory() const noexcept {
                      .dirty = dirty(),
                      .writeback = writeback(),
                      .active = active_.bytes(),
-                     .inactive = inactive_.bytes()};
+                     .inactive = inactive_.bytes(),
+                     .reserved = reserved_};
 }
 
 std::int64_t PageCache::writeback() const noexcept {
@@ -37,6 +38,8 @@ std::int64_t PageCache::writeback() const noexcept {
 std::int64_t PageCache::dirtyable() const noexcept {
   return settings_.dirtyable_memory ? free() + cached() : free() + cached() - dirty() - writeback();
 }
+
+std::int64_t PageCache::dirty_and_writeback() const noexcept { return dirty() + writeback(); }
 
 std::int64_t PageCache::evictable() const noexcept {
   return settings_.reclaim_inactive_only ? inactive_.bytes(BlockState::Clean) : inactive_.bytes();
@@ -166,6 +169,19 @@ void PageCache::add_dirty(FileId file, std::int64_t bytes, double now) {
   settle();
 }
 
+void PageCache::reserve(std::int64_t bytes) {
+  PC_ASSERT(bytes >= 0);
+  if (bytes > free()) throw SimulationError(fmt::format("cannot reserve {} bytes: only {} free", bytes, free()));
+  reserved_ += bytes;
+  settle();
+}
+
+void PageCache::commit_dirty(FileId file, std::int64_t bytes, double now) {
+  PC_ASSERT(bytes >= 0 && bytes <= reserved_);
+  reserved_ -= bytes;
+  add_dirty(file, bytes, now);
+}
+
 void PageCache::reaccess(FileId file, std::int64_t bytes, double now) {
   PC_ASSERT(bytes >= 0 && bytes <= cached(file));
   FileEntry& entry = file_entry(file);
@@ -197,6 +213,7 @@ void PageCache::reaccess(FileId file, std::int64_t bytes, double now) {
 
 std::int64_t PageCache::flush(std::int64_t amount, FileId excluded, std::vector<Flushed>& out) {
   std::int64_t flushed = 0;
+  const std::uint64_t token = next_token_++;
   for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
     LruList& list = list_of(kind);
     Block* block = list.front(BlockState::Dirty);
@@ -206,9 +223,10 @@ std::int64_t PageCache::flush(std::int64_t amount, FileId excluded, std::vector<
         const bool partial = block->size > amount - flushed;
         Block& target = partial ? split_front(*block, amount - flushed) : *block;
         flushed += target.size;
-        if (!out.empty() && out.back().file == target.file) out.back().bytes += target.size;
-        else out.push_back({target.file, target.size});
-        set_state(target, BlockState::Clean);
+        if (!out.empty() && out.back().file == target.file && out.back().token == token) out.back().bytes += target.size;
+        else out.push_back({target.file, target.size, token});
+        target.writeback_batch = token;
+        set_state(target, BlockState::Writeback);
         if (partial && !settings_.flush_splits_in_place) {
           // WRENCH-cache moves the flushed part of a split block to the MRU end of the
           // inactive list.
@@ -223,18 +241,14 @@ std::int64_t PageCache::flush(std::int64_t amount, FileId excluded, std::vector<
   return flushed;
 }
 
-PageCache::Flushed PageCache::begin_expired(double cutoff) {
+PageCache::Flushed PageCache::flush_expired_block(double cutoff) {
   for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
     LruList& list = list_of(kind);
     for (Block* block = list.front(BlockState::Dirty); block != nullptr; block = list.next(*block, BlockState::Dirty)) {
       if (block->entry_time > cutoff) continue;
       const Flushed taken{block->file, block->size, next_token_++};
-      if (settings_.flusher_cleans_after_write) {
-        block->writeback_batch = taken.token;
-        set_state(*block, BlockState::Writeback);
-      } else {
-        set_state(*block, BlockState::Clean);
-      }
+      block->writeback_batch = taken.token;
+      set_state(*block, BlockState::Writeback);
       settle();
       return taken;
     }
@@ -242,14 +256,17 @@ PageCache::Flushed PageCache::begin_expired(double cutoff) {
   return {kNoFile, 0};
 }
 
-void PageCache::end_expired(const Flushed& taken) {
-  if (!settings_.flusher_cleans_after_write || taken.bytes == 0) return;
+void PageCache::end_writeback(const Flushed& taken) {
+  if (taken.bytes == 0) return;
+  // The blocks of one write carry its token; splits pass it on. They are found among their
+  // file's blocks: O(blocks of the file).
   FileEntry& entry = file_entry(taken.file);
   for (FileOrder* flist : {&entry.inactive, &entry.active}) {
     for (Block& block : *flist) {
       if (block.writeback_batch != taken.token) continue;
       block.writeback_batch = 0;
-      if (block.state != BlockState::Clean) set_state(block, BlockState::Clean);
+      PC_ASSERT(block.state == BlockState::Writeback);
+      set_state(block, BlockState::Clean);
     }
   }
   settle();
@@ -294,7 +311,9 @@ void PageCache::check_invariants() const {
   inactive_.check();
   active_.check();
   PC_ASSERT_MSG(anonymous_ >= 0, fmt::format("anonymous {} < 0", anonymous_));
-  PC_ASSERT_MSG(free() >= 0, fmt::format("free {} < 0 (total {}, anonymous {}, cached {})", free(), total_, anonymous_, cached()));
+  PC_ASSERT_MSG(free() >= 0, fmt::format("free {} < 0 (total {}, anonymous {}, cached {}, reserved {})", free(), total_,
+                                          anonymous_, cached(), reserved_));
+  PC_ASSERT(reserved_ >= 0);
   PC_ASSERT(dirty() >= 0 && dirty() + writeback() <= cached());
   std::size_t blocks_in_files = 0;
   for (std::size_t f = 0; f < files_.size(); ++f) {

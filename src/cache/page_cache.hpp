@@ -41,15 +41,19 @@ class PageCache {
   // --- Memory -----------------------------------------------------------------------------
   MemoryState memory() const noexcept;
   std::int64_t total() const noexcept { return total_; }
-  std::int64_t free() const noexcept { return total_ - anonymous_ - cached(); }
+  std::int64_t free() const noexcept { return total_ - anonymous_ - cached() - reserved_; }
+  std::int64_t reserved() const noexcept { return reserved_; }
   std::int64_t anonymous() const noexcept { return anonymous_; }
   std::int64_t cached() const noexcept { return inactive_.bytes() + active_.bytes(); }
   std::int64_t dirty() const noexcept { return inactive_.bytes(BlockState::Dirty) + active_.bytes(BlockState::Dirty); }
   std::int64_t writeback() const noexcept;
   const LruList& list(ListKind kind) const noexcept { return kind == ListKind::Inactive ? inactive_ : active_; }
 
+  /// What the dirty thresholds limit: data dirty or being written back (as the kernel's
+  /// balance_dirty_pages counts NR_FILE_DIRTY + NR_WRITEBACK).
+  std::int64_t dirty_and_writeback() const noexcept;
   /// Memory the dirty thresholds are fractions of: free + cached (kernel) or
-  /// free + cached - dirty (paper), per settings().dirtyable_memory.
+  /// free + cached - dirty (paper; dirty including writeback), per settings().dirtyable_memory.
   std::int64_t dirtyable() const noexcept;
   /// Memory a read may count on freeing by eviction before it must flush: clean inactive data
   /// (kernel) or every inactive byte (WRENCH-cache), the excluded file's included.
@@ -72,6 +76,10 @@ class PageCache {
   void add_clean(FileId file, std::int64_t bytes, double now);
   /// New data written: a dirty block (entry time `now`) at the MRU end of the inactive list.
   void add_dirty(FileId file, std::int64_t bytes, double now);
+  /// Takes `bytes` of free memory for a copy into the cache that is about to start (throws
+  /// SimulationError if not free); commit_dirty turns them into a dirty block when it ends.
+  void reserve(std::int64_t bytes);
+  void commit_dirty(FileId file, std::int64_t bytes, double now);
   /// Re-access of `bytes` cached bytes of `file` by a read: inactive blocks first, then
   /// active ones, least recently used first. Clean data read is merged into one block at the
   /// MRU end of the active list; dirty blocks move there individually, keeping their entry
@@ -82,20 +90,21 @@ class PageCache {
   struct Flushed {
     FileId file;
     std::int64_t bytes;
-    std::uint64_t token = 0;  // identifies a flusher write in progress
+    std::uint64_t token = 0;  // identifies the write in progress
   };
-  /// Marks up to `amount` dirty bytes clean, least recently used first, inactive list then
-  /// active list, skipping `excluded`; appends what was taken, per file, to `out` and returns
-  /// the total. The caller writes them to their devices.
+  /// Takes up to `amount` dirty bytes for writing back, least recently used first, inactive
+  /// list then active list, skipping `excluded`: they are in writeback (neither dirty nor
+  /// evictable) until end_writeback. Appends what was taken, per file, to `out` and returns
+  /// the total. The caller writes them to their devices, then calls end_writeback.
   std::int64_t flush(std::int64_t amount, FileId excluded, std::vector<Flushed>& out);
-  /// The periodic flusher writes expired data one block at a time: begin_expired picks the
-  /// least recently used dirty block whose entry time is <= `cutoff` (inactive list first),
-  /// returns it ({kNoFile, 0} if none) and, unless settings().flusher_cleans_after_write, marks
-  /// it clean at once. end_expired is called when its write is done: with
-  /// flusher_cleans_after_write, the data still dirty from that block (it may have been split,
-  /// moved or flushed by an application meanwhile) becomes clean then.
-  Flushed begin_expired(double cutoff);
-  void end_expired(const Flushed& taken);
+  /// Takes for writing back the least recently used dirty block whose entry time is <=
+  /// `cutoff` (inactive list first), or returns {kNoFile, 0}: the periodic flusher writes
+  /// expired data one block at a time.
+  Flushed flush_expired_block(double cutoff);
+  /// The write of `taken` is done: its data still in writeback becomes clean (it may have been
+  /// split or moved meanwhile).
+  void end_writeback(const Flushed& taken);
+
   /// Deletes up to `amount` bytes of clean data, least recently used first (inactive list,
   /// then, unless settings().reclaim_inactive_only, the active list), skipping `excluded`.
   /// Returns how many. Takes no simulated time.
@@ -133,6 +142,7 @@ class PageCache {
   CacheSettings settings_;
   std::int64_t total_;
   std::int64_t anonymous_ = 0;
+  std::int64_t reserved_ = 0;
   LruList inactive_{ListKind::Inactive};
   LruList active_{ListKind::Active};
   std::vector<FileEntry> files_;

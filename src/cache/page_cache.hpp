@@ -35,7 +35,7 @@ class PageCache {
   ~PageCache();
 
   const CacheSettings& settings() const noexcept { return settings_; }
-  /// Runs check_invariants() after every mutating operation (tests, debug runs).
+  /// Runs check_invariants() after every mutating operation; on by default in debug builds.
   void set_checking(bool on) noexcept { checking_ = on; }
 
   // --- Memory -----------------------------------------------------------------------------
@@ -148,7 +148,11 @@ class PageCache {
   std::vector<FileEntry> files_;
   detail::ObjectPool<Block> pool_;
   std::uint64_t next_token_ = 1;
+#ifdef NDEBUG
   bool checking_ = false;
+#else
+  bool checking_ = true;  // debug builds check every invariant after every operation
+#endif
 };
 
 }  // namespace pagecache::cache

@@ -1,0 +1,390 @@
+// Randomised check of PageCache against a deliberately simple reference model: two plain
+// vectors of blocks, every operation written as the obvious loop. 10^5+ random operations
+// (reads, writes, flushes with writebacks left in flight and ended out of order, expiry
+// flushes, evictions, re-accesses, application memory, reservations of copies in flight)
+// run on both, and after every step the lists (block by block, in order), the per-file
+// cached and dirty bytes and the memory totals must agree exactly, with every invariant
+// checked by PageCache itself.
+#include "cache/page_cache.hpp"
+
+#include <pagecache/error.hpp>
+
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+using namespace pagecache;
+using namespace pagecache::cache;
+
+namespace {
+
+struct RefBlock {
+  FileId file;
+  std::int64_t size;
+  BlockState state;
+  double entry;
+  std::uint64_t token;  // writeback in progress
+};
+
+class Reference {
+ public:
+  Reference(std::int64_t total, const CacheSettings& s) : total_(total), s_(s) {}
+
+  std::vector<RefBlock> inactive, active;
+  std::int64_t anonymous = 0, reserved = 0;
+  std::uint64_t next_token = 1;
+
+  static std::int64_t sum(const std::vector<RefBlock>& list) {
+    std::int64_t n = 0;
+    for (const auto& b : list) n += b.size;
+    return n;
+  }
+  static std::int64_t sum(const std::vector<RefBlock>& list, BlockState st) {
+    std::int64_t n = 0;
+    for (const auto& b : list)
+      if (b.state == st) n += b.size;
+    return n;
+  }
+  std::int64_t cached() const { return sum(inactive) + sum(active); }
+  std::int64_t free() const { return total_ - anonymous - reserved - cached(); }
+  std::int64_t dirty() const { return sum(inactive, BlockState::Dirty) + sum(active, BlockState::Dirty); }
+  std::int64_t cached(FileId f) const {
+    std::int64_t n = 0;
+    for (const auto* list : {&inactive, &active})
+      for (const auto& b : *list)
+        if (b.file == f) n += b.size;
+    return n;
+  }
+  std::int64_t dirty(FileId f) const {
+    std::int64_t n = 0;
+    for (const auto* list : {&inactive, &active})
+      for (const auto& b : *list)
+        if (b.file == f && b.state == BlockState::Dirty) n += b.size;
+    return n;
+  }
+
+  void settle() {
+    if (s_.balance_after_every_change) balance();
+  }
+
+  void add(FileId f, std::int64_t bytes, BlockState st, double now) {
+    if (bytes == 0) return;
+    inactive.push_back({f, bytes, st, now, 0});
+    settle();
+  }
+
+  void balance() {
+    const std::int64_t excess = sum(active) - 2 * sum(inactive);
+    if (excess <= 0) return;
+    std::int64_t move = (excess + 2) / 3;
+    while (move > 0) {
+      RefBlock b = active.front();
+      if (b.size > move) {
+        active.front().size -= move;
+        b.size = move;
+      } else {
+        active.erase(active.begin());
+      }
+      move -= b.size;
+      inactive.push_back(b);
+    }
+  }
+
+  void reaccess(FileId f, std::int64_t bytes, double now) {
+    std::int64_t left = bytes;
+    std::int64_t merged = 0;
+    // Inactive blocks of f in order.
+    for (std::size_t i = 0; i < inactive.size() && left > 0;) {
+      if (inactive[i].file != f) {
+        ++i;
+        continue;
+      }
+      RefBlock b = inactive[i];
+      if (b.size > left) {
+        inactive[i].size -= left;
+        b.size = left;
+        ++i;  // the rest stays
+      } else {
+        inactive.erase(inactive.begin() + static_cast<std::ptrdiff_t>(i));
+      }
+      left -= b.size;
+      if (b.state == BlockState::Clean) merged += b.size;
+      else active.push_back(b);
+    }
+    // Active blocks of f that were there before this call, in order.
+    std::size_t originals = active.size();
+    for (std::size_t i = 0; i < originals && left > 0;) {
+      if (active[i].file != f) {
+        ++i;
+        continue;
+      }
+      RefBlock b = active[i];
+      if (b.size > left) {
+        active[i].size -= left;
+        b.size = left;
+        left -= b.size;
+        if (b.state == BlockState::Clean) merged += b.size;
+        else active.push_back(b);
+        break;
+      }
+      active.erase(active.begin() + static_cast<std::ptrdiff_t>(i));
+      --originals;
+      left -= b.size;
+      if (b.state == BlockState::Clean) merged += b.size;
+      else active.push_back(b);
+    }
+    REQUIRE(left == 0);
+    if (merged > 0) active.push_back({f, merged, BlockState::Clean, now, 0});
+    balance();
+    settle();
+  }
+
+  std::vector<PageCache::Flushed> flush(std::int64_t amount, FileId excluded) {
+    std::vector<PageCache::Flushed> out;
+    std::int64_t flushed = 0;
+    const std::uint64_t token = next_token++;
+    std::vector<RefBlock> moved;  // flushed heads of split blocks (paper: to the inactive tail)
+    for (auto* list : {&inactive, &active}) {
+      for (std::size_t i = 0; i < list->size() && flushed < amount; ++i) {
+        RefBlock& b = (*list)[i];
+        if (b.state != BlockState::Dirty || b.file == excluded) continue;
+        const bool partial = b.size > amount - flushed;
+        RefBlock head = b;
+        if (partial) {
+          head.size = amount - flushed;
+          b.size -= head.size;
+        }
+        head.state = BlockState::Writeback;
+        head.token = token;
+        flushed += head.size;
+        if (!out.empty() && out.back().file == head.file) out.back().bytes += head.size;
+        else out.push_back({head.file, head.size, token});
+        if (!partial) {
+          b = head;
+        } else if (s_.flush_splits_in_place) {
+          list->insert(list->begin() + static_cast<std::ptrdiff_t>(i), head);
+          ++i;
+        } else {
+          moved.push_back(head);
+        }
+      }
+    }
+    for (const auto& b : moved) inactive.push_back(b);
+    settle();
+    return out;
+  }
+
+  PageCache::Flushed flush_expired(double cutoff) {
+    for (auto* list : {&inactive, &active}) {
+      for (auto& b : *list) {
+        if (b.state == BlockState::Dirty && b.entry <= cutoff) {
+          b.state = BlockState::Writeback;
+          b.token = next_token++;
+          settle();
+          return {b.file, b.size, b.token};
+        }
+      }
+    }
+    return {kNoFile, 0};
+  }
+
+  void end_writeback(std::uint64_t token) {
+    for (auto* list : {&inactive, &active})
+      for (auto& b : *list)
+        if (b.token == token) {
+          b.token = 0;
+          b.state = BlockState::Clean;
+        }
+    settle();
+  }
+
+  std::int64_t evict(std::int64_t amount, FileId excluded) {
+    std::int64_t evicted = 0;
+    for (auto* list : {&inactive, &active}) {
+      if (list == &active && s_.reclaim_inactive_only) break;
+      for (std::size_t i = 0; i < list->size() && evicted < amount;) {
+        RefBlock& b = (*list)[i];
+        if (b.state != BlockState::Clean || b.file == excluded) {
+          ++i;
+          continue;
+        }
+        if (b.size > amount - evicted) {
+          b.size -= amount - evicted;
+          evicted = amount;
+        } else {
+          evicted += b.size;
+          list->erase(list->begin() + static_cast<std::ptrdiff_t>(i));
+        }
+      }
+    }
+    settle();
+    return evicted;
+  }
+
+ private:
+  std::int64_t total_;
+  CacheSettings s_;
+};
+
+constexpr int kFiles = 6;
+
+void compare(const PageCache& cache, const Reference& ref, std::uint64_t step) {
+  INFO("step " << step);
+  for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
+    const auto& expected = kind == ListKind::Inactive ? ref.inactive : ref.active;
+    const auto& actual = cache.list(kind).blocks();
+    REQUIRE(actual.size() == expected.size());
+    auto it = actual.begin();
+    for (const RefBlock& e : expected) {
+      REQUIRE(it->file == e.file);
+      REQUIRE(it->size == e.size);
+      REQUIRE(it->state == e.state);
+      ++it;
+    }
+  }
+  for (FileId f = 0; f < kFiles; ++f) {
+    REQUIRE(cache.cached(f) == ref.cached(f));
+    REQUIRE(cache.dirty(f) == ref.dirty(f));
+  }
+  REQUIRE(cache.free() == ref.free());
+  REQUIRE(cache.dirty() == ref.dirty());
+  REQUIRE(cache.anonymous() == ref.anonymous);
+  REQUIRE(cache.reserved() == ref.reserved);
+}
+
+void run_random(const CacheSettings& settings, std::uint64_t seed, int steps) {
+  constexpr std::int64_t kTotal = 3000;
+  PageCache cache(kTotal, settings);
+  cache.set_checking(true);
+  Reference ref(kTotal, settings);
+  std::mt19937_64 rng(seed);
+  auto pick = [&](std::int64_t lo, std::int64_t hi) { return std::uniform_int_distribution<std::int64_t>(lo, hi)(rng); };
+  std::vector<PageCache::Flushed> in_flight;   // writebacks not yet ended
+  std::vector<std::pair<FileId, std::int64_t>> copies;  // reservations not yet committed
+  double now = 0.0;
+
+  for (int step = 0; step < steps; ++step) {
+    now += static_cast<double>(pick(0, 3));
+    const auto file = static_cast<FileId>(pick(0, kFiles - 1));
+    const auto op = pick(0, 11);
+    switch (op) {
+      case 0:
+      case 1: {  // new data read or written
+        const std::int64_t bytes = std::min<std::int64_t>(pick(1, 120), cache.free());
+        const BlockState st = op == 0 ? BlockState::Clean : BlockState::Dirty;
+        if (st == BlockState::Clean) cache.add_clean(file, bytes, now);
+        else cache.add_dirty(file, bytes, now);
+        ref.add(file, bytes, st, now);
+        break;
+      }
+      case 2: {  // cache hit
+        const std::int64_t bytes = pick(0, cache.cached(file));
+        cache.reaccess(file, bytes, now);
+        ref.reaccess(file, bytes, now);
+        break;
+      }
+      case 3: {  // forced flush, written back later
+        const std::int64_t amount = pick(1, 300);
+        const FileId excluded = pick(0, 1) ? file : kNoFile;
+        std::vector<PageCache::Flushed> got;
+        cache.flush(amount, excluded, got);
+        const auto want = ref.flush(amount, excluded);
+        REQUIRE(got.size() == want.size());
+        for (std::size_t i = 0; i < got.size(); ++i) {
+          REQUIRE(got[i].file == want[i].file);
+          REQUIRE(got[i].bytes == want[i].bytes);
+          in_flight.push_back(got[i]);
+        }
+        break;
+      }
+      case 4: {  // periodic flusher
+        const double cutoff = now - static_cast<double>(pick(0, 40));
+        const auto got = cache.flush_expired_block(cutoff);
+        const auto want = ref.flush_expired(cutoff);
+        REQUIRE(got.file == want.file);
+        REQUIRE(got.bytes == want.bytes);
+        if (got.bytes > 0) in_flight.push_back(got);
+        break;
+      }
+      case 5: {  // a writeback ends (any one: devices finish out of order)
+        if (in_flight.empty()) break;
+        const auto i = static_cast<std::size_t>(pick(0, static_cast<std::int64_t>(in_flight.size()) - 1));
+        const auto done = in_flight[i];
+        in_flight.erase(in_flight.begin() + static_cast<std::ptrdiff_t>(i));
+        cache.end_writeback(done);
+        // Several entries can share a token (one per file of a forced flush): end them together.
+        ref.end_writeback(done.token);
+        for (std::size_t j = 0; j < in_flight.size();) {
+          if (in_flight[j].token == done.token) {
+            cache.end_writeback(in_flight[j]);
+            in_flight.erase(in_flight.begin() + static_cast<std::ptrdiff_t>(j));
+          } else {
+            ++j;
+          }
+        }
+        break;
+      }
+      case 6: {
+        const std::int64_t amount = pick(1, 400);
+        const FileId excluded = pick(0, 1) ? file : kNoFile;
+        REQUIRE(cache.evict(amount, excluded) == ref.evict(amount, excluded));
+        break;
+      }
+      case 7: {  // application memory
+        if (pick(0, 1)) {
+          const std::int64_t bytes = pick(0, std::min<std::int64_t>(cache.free(), 200));
+          cache.allocate_anonymous(bytes);
+          ref.anonymous += bytes;
+        } else {
+          const std::int64_t bytes = pick(0, cache.anonymous());
+          cache.release_anonymous(bytes);
+          ref.anonymous -= bytes;
+        }
+        break;
+      }
+      case 8: {  // a copy into the cache starts...
+        const std::int64_t bytes = std::min<std::int64_t>(pick(1, 100), cache.free());
+        cache.reserve(bytes);
+        ref.reserved += bytes;
+        copies.emplace_back(file, bytes);
+        break;
+      }
+      case 9: {  // ... and ends
+        if (copies.empty()) break;
+        const auto [f, bytes] = copies.back();
+        copies.pop_back();
+        cache.commit_dirty(f, bytes, now);
+        ref.reserved -= bytes;
+        ref.add(f, bytes, BlockState::Dirty, now);
+        break;
+      }
+      case 10: {  // more memory than is free cannot be taken
+        const std::int64_t too_much = cache.free() + 1;
+        REQUIRE_THROWS_AS(cache.add_clean(file, too_much, now), SimulationError);
+        REQUIRE_THROWS_AS(cache.allocate_anonymous(too_much), SimulationError);
+        break;
+      }
+      case 11:
+        cache.balance();
+        ref.balance();
+        break;
+      default:
+        break;
+    }
+    compare(cache, ref, static_cast<std::uint64_t>(step));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("PageCache agrees with the reference model over random operations (paper profile)", "[page_cache][random]") {
+  for (std::uint64_t seed : {1u, 2u, 3u}) run_random(CacheSettings::paper(), seed, 20000);
+}
+
+TEST_CASE("PageCache agrees with the reference model over random operations (kernel settings)", "[page_cache][random]") {
+  for (std::uint64_t seed : {4u, 5u, 6u}) run_random(CacheSettings::kernel(), seed, 20000);
+}

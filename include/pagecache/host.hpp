@@ -89,6 +89,8 @@ class Host {
   /// Bytes written to disk to make room or keep the dirty ratio, and by the periodic flusher.
   std::int64_t forced_flush_bytes() const noexcept;
   std::int64_t periodic_flush_bytes() const noexcept;
+  /// Bytes of clean cached data evicted to make room.
+  std::int64_t evicted_bytes() const noexcept;
 
   /// Checks every page-cache invariant after each operation (tests, debugging). Slow.
   void set_checking(bool on);

@@ -105,6 +105,7 @@ std::int64_t Host::cached(FileRef file) const noexcept { return impl_->cache.cac
 std::int64_t Host::dirty(FileRef file) const noexcept { return impl_->cache.dirty(file.index); }
 std::int64_t Host::forced_flush_bytes() const noexcept { return impl_->io.flushed_bytes(); }
 std::int64_t Host::periodic_flush_bytes() const noexcept { return impl_->flusher.flushed_bytes(); }
+std::int64_t Host::evicted_bytes() const noexcept { return impl_->cache.evicted_bytes(); }
 
 void Host::set_checking(bool on) { impl_->cache.set_checking(on); }
 void Host::check_invariants() const { impl_->cache.check_invariants(); }

@@ -283,6 +283,7 @@ std::int64_t PageCache::evict(std::int64_t amount, FileId excluded) {
       if (block->file != excluded) {
         Block& victim = block->size > amount - evicted ? split_front(*block, amount - evicted) : *block;
         evicted += victim.size;
+        evicted_total_ += victim.size;
         destroy(victim);
       }
       block = next;

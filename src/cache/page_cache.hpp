@@ -109,6 +109,8 @@ class PageCache {
   /// then, unless settings().reclaim_inactive_only, the active list), skipping `excluded`.
   /// Returns how many. Takes no simulated time.
   std::int64_t evict(std::int64_t amount, FileId excluded);
+  /// Bytes evicted so far.
+  std::int64_t evicted_bytes() const noexcept { return evicted_total_; }
   /// Moves least recently used active data to the inactive list until active <= 2 x inactive.
   void balance();
 
@@ -148,6 +150,7 @@ class PageCache {
   std::vector<FileEntry> files_;
   detail::ObjectPool<Block> pool_;
   std::uint64_t next_token_ = 1;
+  std::int64_t evicted_total_ = 0;
 #ifdef NDEBUG
   bool checking_ = false;
 #else

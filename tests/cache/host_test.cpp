@@ -1,0 +1,173 @@
+// A Host's page cache, I/O controller and flusher together, in a simulation. Expected times
+// are derived in comments.
+#include <pagecache/error.hpp>
+#include <pagecache/host.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <random>
+#include <string>
+#include <vector>
+
+using namespace pagecache;
+
+namespace {
+
+constexpr std::int64_t MB = 1'000'000;
+
+// 10 GB of memory; disk 100 MB/s; memory copies 1000 MB/s (one channel).
+HostSpec small_host(CacheSettings cache = CacheSettings::paper()) {
+  return HostSpec{.name = "h",
+                  .cores = 4,
+                  .memory = 10'000 * MB,
+                  .memory_bandwidth = MemoryBandwidth::shared_channel(1000e6),
+                  .cache = cache};
+}
+
+Task<void> write_then_record(Simulator& sim, Host& host, FileRef file, double& done) {
+  co_await host.write_file(file, 100 * MB);
+  done = sim.now();
+}
+
+}  // namespace
+
+TEST_CASE("dirty data is written back by the flusher once older than dirty_expire", "[host][flusher]") {
+  // 500 MB written in cache at 1000 MB/s: done at 0.5 s, dirty since then. Ticks every 5 s
+  // from 0; the first tick whose cutoff (tick - 30 s) reaches 0.5 s is at 35 s. The flusher
+  // then writes 500 MB at 100 MB/s: done at 40 s, and parks: the simulation ends.
+  Simulator sim;
+  FairShare share(sim);
+  Host host(sim, share, small_host());
+  const FileRef file = host.add_file("out", 500 * MB, host.add_disk("d", 100e6, 100e6));
+  double written = 0;
+  sim.spawn(write_then_record(sim, host, file, written));
+  sim.run_until(34.9);
+  CHECK(written == Catch::Detail::Approx(0.5));
+  CHECK(host.dirty(file) == 500 * MB);
+  sim.run();
+  CHECK(sim.now() == Catch::Detail::Approx(40.0));
+  CHECK(host.memory().dirty == 0);
+  CHECK(host.memory().writeback == 0);
+  CHECK(host.periodic_flush_bytes() == 500 * MB);
+  CHECK(host.cached(file) == 500 * MB);
+}
+
+TEST_CASE("a cached file is read again at memory speed", "[host]") {
+  // 1 GB from disk at 100 MB/s: 10 s. Read again (buffers released in between): all of it is
+  // cached, read from memory at 1000 MB/s: 1 s.
+  Simulator sim;
+  FairShare share(sim);
+  Host host(sim, share, small_host());
+  const FileRef file = host.add_file("in", 1000 * MB, host.add_disk("d", 100e6, 100e6));
+  std::vector<IoResult> reads;
+  auto twice = [](Host& h, FileRef f, std::vector<IoResult>& out) -> Task<void> {
+    for (int i = 0; i < 2; ++i) {
+      out.push_back(co_await h.read_file(f, 100 * MB));
+      h.release_memory(out.back().bytes);
+    }
+  };
+  sim.spawn(twice(host, file, reads));
+  sim.run();
+  REQUIRE(reads.size() == 2);
+  CHECK(reads[0].end - reads[0].start == Catch::Detail::Approx(10.0));
+  CHECK(reads[0].disk_bytes == 1000 * MB);
+  CHECK(reads[1].end - reads[1].start == Catch::Detail::Approx(1.0));
+  CHECK(reads[1].cache_bytes == 1000 * MB);
+  CHECK(host.memory().anonymous == 0);
+}
+
+TEST_CASE("in writethrough mode a write goes to disk and leaves clean data in the cache", "[host]") {
+  // 500 MB through to a 100 MB/s disk: 5 s; then cached clean, nothing dirty.
+  CacheSettings settings = CacheSettings::paper();
+  settings.write_mode = WriteMode::Writethrough;
+  Simulator sim;
+  FairShare share(sim);
+  Host host(sim, share, small_host(settings));
+  const FileRef file = host.add_file("out", 500 * MB, host.add_disk("d", 100e6, 100e6));
+  double written = 0;
+  sim.spawn(write_then_record(sim, host, file, written));
+  sim.run();
+  CHECK(written == Catch::Detail::Approx(5.0));
+  CHECK(host.cached(file) == 500 * MB);
+  CHECK(host.memory().dirty == 0);
+}
+
+TEST_CASE("a read that cannot fit in memory fails with the simulated time", "[host]") {
+  // 12 GB of application buffers on a 10 GB host.
+  Simulator sim;
+  FairShare share(sim);
+  Host host(sim, share, small_host());
+  const FileRef file = host.add_file("huge", 12'000 * MB, host.add_disk("d", 1000e6, 1000e6));
+  auto reader = [](Host& h, FileRef f) -> Task<void> { (void)co_await h.read_file(f, 100 * MB); };
+  sim.spawn(reader(host, file));
+  CHECK_THROWS_WITH(sim.run(), Catch::Contains("t = ") && Catch::Contains("huge"));
+}
+
+TEST_CASE("a file larger than its disk is refused", "[host]") {
+  Simulator sim;
+  FairShare share(sim);
+  Host host(sim, share, small_host());
+  const DiskRef disk = host.add_disk("small", 100e6, 100e6, 1000 * MB);
+  CHECK_THROWS_AS(host.add_file("big", 2000 * MB, disk), ConfigError);
+}
+
+namespace {
+
+Task<void> random_app(Simulator& sim, Host& host, std::vector<FileRef> files, std::uint64_t seed, int tasks,
+                      int& finished) {
+  std::mt19937_64 rng(seed);
+  auto pick = [&](std::size_t n) { return std::uniform_int_distribution<std::size_t>(0, n - 1)(rng); };
+  const std::int64_t chunks[] = {10 * MB, 64 * MB, 100 * MB, 333 * MB};
+  for (int t = 0; t < tasks; ++t) {
+    const FileRef in = files[pick(files.size())];
+    const FileRef out = files[pick(files.size())];
+    const IoResult read = co_await host.read_file(in, chunks[pick(4)]);
+    REQUIRE(read.bytes == host.file_size(in));
+    REQUIRE(read.cache_bytes + read.disk_bytes == read.bytes);
+    co_await host.compute(static_cast<double>(pick(5)));
+    const IoResult write = co_await host.write_file(out, chunks[pick(4)]);
+    REQUIRE(write.bytes == host.file_size(out));
+    host.release_memory(read.bytes);
+    co_await sim.sleep(static_cast<double>(pick(40)));
+  }
+  ++finished;
+}
+
+}  // namespace
+
+TEST_CASE("concurrent applications under memory pressure keep every invariant", "[host][random]") {
+  // 8 applications read and write random files of 0.3-1.5 GB (16 files, about 14 GB) through
+  // a 16 GB host, holding up to 12 GB of buffers, with random chunk sizes and pauses; every
+  // page-cache invariant is checked after every operation. At the end all buffers are
+  // released and the flusher has written everything.
+  for (const CacheSettings& settings : {CacheSettings::paper(), CacheSettings::kernel()}) {
+    for (std::uint64_t seed : {1u, 2u}) {
+      Simulator sim;
+      FairShare share(sim);
+      HostSpec spec = small_host(settings);
+      spec.memory = 16'000 * MB;
+      Host host(sim, share, spec);
+      host.set_checking(true);
+      const DiskRef disk = host.add_disk("d", 200e6, 150e6);
+      std::mt19937_64 rng(seed);
+      std::vector<FileRef> files;
+      for (int f = 0; f < 16; ++f) {
+        const std::int64_t size = (300 + static_cast<std::int64_t>(rng() % 1200)) * MB;
+        files.push_back(host.add_file("f" + std::to_string(f), size, disk, f % 4 == 0));
+      }
+      int finished = 0;
+      for (int app = 0; app < 8; ++app) sim.spawn(random_app(sim, host, files, seed * 100 + app, 4, finished));
+      sim.run();
+      CHECK(finished == 8);
+      INFO("evicted " << host.evicted_bytes() << " forced flush " << host.forced_flush_bytes());
+      CHECK(host.evicted_bytes() > 0);  // the memory pressure was real
+      host.check_invariants();
+      const MemoryState m = host.memory();
+      CHECK(m.anonymous == 0);
+      CHECK(m.reserved == 0);
+      CHECK(m.dirty == 0);
+      CHECK(m.writeback == 0);
+      CHECK(m.free + m.cached == m.total);
+    }
+  }
+}

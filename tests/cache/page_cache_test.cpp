@@ -1,0 +1,182 @@
+// PageCache operations on small, hand-built states: each expectation is derived in a comment
+// from MODEL.md §2-§3 (and WRENCH-NOTES.md for the paper profile's readings).
+#include "cache/page_cache.hpp"
+
+#include <pagecache/error.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <vector>
+
+using namespace pagecache;
+using namespace pagecache::cache;
+
+namespace {
+
+struct Seen {
+  FileId file;
+  std::int64_t size;
+  BlockState state;
+  friend bool operator==(const Seen&, const Seen&) = default;
+};
+
+std::vector<Seen> blocks(const PageCache& cache, ListKind kind) {
+  std::vector<Seen> out;
+  for (const Block& b : cache.list(kind).blocks()) out.push_back({b.file, b.size, b.state});
+  return out;
+}
+
+constexpr auto C = BlockState::Clean;
+constexpr auto D = BlockState::Dirty;
+constexpr auto W = BlockState::Writeback;
+constexpr auto I = ListKind::Inactive;
+constexpr auto A = ListKind::Active;
+
+}  // namespace
+
+TEST_CASE("memory is conserved: total = free + anonymous + cached + reserved", "[page_cache]") {
+  PageCache cache(1000, CacheSettings::paper());
+  cache.set_checking(true);
+  cache.allocate_anonymous(100);
+  cache.add_clean(0, 200, 0.0);
+  cache.add_dirty(1, 50, 0.0);
+  cache.reserve(30);
+  const MemoryState m = cache.memory();
+  CHECK(m.total == 1000);
+  CHECK(m.anonymous == 100);
+  CHECK(m.cached == 250);
+  CHECK(m.dirty == 50);
+  CHECK(m.reserved == 30);
+  CHECK(m.free == 1000 - 100 - 250 - 30);
+  CHECK_THROWS_AS(cache.allocate_anonymous(m.free + 1), SimulationError);
+}
+
+TEST_CASE("re-reading cached data moves it to the active list, clean data merged", "[page_cache]") {
+  // File 0 has clean 100, dirty 50, clean 100 on the inactive list. Re-reading 250 bytes
+  // takes them in order: the dirty block moves on its own (keeping its entry time), the two
+  // clean ones become one block of 200 appended after it.
+  PageCache cache(10000, CacheSettings::paper());
+  cache.set_checking(true);
+  cache.add_clean(0, 100, 1.0);
+  cache.add_dirty(0, 50, 2.0);
+  cache.add_clean(0, 100, 3.0);
+  cache.add_clean(1, 500, 4.0);  // keeps the lists balanced (active <= 2 x inactive)
+  cache.reaccess(0, 250, 5.0);
+  CHECK(blocks(cache, I) == std::vector<Seen>{{1, 500, C}});
+  CHECK(blocks(cache, A) == std::vector<Seen>{{0, 50, D}, {0, 200, C}});
+  CHECK(cache.list(A).blocks().front().entry_time == 2.0);
+}
+
+TEST_CASE("a block read in part is split and only the part read moves", "[page_cache]") {
+  // 70 of a 100-byte block: the first 70 go to the active list, 30 stay inactive.
+  PageCache cache(10000, CacheSettings::paper());
+  cache.add_clean(0, 100, 0.0);
+  cache.add_clean(1, 400, 0.0);
+  cache.reaccess(0, 70, 1.0);
+  CHECK(blocks(cache, I) == std::vector<Seen>{{0, 30, C}, {1, 400, C}});
+  CHECK(blocks(cache, A) == std::vector<Seen>{{0, 70, C}});
+  CHECK(cache.cached(0, I) == 30);
+  CHECK(cache.cached(0, A) == 70);
+}
+
+TEST_CASE("balancing keeps the active list at most twice the inactive list", "[page_cache]") {
+  // Inactive 100, then 600 re-read: active 600 > 2 x 0 left inactive. Moving x bytes gives
+  // 600 - x <= 2x: x = 200, taken from the least recently used end of the active list.
+  PageCache cache(10000, CacheSettings::paper());
+  cache.add_clean(0, 300, 0.0);
+  cache.add_clean(1, 300, 0.0);
+  cache.reaccess(0, 300, 1.0);
+  cache.reaccess(1, 300, 2.0);
+  CHECK(cache.list(A).bytes() == 400);
+  CHECK(cache.list(I).bytes() == 200);
+  CHECK(blocks(cache, I) == std::vector<Seen>{{0, 200, C}});
+  CHECK(blocks(cache, A) == std::vector<Seen>{{0, 100, C}, {1, 300, C}});
+}
+
+TEST_CASE("flushing takes the least recently used dirty data, skipping the excluded file", "[page_cache]") {
+  // Inactive: D0 100, C1 50, D1 100, D2 100. flush(150, excluding file 0): D1 whole, then 50
+  // of D2; D2 is split. In the paper profile the flushed part of the split block moves to
+  // the MRU end of the inactive list; in the kernel's it stays in place.
+  for (const bool in_place : {false, true}) {
+    CacheSettings settings = CacheSettings::paper();
+    settings.flush_splits_in_place = in_place;
+    PageCache cache(10000, settings);
+    cache.set_checking(true);
+    cache.add_dirty(0, 100, 0.0);
+    cache.add_clean(1, 50, 0.0);
+    cache.add_dirty(1, 100, 0.0);
+    cache.add_dirty(2, 100, 0.0);
+    std::vector<PageCache::Flushed> taken;
+    CHECK(cache.flush(150, 0, taken) == 150);
+    REQUIRE(taken.size() == 2);
+    CHECK(taken[0].file == 1);
+    CHECK(taken[0].bytes == 100);
+    CHECK(taken[1].file == 2);
+    CHECK(taken[1].bytes == 50);
+    if (in_place) {
+      CHECK(blocks(cache, I) == std::vector<Seen>{{0, 100, D}, {1, 50, C}, {1, 100, W}, {2, 50, W}, {2, 50, D}});
+    } else {
+      CHECK(blocks(cache, I) == std::vector<Seen>{{0, 100, D}, {1, 50, C}, {1, 100, W}, {2, 50, D}, {2, 50, W}});
+    }
+    // Data in writeback is neither dirty nor evictable; it is clean once written.
+    CHECK(cache.dirty() == 150);
+    CHECK(cache.writeback() == 150);
+    CHECK(cache.evict(1000, kNoFile) == 50);
+    for (const auto& t : taken) cache.end_writeback(t);
+    CHECK(cache.writeback() == 0);
+    CHECK(cache.dirty(2) == 50);
+    CHECK(cache.cached(1) == 100);
+  }
+}
+
+TEST_CASE("eviction frees clean data from the least recently used end", "[page_cache]") {
+  // Inactive: C0 100, D1 100, C2 100; active: C3 100. evict(150, excluding 2): C0 whole, and
+  // then nothing else is clean on the inactive list but the excluded file: the paper profile
+  // goes on to the active list (50 of C3), the kernel settings stop there.
+  for (const bool inactive_only : {false, true}) {
+    CacheSettings settings = CacheSettings::paper();
+    settings.reclaim_inactive_only = inactive_only;
+    PageCache cache(10000, settings);
+    cache.set_checking(true);
+    cache.add_clean(0, 100, 0.0);
+    cache.add_dirty(1, 100, 0.0);
+    cache.add_clean(2, 100, 0.0);
+    cache.add_clean(3, 100, 0.0);
+    cache.reaccess(3, 100, 0.0);
+    const std::int64_t evicted = cache.evict(150, 2);
+    CHECK(evicted == (inactive_only ? 100 : 150));
+    CHECK(cache.cached(0) == 0);
+    CHECK(cache.cached(1) == 100);
+    CHECK(cache.cached(2) == 100);
+    CHECK(cache.cached(3) == (inactive_only ? 100 : 50));
+  }
+}
+
+TEST_CASE("the periodic flusher takes expired dirty blocks one at a time, inactive list first", "[page_cache]") {
+  PageCache cache(10000, CacheSettings::paper());
+  cache.set_checking(true);
+  cache.add_dirty(0, 100, 0.0);   // expired at cutoff 10
+  cache.add_dirty(1, 100, 20.0);  // not expired
+  cache.add_dirty(2, 100, 5.0);   // expired
+  const auto first = cache.flush_expired_block(10.0);
+  CHECK(first.file == 0);
+  const auto second = cache.flush_expired_block(10.0);
+  CHECK(second.file == 2);
+  CHECK(cache.flush_expired_block(10.0).bytes == 0);
+  cache.end_writeback(first);
+  cache.end_writeback(second);
+  CHECK(cache.dirty() == 100);
+  CHECK(cache.dirty(1) == 100);
+}
+
+TEST_CASE("the dirty thresholds' base is free + cached (kernel) or free + clean cached (paper)", "[page_cache]") {
+  PageCache paper(1000, CacheSettings::paper());
+  PageCache kernel(1000, CacheSettings::kernel());
+  for (PageCache* cache : {&paper, &kernel}) {
+    cache->allocate_anonymous(300);
+    cache->add_clean(0, 200, 0.0);
+    cache->add_dirty(1, 100, 0.0);
+  }
+  CHECK(kernel.dirtyable() == 400 + 300);
+  CHECK(paper.dirtyable() == 400 + 300 - 100);
+}

@@ -72,28 +72,24 @@ const std::string& Host::file_name(FileRef file) const { return impl_->files[imp
 std::int64_t Host::file_size(FileRef file) const { return impl_->files[impl_->id(file)].size; }
 std::size_t Host::file_count() const noexcept { return impl_->files.size(); }
 
+namespace {
+IoResult to_result(double start, double end, const cache::IoTally& tally) {
+  return IoResult{.start = start, .end = end, .bytes = tally.bytes, .cache_bytes = tally.cache_bytes, .disk_bytes = tally.disk_bytes};
+}
+}  // namespace
+
 Task<IoResult> Host::read_file(FileRef file, std::int64_t chunk_size) {
   const cache::FileId id = impl_->id(file);
-  IoResult result;
-  result.start = impl_->sim.now();
+  const double start = impl_->sim.now();
   const cache::IoTally tally = co_await impl_->io.read_file(id, chunk_size);
-  result.end = impl_->sim.now();
-  result.bytes = tally.bytes;
-  result.cache_bytes = tally.cache_bytes;
-  result.disk_bytes = tally.disk_bytes;
-  co_return result;
+  co_return to_result(start, impl_->sim.now(), tally);
 }
 
 Task<IoResult> Host::write_file(FileRef file, std::int64_t chunk_size) {
   const cache::FileId id = impl_->id(file);
-  IoResult result;
-  result.start = impl_->sim.now();
+  const double start = impl_->sim.now();
   const cache::IoTally tally = co_await impl_->io.write_file(id, impl_->files[id].size, chunk_size);
-  result.end = impl_->sim.now();
-  result.bytes = tally.bytes;
-  result.cache_bytes = tally.cache_bytes;
-  result.disk_bytes = tally.disk_bytes;
-  co_return result;
+  co_return to_result(start, impl_->sim.now(), tally);
 }
 
 Task<void> Host::compute(double core_seconds) { co_await impl_->cpu.compute(core_seconds); }

@@ -149,25 +149,19 @@ void PageCache::settle() {
 
 // --- Cache contents -------------------------------------------------------------------------
 
-void PageCache::add_clean(FileId file, std::int64_t bytes, double now) {
+void PageCache::add_new(FileId file, std::int64_t bytes, BlockState state, double now) {
   PC_ASSERT(bytes >= 0);
   if (bytes == 0) return;
   if (bytes > free()) {
     throw SimulationError(fmt::format("cannot cache {} bytes: only {} free", bytes, free()));
   }
-  append(new_block(file, bytes, BlockState::Clean, now), ListKind::Inactive);
+  append(new_block(file, bytes, state, now), ListKind::Inactive);
   settle();
 }
 
-void PageCache::add_dirty(FileId file, std::int64_t bytes, double now) {
-  PC_ASSERT(bytes >= 0);
-  if (bytes == 0) return;
-  if (bytes > free()) {
-    throw SimulationError(fmt::format("cannot cache {} bytes: only {} free", bytes, free()));
-  }
-  append(new_block(file, bytes, BlockState::Dirty, now), ListKind::Inactive);
-  settle();
-}
+void PageCache::add_clean(FileId file, std::int64_t bytes, double now) { add_new(file, bytes, BlockState::Clean, now); }
+
+void PageCache::add_dirty(FileId file, std::int64_t bytes, double now) { add_new(file, bytes, BlockState::Dirty, now); }
 
 void PageCache::reserve(std::int64_t bytes) {
   PC_ASSERT(bytes >= 0);

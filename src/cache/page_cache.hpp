@@ -131,6 +131,8 @@ class PageCache {
   FileOrder& file_list(FileEntry& entry, ListKind kind) noexcept { return kind == ListKind::Inactive ? entry.inactive : entry.active; }
 
   Block& new_block(FileId file, std::int64_t size, BlockState state, double now);
+  /// New data of `file` at the MRU end of the inactive list, taken from free memory.
+  void add_new(FileId file, std::int64_t bytes, BlockState state, double now);
   void append(Block& block, ListKind kind);
   void unlink(Block& block);
   void destroy(Block& block);

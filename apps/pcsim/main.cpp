@@ -1,114 +1,91 @@
-// pcsim: the command line. Thin: parse, build, run, report.
+// pcsim: the command line. Thin: parse the arguments, load the scenario, run it, report.
 //
-// Until scenario files land, `pcsim run` runs one embedded scenario: the paper's Exp 1 (one
-// pipeline of three tasks, each reading a file, computing and writing the next file) on the
-// paper's host with the `paper` profile. It prints a table of phases and writes
-// timeline.csv into --out.
+// Exit codes: 0 success; 1 the simulation could not proceed (SimulationError) or an output
+// could not be written; 2 bad input (scenario, --set, options); 3 an internal invariant broke.
 
 #include <pagecache/error.hpp>
-#include <pagecache/host.hpp>
+#include <pagecache/run.hpp>
+#include <pagecache/scenario.hpp>
 #include <pagecache/version.hpp>
+
+#include "report/outputs.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include <chrono>
-#include <cstdint>
-#include <filesystem>
-#include <fstream>
+#include <cstdio>
 #include <string>
+#include <unistd.h>
+#include <utility>
 #include <vector>
 
 namespace {
 
-namespace fs = std::filesystem;
-using namespace pagecache;
+using Overrides = std::vector<std::pair<std::string, std::string>>;
 
-struct PhaseRecord {
-  int app;
-  int task;
-  std::string phase;
-  double start;
-  double end;
-  std::int64_t bytes;
-  std::int64_t cache_bytes;
-  std::int64_t disk_bytes;
+Overrides parse_sets(const std::vector<std::string>& sets) {
+  Overrides out;
+  for (const std::string& s : sets) {
+    const auto eq = s.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      throw pagecache::ConfigError(fmt::format("--set '{}': expected KEY=VALUE, e.g. --set pipelines.count=16", s));
+    }
+    out.emplace_back(s.substr(0, eq), s.substr(eq + 1));
+  }
+  return out;
+}
+
+pagecache::Scenario load(const std::string& path, const std::vector<std::string>& sets, const std::string& profile) {
+  if (path.empty()) return pagecache::parse_scenario(pagecache::default_scenario_text(), "<embedded default>", parse_sets(sets), profile);
+  return pagecache::load_scenario(path, parse_sets(sets), profile);
+}
+
+// Progress on a terminal only: simulated time reached and events per second, at most five
+// times a second, on one line of stderr.
+class Progress {
+ public:
+  explicit Progress(bool enabled) : enabled_(enabled && ::isatty(STDERR_FILENO) == 1) {}
+  void update(double sim_time, std::uint64_t events) {
+    if (!enabled_) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_ < std::chrono::milliseconds(200)) return;
+    last_ = now;
+    const double wall = std::chrono::duration<double>(now - start_).count();
+    fmt::print(stderr, "\rsimulated {:.1f} s, {} events, {:.2f} M events/s   ", sim_time, events,
+               wall > 0 ? static_cast<double>(events) / wall / 1e6 : 0.0);
+    shown_ = true;
+  }
+  void clear() {
+    if (shown_) fmt::print(stderr, "\r{:60}\r", "");
+  }
+
+ private:
+  bool enabled_;
+  bool shown_ = false;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  std::chrono::steady_clock::time_point last_{};
 };
 
-Task<void> pipeline(Simulator& sim, Host& host, int app, std::vector<FileRef> files, double cpu_seconds,
-                    std::vector<PhaseRecord>& records) {
-  constexpr std::int64_t kChunk = 100'000'000;
-  for (int task = 1; task <= 3; ++task) {
-    const IoResult read = co_await host.read_file(files[static_cast<std::size_t>(task - 1)], kChunk);
-    records.push_back({app, task, "read", read.start, read.end, read.bytes, read.cache_bytes, read.disk_bytes});
-    const double start = sim.now();
-    co_await host.compute(cpu_seconds);
-    records.push_back({app, task, "compute", start, sim.now(), 0, 0, 0});
-    const IoResult write = co_await host.write_file(files[static_cast<std::size_t>(task)], kChunk);
-    records.push_back({app, task, "write", write.start, write.end, write.bytes, write.cache_bytes, write.disk_bytes});
-    host.release_memory(read.bytes);
+int run_command(const std::string& path, const std::vector<std::string>& sets, const std::string& profile,
+                const std::string& out_dir, bool quiet, bool cache_contents) {
+  const pagecache::Scenario scenario = load(path, sets, profile);
+  Progress progress(!quiet);
+  pagecache::RunOptions options;
+  options.cache_contents = cache_contents;
+  options.progress = [&progress](double t, std::uint64_t events) { progress.update(t, events); };
+  pagecache::RunResult result;
+  try {
+    result = pagecache::run_scenario(scenario, options);
+  } catch (...) {
+    progress.clear();
+    throw;
   }
-}
-
-void write_timeline(const fs::path& path, const std::vector<PhaseRecord>& records) {
-  std::ofstream out(path);
-  out << "app,task,phase,start_s,end_s,bytes,cache_bytes,disk_bytes\n";
-  for (const auto& r : records) {
-    out << fmt::format("{},{},{},{:.6f},{:.6f},{},{},{}\n", r.app, r.task, r.phase, r.start, r.end, r.bytes,
-                       r.cache_bytes, r.disk_bytes);
-  }
-  if (!out) throw Error(fmt::format("cannot write {}", path.string()));
-}
-
-// Writes into a temporary sibling folder, then renames it over `out`: a failed run never
-// leaves a half-written result behind.
-void publish(const fs::path& out, const std::vector<PhaseRecord>& records) {
-  const fs::path staging = out.string() + ".tmp";
-  fs::remove_all(staging);
-  fs::create_directories(staging);
-  write_timeline(staging / "timeline.csv", records);
-  fs::remove_all(out);
-  fs::rename(staging, out);
-}
-
-int run(const std::string& out_dir, std::int64_t size_gb, bool quiet) {
-  const auto wall_start = std::chrono::steady_clock::now();
-  Simulator sim;
-  FairShare share(sim);
-  Host host(sim, share,
-            HostSpec{.name = "node",
-                     .cores = 32,
-                     .memory = 268'000'000'000,
-                     .memory_bandwidth = MemoryBandwidth::shared_channel(4812e6),
-                     .cache = CacheSettings::paper()});
-  const DiskRef disk = host.add_disk("ssd", 465e6, 465e6);
-  std::vector<FileRef> files;
-  for (int i = 1; i <= 4; ++i) files.push_back(host.add_file(fmt::format("file_{}", i), size_gb * 1'000'000'000, disk));
-  // The paper's measured CPU time per task grows with the file size (Table: 28 s for 20 GB
-  // ... 155 s for 100 GB): about 1.55 s per GB.
-  const double cpu_seconds = 1.55 * static_cast<double>(size_gb);
-  std::vector<PhaseRecord> records;
-  sim.spawn(pipeline(sim, host, 1, files, cpu_seconds, records));
-  sim.run();
-  const double makespan = records.back().end;
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-
-  publish(out_dir, records);
+  progress.clear();
+  pagecache::report::write_outputs(out_dir, scenario, result);
   if (!quiet) {
-    fmt::print("pcsim {}: the paper's Exp 1 (profile paper): 3 tasks, each reads {} GB, computes {:.0f} s, "
-               "writes {} GB\n",
-               kVersion, size_gb, cpu_seconds, size_gb);
-    fmt::print("host: 268 GB memory (4812 MB/s), disk 465 MB/s, dirty_ratio 0.4, 5 s flusher, 30 s expiry\n\n");
-    fmt::print("{:>4} {:>8} {:>9} {:>9} {:>9} {:>9} {:>9}\n", "task", "phase", "start_s", "end_s", "MB/s", "cache_GB", "disk_GB");
-    for (const auto& r : records) {
-      const double rate = r.bytes > 0 ? static_cast<double>(r.bytes) / (r.end - r.start) / 1e6 : 0.0;
-      fmt::print("{:>4} {:>8} {:>9.2f} {:>9.2f} {:>9.1f} {:>9.1f} {:>9.1f}\n", r.task, r.phase, r.start, r.end, rate,
-                 static_cast<double>(r.cache_bytes) / 1e9, static_cast<double>(r.disk_bytes) / 1e9);
-    }
-    fmt::print("\nmakespan {:.2f} s; written back: {:.1f} GB forced, {:.1f} GB by the flusher; evicted {:.1f} GB\n",
-               makespan, static_cast<double>(host.forced_flush_bytes()) / 1e9,
-               static_cast<double>(host.periodic_flush_bytes()) / 1e9, static_cast<double>(host.evicted_bytes()) / 1e9);
-    fmt::print("{} events in {:.3f} s wall; outputs in {}/\n", sim.events_processed(), wall, out_dir);
+    fmt::print("{}", pagecache::report::readable_summary(scenario, result));
+    fmt::print("outputs: {}/{{timeline.csv, memory.csv, cache.csv, summary.json}}\n", out_dir);
   }
   return 0;
 }
@@ -119,19 +96,59 @@ int main(int argc, char** argv) {
   CLI::App app{"pcsim: a discrete-event simulator of the Linux page cache"};
   app.set_version_flag("--version", std::string("pcsim ") + pagecache::kVersion);
   app.require_subcommand(1);
-  auto* run_cmd = app.add_subcommand("run", "run the embedded default scenario (the paper's Exp 1)");
+
+  std::string scenario_path;
   std::string out_dir = "pcsim-out";
-  std::int64_t size_gb = 100;
+  std::string profile;
+  std::vector<std::string> sets;
   bool quiet = false;
-  run_cmd->add_option("--out", out_dir, "output folder")->capture_default_str();
-  run_cmd->add_option("--size-gb", size_gb, "file size in GB")->check(CLI::Range(1, 250))->capture_default_str();
-  run_cmd->add_flag("--quiet", quiet, "print nothing");
-  CLI11_PARSE(app, argc, argv);
+  bool no_cache_contents = false;
+
+  auto* run = app.add_subcommand("run", "run a scenario (without one: the embedded default, the paper's Exp 1 at 100 GB)");
+  run->add_option("scenario", scenario_path, "scenario file (TOML)");
+  run->add_option("--out", out_dir, "output folder (replaced atomically)")->capture_default_str();
+  run->add_option("--profile", profile, "model profile, overriding the scenario's")->check(CLI::IsMember({"paper", "linux"}));
+  run->add_option("--set", sets, "override a scenario key: KEY=VALUE (repeatable), e.g. pipelines.count=16");
+  run->add_flag("--quiet", quiet, "print nothing but errors");
+  run->add_flag("--no-cache-contents", no_cache_contents, "do not record cache.csv (large workloads)");
+
+  auto* show = app.add_subcommand("show", "print the fully resolved scenario, defaults included");
+  show->add_option("scenario", scenario_path, "scenario file (TOML); the embedded default if omitted");
+  show->add_option("--profile", profile, "model profile, overriding the scenario's")->check(CLI::IsMember({"paper", "linux"}));
+  show->add_option("--set", sets, "override a scenario key: KEY=VALUE (repeatable)");
+
+  auto* help = app.add_subcommand("help", "show this help");
+
   try {
-    return run(out_dir, size_gb, quiet);
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return 2;
+  }
+
+  try {
+    if (help->parsed()) {
+      fmt::print("{}", app.help());
+      return 0;
+    }
+    if (show->parsed()) {
+      fmt::print("{}", pagecache::to_toml(load(scenario_path, sets, profile)));
+      return 0;
+    }
+    return run_command(scenario_path, sets, profile, out_dir, quiet, !no_cache_contents);
   } catch (const pagecache::ConfigError& e) {
     fmt::print(stderr, "pcsim: {}\n", e.what());
     return 2;
+  } catch (const pagecache::SimulationError& e) {
+    fmt::print(stderr, "pcsim: simulation failed: {}\n", e.what());
+    return 1;
+  } catch (const pagecache::InvariantError& e) {
+    fmt::print(stderr, "pcsim: internal error (please report): {}\n", e.what());
+    return 3;
   } catch (const std::exception& e) {
     fmt::print(stderr, "pcsim: {}\n", e.what());
     return 1;

@@ -22,6 +22,7 @@
 #include <pagecache/task.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -92,6 +93,8 @@ class Host {
   /// Bytes of clean cached data evicted to make room.
   std::int64_t evicted_bytes() const noexcept;
 
+  /// Calls `observer(now, memory())` after every change of the host's memory.
+  void set_memory_observer(std::function<void(double, const MemoryState&)> observer);
   /// Checks every page-cache invariant after each operation (tests, debugging). Slow.
   void set_checking(bool on);
   /// Checks every page-cache invariant now; throws InvariantError.

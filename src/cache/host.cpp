@@ -103,6 +103,14 @@ std::int64_t Host::forced_flush_bytes() const noexcept { return impl_->io.flushe
 std::int64_t Host::periodic_flush_bytes() const noexcept { return impl_->flusher.flushed_bytes(); }
 std::int64_t Host::evicted_bytes() const noexcept { return impl_->cache.evicted_bytes(); }
 
+void Host::set_memory_observer(std::function<void(double, const MemoryState&)> observer) {
+  if (!observer) {
+    impl_->cache.set_observer({});
+    return;
+  }
+  impl_->cache.set_observer([impl = impl_.get(), observer = std::move(observer)] { observer(impl->sim.now(), impl->cache.memory()); });
+}
+
 void Host::set_checking(bool on) { impl_->cache.set_checking(on); }
 void Host::check_invariants() const { impl_->cache.check_invariants(); }
 

@@ -145,6 +145,7 @@ Block& PageCache::split_front(Block& block, std::int64_t head_size) {
 void PageCache::settle() {
   if (settings_.balance_after_every_change) balance();
   if (checking_) check_invariants();
+  if (observer_) observer_();
 }
 
 // --- Cache contents -------------------------------------------------------------------------

@@ -20,6 +20,7 @@
 #include <pagecache/memory_state.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -35,6 +36,8 @@ class PageCache {
   ~PageCache();
 
   const CacheSettings& settings() const noexcept { return settings_; }
+  /// Calls `observer` after every change of the memory state (memory profiles, peaks).
+  void set_observer(std::function<void()> observer) { observer_ = std::move(observer); }
   /// Runs check_invariants() after every mutating operation; on by default in debug builds.
   void set_checking(bool on) noexcept { checking_ = on; }
 
@@ -153,6 +156,7 @@ class PageCache {
   detail::ObjectPool<Block> pool_;
   std::uint64_t next_token_ = 1;
   std::int64_t evicted_total_ = 0;
+  std::function<void()> observer_;
 #ifdef NDEBUG
   bool checking_ = false;
 #else

@@ -4,6 +4,7 @@
 #include <pagecache/host.hpp>
 
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 
 #include <random>
 #include <string>
@@ -153,7 +154,7 @@ TEST_CASE("concurrent applications under memory pressure keep every invariant", 
       std::vector<FileRef> files;
       for (int f = 0; f < 16; ++f) {
         const std::int64_t size = (300 + static_cast<std::int64_t>(rng() % 1200)) * MB;
-        files.push_back(host.add_file("f" + std::to_string(f), size, disk, f % 4 == 0));
+        files.push_back(host.add_file(fmt::format("f{}", f), size, disk, f % 4 == 0));
       }
       int finished = 0;
       for (int app = 0; app < 8; ++app) sim.spawn(random_app(sim, host, files, seed * 100 + app, 4, finished));

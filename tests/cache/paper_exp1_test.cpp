@@ -6,6 +6,7 @@
 #include "support/paper_pipeline.hpp"
 
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 
 #include <cmath>
 #include <map>
@@ -29,7 +30,7 @@ Exp1Run run_exp1(int size_gb, double cpu_seconds) {
   const DiskRef disk = host.add_disk("disk", 465e6, 465e6);
   std::vector<FileRef> files;
   for (int i = 1; i <= 4; ++i) {
-    files.push_back(host.add_file("file_" + std::to_string(i), static_cast<std::int64_t>(size_gb) * 1'000'000'000, disk));
+    files.push_back(host.add_file(fmt::format("file_{}", i), static_cast<std::int64_t>(size_gb) * 1'000'000'000, disk));
   }
   Exp1Run run;
   sim.spawn(paper_pipeline(sim, host, files, cpu_seconds, 100'000'000, 1, run.phases, &run.cache));

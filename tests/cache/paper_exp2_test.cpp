@@ -11,6 +11,7 @@
 #include "support/paper_pipeline.hpp"
 
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -33,7 +34,7 @@ std::vector<PhaseRecord> run_exp2(int pipelines) {
   for (int p = 1; p <= pipelines; ++p) {
     std::vector<FileRef> files;
     for (int i = 1; i <= 4; ++i) {
-      files.push_back(host.add_file("p" + std::to_string(p) + "_file_" + std::to_string(i), 3'000'000'000, disk));
+      files.push_back(host.add_file(fmt::format("p{}_file_{}", p, i), 3'000'000'000, disk));
     }
     sim.spawn(paper_pipeline(sim, host, files, 4.4, 100'000'000, p, phases));
   }

@@ -1,0 +1,82 @@
+#pragma once
+// Running a scenario and what a run produces: the phase timeline, the memory profile, the
+// cache contents after every I/O phase, and a summary (MODEL.md §8). Writers for these live
+// outside the model (pcsim's report layer).
+
+#include <pagecache/memory_state.hpp>
+#include <pagecache/scenario.hpp>
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace pagecache {
+
+/// One phase (read, compute or write) of one task.
+struct PhaseRow {
+  std::string app;
+  std::string task;
+  std::string phase;
+  double start = 0.0;
+  double end = 0.0;
+  std::int64_t bytes = 0;
+  std::int64_t cache_bytes = 0;
+  std::int64_t disk_bytes = 0;
+};
+
+/// A host's memory at one instant.
+struct MemoryRow {
+  double time = 0.0;
+  std::string host;
+  MemoryState state;
+};
+
+/// Bytes of one file in its host's page cache after an I/O phase of a task.
+struct CacheRow {
+  std::string app;
+  std::string task;
+  std::string phase;
+  std::string file;
+  std::int64_t cached = 0;
+};
+
+struct PhaseTotals {
+  double seconds = 0.0;  ///< summed over tasks
+  std::int64_t bytes = 0;
+};
+
+struct RunSummary {
+  double makespan = 0.0;           ///< when the last task ended
+  double end_time = 0.0;           ///< when the last event ran (dirty data written back)
+  PhaseTotals read, compute, write;
+  std::int64_t disk_read_bytes = 0;
+  std::int64_t cache_read_bytes = 0;
+  std::int64_t forced_flush_bytes = 0;    ///< written back by writers (dirty limit, room)
+  std::int64_t periodic_flush_bytes = 0;  ///< written back by the flusher
+  std::int64_t evicted_bytes = 0;
+  std::int64_t peak_dirty_bytes = 0;
+  std::uint64_t events = 0;
+  double wall_seconds = 0.0;  ///< the simulator's own run time
+  double events_per_second = 0.0;
+};
+
+struct RunResult {
+  std::vector<PhaseRow> timeline;
+  std::vector<MemoryRow> memory;
+  std::vector<CacheRow> cache;
+  RunSummary summary;
+};
+
+struct RunOptions {
+  /// Record cache contents (every file, after every I/O phase). Large for big workloads.
+  bool cache_contents = true;
+  /// Called now and then during the run with the simulated time and the events so far.
+  std::function<void(double, std::uint64_t)> progress;
+};
+
+/// Runs the scenario to the end. Throws SimulationError (with the simulated time) if the
+/// simulation cannot proceed, e.g. a task needs more memory than its host has.
+RunResult run_scenario(const Scenario& scenario, const RunOptions& options = {});
+
+}  // namespace pagecache

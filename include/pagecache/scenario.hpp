@@ -1,0 +1,100 @@
+#pragma once
+// Scenario: everything one simulation run needs — the platform (hosts, their memory, disks
+// and page-cache settings), the files, and the workload — fully resolved (units converted,
+// defaults filled, shorthands expanded). Loaded from a TOML file by load_scenario(); see the
+// README for the format. Run by run_scenario() (pagecache/run.hpp).
+
+#include <pagecache/cache_settings.hpp>
+#include <pagecache/devices.hpp>
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace pagecache {
+
+/// A model profile: `paper` reproduces WRENCH-cache (the paper's simulator); `linux`
+/// follows the kernel.
+enum class Profile { Paper, Linux };
+
+const char* to_string(Profile profile);
+CacheSettings settings_for(Profile profile);
+
+struct DiskSpec {
+  std::string name;
+  double read_bw = 0.0;
+  double write_bw = 0.0;
+  std::int64_t capacity = 0;  ///< bytes; 0: unlimited
+};
+
+struct HostConfig {
+  std::string name;
+  int cores = 1;
+  std::int64_t memory = 0;
+  MemoryBandwidth memory_bandwidth;
+  CacheSettings cache;
+  std::vector<DiskSpec> disks;
+};
+
+struct FileSpec {
+  std::string name;
+  std::int64_t size = 0;
+  std::string host;
+  std::string disk;
+  bool cached = false;  ///< in the page cache (clean) at time 0
+};
+
+/// One task: read files, compute, write files, then release its buffers.
+struct TaskSpec {
+  std::string name;
+  std::vector<std::string> reads;
+  double compute = 0.0;  ///< CPU seconds (on one core)
+  std::vector<std::string> writes;
+  std::int64_t chunk_size = 0;
+  std::vector<std::string> after;  ///< workflow tasks that must end first (besides file producers)
+};
+
+/// An application: tasks run one after the other on one host.
+struct AppSpec {
+  std::string name;
+  std::string host;
+  std::vector<TaskSpec> tasks;
+};
+
+/// A workflow: a DAG of tasks on one host, each started when its inputs are ready (the tasks
+/// that write them, and those named in `after`, have ended) and a core is free.
+struct WorkflowSpec {
+  std::string name = "workflow";
+  std::string host;
+  std::vector<TaskSpec> tasks;
+};
+
+struct Scenario {
+  std::string source;  ///< the file it was read from ("<embedded>" for the default)
+  std::string title;
+  Profile profile = Profile::Linux;
+  /// 0: one memory.csv row per change; else one row per interval (seconds).
+  double memory_sample_interval = 1.0;
+  std::vector<HostConfig> hosts;
+  std::vector<FileSpec> files;
+  std::vector<AppSpec> apps;
+  std::vector<WorkflowSpec> workflows;
+};
+
+/// Reads and resolves a scenario file. `overrides` are (dotted key, TOML value) pairs applied
+/// to the file's contents before anything is checked, e.g. {"pipelines.count", "16"}.
+/// `profile_override`, if set, wins over the file's `profile`. Throws ConfigError naming the
+/// file, line and key of the first problem.
+Scenario load_scenario(const std::string& path, const std::vector<std::pair<std::string, std::string>>& overrides = {},
+                       const std::string& profile_override = {});
+/// The same from TOML text; `source_name` is used in messages.
+Scenario parse_scenario(const std::string& toml_text, const std::string& source_name,
+                        const std::vector<std::pair<std::string, std::string>>& overrides = {},
+                        const std::string& profile_override = {});
+/// The embedded default scenario (the paper's Exp 1 at 100 GB), as TOML text.
+const std::string& default_scenario_text();
+/// A resolved scenario as TOML, every default written out (`pcsim show`).
+std::string to_toml(const Scenario& scenario);
+
+}  // namespace pagecache

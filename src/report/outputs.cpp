@@ -1,0 +1,161 @@
+#include "report/outputs.hpp"
+
+#include <pagecache/error.hpp>
+#include <pagecache/units.hpp>
+#include <pagecache/version.hpp>
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <unistd.h>
+
+namespace pagecache::report {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) out += fmt::format("\\u{:04x}", c);
+        else out += c;
+    }
+  }
+  return out + "\"";
+}
+
+void write_file(const fs::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  out.close();
+  if (!out) throw Error(fmt::format("cannot write {}", path.string()));
+}
+
+}  // namespace
+
+std::string timeline_csv(const RunResult& r) {
+  std::string out = "app,task,phase,start_s,end_s,bytes,cache_bytes,disk_bytes\n";
+  for (const PhaseRow& p : r.timeline) {
+    out += fmt::format("{},{},{},{:.6f},{:.6f},{},{},{}\n", p.app, p.task, p.phase, p.start, p.end, p.bytes, p.cache_bytes,
+                       p.disk_bytes);
+  }
+  return out;
+}
+
+std::string memory_csv(const RunResult& r) {
+  std::set<std::string> hosts;
+  for (const MemoryRow& m : r.memory) hosts.insert(m.host);
+  const bool with_host = hosts.size() > 1;  // one host: the documented columns exactly
+  std::string out = with_host ? "host," : "";
+  out += "time_s,total_bytes,free_bytes,anonymous_bytes,cached_bytes,dirty_bytes,writeback_bytes,active_bytes,inactive_bytes\n";
+  for (const MemoryRow& m : r.memory) {
+    const MemoryState& s = m.state;
+    if (with_host) out += m.host + ",";
+    // Copies in flight hold their pages: counted as cached here, so that the columns add up.
+    out += fmt::format("{:.6f},{},{},{},{},{},{},{},{}\n", m.time, s.total, s.free, s.anonymous, s.cached + s.reserved, s.dirty,
+                       s.writeback, s.active, s.inactive + s.reserved);
+  }
+  return out;
+}
+
+std::string cache_csv(const RunResult& r) {
+  std::string out = "app,task,phase,file,cached_bytes\n";
+  for (const CacheRow& c : r.cache) out += fmt::format("{},{},{},{},{}\n", c.app, c.task, c.phase, c.file, c.cached);
+  return out;
+}
+
+std::string summary_json(const Scenario& scenario, const RunResult& r) {
+  const RunSummary& s = r.summary;
+  auto totals = [](const PhaseTotals& t) { return fmt::format("{{\"seconds\": {:.6f}, \"bytes\": {}}}", t.seconds, t.bytes); };
+  return fmt::format(
+      "{{\n"
+      "  \"pcsim_version\": {},\n"
+      "  \"scenario\": {},\n"
+      "  \"profile\": {},\n"
+      "  \"makespan_s\": {:.6f},\n"
+      "  \"end_time_s\": {:.6f},\n"
+      "  \"phases\": {{\"read\": {}, \"compute\": {}, \"write\": {}}},\n"
+      "  \"disk_read_bytes\": {},\n"
+      "  \"cache_read_bytes\": {},\n"
+      "  \"forced_flush_bytes\": {},\n"
+      "  \"periodic_flush_bytes\": {},\n"
+      "  \"flushed_bytes\": {},\n"
+      "  \"evicted_bytes\": {},\n"
+      "  \"peak_dirty_bytes\": {},\n"
+      "  \"events\": {},\n"
+      "  \"wall_time_s\": {:.6f},\n"
+      "  \"events_per_second\": {:.0f}\n"
+      "}}\n",
+      json_string(kVersion), json_string(scenario.source), json_string(to_string(scenario.profile)), s.makespan, s.end_time,
+      totals(s.read), totals(s.compute), totals(s.write), s.disk_read_bytes, s.cache_read_bytes, s.forced_flush_bytes,
+      s.periodic_flush_bytes, s.forced_flush_bytes + s.periodic_flush_bytes, s.evicted_bytes, s.peak_dirty_bytes, s.events,
+      s.wall_seconds, s.events_per_second);
+}
+
+void write_outputs(const std::string& dir, const Scenario& scenario, const RunResult& result) {
+  const fs::path target = fs::absolute(dir);
+  // A sibling temporary folder, unique to this process, renamed over the target at the end.
+  const fs::path staging = target.parent_path() / fmt::format(".{}.tmp-{}", target.filename().string(), ::getpid());
+  std::error_code ignored;
+  fs::remove_all(staging, ignored);
+  try {
+    fs::create_directories(staging);
+    write_file(staging / "timeline.csv", timeline_csv(result));
+    write_file(staging / "memory.csv", memory_csv(result));
+    write_file(staging / "cache.csv", cache_csv(result));
+    write_file(staging / "summary.json", summary_json(scenario, result));
+    fs::remove_all(target);
+    fs::rename(staging, target);
+  } catch (const fs::filesystem_error& e) {
+    fs::remove_all(staging, ignored);
+    throw Error(fmt::format("cannot write the outputs to {}: {}", target.string(), e.code().message()));
+  } catch (...) {
+    fs::remove_all(staging, ignored);
+    throw;
+  }
+}
+
+std::string readable_summary(const Scenario& scenario, const RunResult& r) {
+  std::string out;
+  if (!scenario.title.empty()) out += scenario.title + "\n";
+  out += fmt::format("scenario {} (profile {})\n", scenario.source, to_string(scenario.profile));
+  std::map<std::string, std::vector<const PhaseRow*>> by_app;
+  std::vector<std::string> order;
+  for (const PhaseRow& p : r.timeline) {
+    if (by_app.find(p.app) == by_app.end()) order.push_back(p.app);
+    by_app[p.app].push_back(&p);
+  }
+  constexpr std::size_t kMaxApps = 8;
+  for (std::size_t i = 0; i < order.size() && i < kMaxApps; ++i) {
+    out += fmt::format("\napp {}\n{:>10} {:>8} {:>10} {:>10} {:>10} {:>9} {:>9}\n", order[i], "task", "phase", "start_s", "end_s",
+                       "MB/s", "cache_GB", "disk_GB");
+    for (const PhaseRow* p : by_app[order[i]]) {
+      const double seconds = p->end - p->start;
+      const std::string rate = p->bytes > 0 && seconds > 0 ? fmt::format("{:.1f}", static_cast<double>(p->bytes) / seconds / 1e6) : "-";
+      out += fmt::format("{:>10} {:>8} {:>10.2f} {:>10.2f} {:>10} {:>9.2f} {:>9.2f}\n", p->task, p->phase, p->start, p->end, rate,
+                         static_cast<double>(p->cache_bytes) / 1e9, static_cast<double>(p->disk_bytes) / 1e9);
+    }
+  }
+  if (order.size() > kMaxApps) out += fmt::format("\n... and {} more applications (see timeline.csv)\n", order.size() - kMaxApps);
+  const RunSummary& s = r.summary;
+  out += fmt::format(
+      "\nmakespan {:.2f} s; read {} from disk and {} from cache; written back {} (forced) + {} (flusher); "
+      "evicted {}; peak dirty {}\n",
+      s.makespan, units::format_size(s.disk_read_bytes), units::format_size(s.cache_read_bytes),
+      units::format_size(s.forced_flush_bytes), units::format_size(s.periodic_flush_bytes), units::format_size(s.evicted_bytes),
+      units::format_size(s.peak_dirty_bytes));
+  out += fmt::format("simulated {} events in {:.3f} s of wall time ({:.2f} M events/s)\n", s.events, s.wall_seconds,
+                     s.events_per_second / 1e6);
+  return out;
+}
+
+}  // namespace pagecache::report

@@ -1,0 +1,24 @@
+#pragma once
+// Writing a run's outputs: timeline.csv, memory.csv, cache.csv and summary.json in one folder,
+// written to a temporary sibling folder first and renamed into place, so that a failed run
+// never leaves a half-written result. Also the readable summary printed to stdout.
+
+#include <pagecache/run.hpp>
+#include <pagecache/scenario.hpp>
+
+#include <string>
+
+namespace pagecache::report {
+
+/// Writes every output into `dir` (replacing it). Throws Error if a file cannot be written.
+void write_outputs(const std::string& dir, const Scenario& scenario, const RunResult& result);
+
+std::string timeline_csv(const RunResult& result);
+std::string memory_csv(const RunResult& result);
+std::string cache_csv(const RunResult& result);
+std::string summary_json(const Scenario& scenario, const RunResult& result);
+
+/// A small table per application and the totals, for a terminal.
+std::string readable_summary(const Scenario& scenario, const RunResult& result);
+
+}  // namespace pagecache::report

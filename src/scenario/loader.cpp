@@ -1,0 +1,374 @@
+// Reading a scenario file: TOML text -> overrides applied -> every key read and checked ->
+// shorthands expanded -> references and sizes checked.
+
+#include <pagecache/scenario.hpp>
+
+#include "scenario/toml_reader.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace pagecache {
+
+const char* to_string(Profile profile) { return profile == Profile::Paper ? "paper" : "linux"; }
+
+CacheSettings settings_for(Profile profile) {
+  return profile == Profile::Paper ? CacheSettings::paper() : CacheSettings::kernel();
+}
+
+namespace {
+
+using scenario::TomlReader;
+using Overrides = std::vector<std::pair<std::string, std::string>>;
+
+Profile parse_profile(const std::string& name, const std::function<void(const std::string&)>& fail) {
+  if (name == "paper") return Profile::Paper;
+  if (name == "linux") return Profile::Linux;
+  fail(fmt::format("unknown profile '{}' (use \"paper\" or \"linux\")", name));
+  return Profile::Linux;
+}
+
+// --set KEY=VALUE: VALUE is read as a TOML value (16, 0.4, true, "50 GB"); anything that is not
+// valid TOML is taken as a string, so --set pipelines.file_size=50GB works too.
+toml::node_view<toml::node> ensure_path(toml::table& root, const std::string& key, const std::string& source) {
+  std::vector<std::string> parts;
+  std::stringstream ss(key);
+  for (std::string part; std::getline(ss, part, '.');) parts.push_back(part);
+  if (parts.empty() || std::any_of(parts.begin(), parts.end(), [](const std::string& p) { return p.empty(); })) {
+    throw ConfigError(fmt::format("{}: --set '{}': not a dotted key such as pipelines.count", source, key));
+  }
+  toml::node* node = &root;
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    const std::string& part = parts[i];
+    if (auto* table = node->as_table()) {
+      if (!table->contains(part)) table->insert(part, toml::table{});
+      node = table->get(part);
+    } else if (auto* array = node->as_array()) {
+      std::size_t index = 0;
+      try {
+        index = std::stoul(part);
+      } catch (const std::exception&) {
+        throw ConfigError(fmt::format("{}: --set '{}': '{}' is an array: use an index, e.g. hosts.0.memory", source, key, part));
+      }
+      if (index >= array->size()) throw ConfigError(fmt::format("{}: --set '{}': index {} out of range", source, key, index));
+      node = array->get(index);
+    } else {
+      throw ConfigError(fmt::format("{}: --set '{}': '{}' is not a table", source, key, part));
+    }
+  }
+  return toml::node_view<toml::node>(node);
+}
+
+void apply_override(toml::table& root, const std::string& key, const std::string& value, const std::string& source) {
+  auto parent = ensure_path(root, key, source);
+  const std::string last = key.substr(key.rfind('.') == std::string::npos ? 0 : key.rfind('.') + 1);
+  toml::table parsed;
+  try {
+    parsed = toml::parse("v = " + value);
+  } catch (const toml::parse_error&) {
+    parsed = toml::table{};
+    parsed.insert("v", value);
+  }
+  if (auto* table = parent.as_table()) {
+    table->insert_or_assign(last, std::move(*parsed.get("v")));
+  } else if (auto* array = parent.as_array()) {
+    std::size_t index = 0;
+    try {
+      index = std::stoul(last);
+    } catch (const std::exception&) {
+      throw ConfigError(fmt::format("{}: --set '{}': use an index into the array", source, key));
+    }
+    if (index >= array->size()) throw ConfigError(fmt::format("{}: --set '{}': index {} out of range", source, key, index));
+    array->replace(array->begin() + static_cast<std::ptrdiff_t>(index), std::move(*parsed.get("v")));
+  } else {
+    throw ConfigError(fmt::format("{}: --set '{}': cannot set a key there", source, key));
+  }
+}
+
+CacheSettings read_page_cache(const toml::table* table, const TomlReader& parent, Profile profile, const std::string& file) {
+  CacheSettings s = settings_for(profile);
+  if (table == nullptr) return s;
+  TomlReader r(*table, parent.child_path("page_cache"), file);
+  if (auto mode = r.optional_string("mode")) {
+    if (*mode == "writeback") s.write_mode = WriteMode::Writeback;
+    else if (*mode == "writethrough") s.write_mode = WriteMode::Writethrough;
+    else r.fail("mode", fmt::format("unknown mode '{}' (use \"writeback\" or \"writethrough\")", *mode));
+  }
+  auto ratio = [&](const char* key, double& out) {
+    if (auto v = r.optional_number(key)) {
+      if (!(*v >= 0.0 && *v <= 1.0)) r.fail(key, fmt::format("a ratio between 0 and 1, got {}", *v));
+      out = *v;
+    }
+  };
+  ratio("dirty_ratio", s.dirty_ratio);
+  ratio("dirty_background_ratio", s.dirty_background_ratio);
+  if (auto v = r.optional_duration("dirty_expire")) s.dirty_expire = *v;
+  if (auto v = r.optional_duration("writeback_interval")) {
+    if (*v <= 0.0) r.fail("writeback_interval", "must be > 0");
+    s.writeback_interval = *v;
+  }
+  r.finish();
+  return s;
+}
+
+HostConfig read_host(const toml::table& table, std::string path, std::size_t index, Profile profile, const std::string& file) {
+  TomlReader r(table, std::move(path), file);
+  HostConfig h;
+  h.name = r.string("name", fmt::format("host{}", index + 1));
+  h.cores = static_cast<int>(r.optional_integer("cores").value_or(1));
+  if (h.cores < 1) r.fail("cores", "must be >= 1");
+  h.memory = r.required_size("memory");
+  if (h.memory <= 0) r.fail("memory", "must be > 0");
+  h.memory_bandwidth.read = r.required_bandwidth("memory_read_bw");
+  h.memory_bandwidth.write = r.required_bandwidth("memory_write_bw");
+  h.memory_bandwidth.aggregate_read = r.optional_bandwidth("memory_aggregate_read_bw").value_or(h.memory_bandwidth.read);
+  h.memory_bandwidth.aggregate_write = r.optional_bandwidth("memory_aggregate_write_bw").value_or(h.memory_bandwidth.write);
+  const std::pair<const char*, double> bandwidths[] = {{"memory_read_bw", h.memory_bandwidth.read},
+                                                       {"memory_write_bw", h.memory_bandwidth.write},
+                                                       {"memory_aggregate_read_bw", h.memory_bandwidth.aggregate_read},
+                                                       {"memory_aggregate_write_bw", h.memory_bandwidth.aggregate_write}};
+  for (const auto& [key, bw] : bandwidths) {
+    if (bw <= 0.0) r.fail(key, "must be > 0");
+  }
+  h.cache = read_page_cache(r.optional_table("page_cache"), r, profile, file);
+  const auto disks = r.tables("disks");
+  for (std::size_t i = 0; i < disks.size(); ++i) {
+    TomlReader d(*disks[i], r.child_path("disks", i), file);
+    DiskSpec disk;
+    disk.name = d.string("name", fmt::format("disk{}", i + 1));
+    disk.read_bw = d.required_bandwidth("read_bw");
+    disk.write_bw = d.required_bandwidth("write_bw");
+    if (disk.read_bw <= 0.0) d.fail("read_bw", "must be > 0");
+    if (disk.write_bw <= 0.0) d.fail("write_bw", "must be > 0");
+    disk.capacity = d.optional_size("capacity").value_or(0);
+    for (const DiskSpec& other : h.disks) {
+      if (other.name == disk.name) d.fail("name", fmt::format("host '{}' has two disks named '{}'", h.name, disk.name));
+    }
+    d.finish();
+    h.disks.push_back(std::move(disk));
+  }
+  if (h.disks.empty()) r.fail_table(fmt::format("host '{}' has no disk ([[{}.disks]])", h.name, r.path()));
+  r.finish();
+  return h;
+}
+
+TaskSpec read_task(const toml::table& table, std::string path, std::size_t index, std::int64_t default_chunk,
+                   const std::string& file, bool with_after) {
+  TomlReader r(table, std::move(path), file);
+  TaskSpec t;
+  t.name = r.string("name", std::to_string(index + 1));
+  t.reads = r.strings("read");
+  t.compute = r.optional_duration("compute").value_or(0.0);
+  t.writes = r.strings("write");
+  t.chunk_size = r.optional_size("chunk_size").value_or(default_chunk);
+  if (t.chunk_size <= 0) r.fail("chunk_size", "must be > 0");
+  if (with_after) t.after = r.strings("after");
+  r.finish();
+  return t;
+}
+
+// [pipelines]: N identical concurrent pipelines of T tasks; task k of pipeline i reads
+// file k and writes file k+1 of that pipeline ("file_k" when N = 1, else "p<i>_file_k").
+void expand_pipelines(const toml::table& table, Scenario& s, const std::string& file) {
+  TomlReader r(table, "pipelines", file);
+  const std::int64_t count = r.optional_integer("count").value_or(1);
+  if (count < 1) r.fail("count", "must be >= 1");
+  const std::string host = r.string("host", s.hosts.empty() ? std::string() : s.hosts.front().name);
+  std::string disk = r.string("disk", "");
+  const std::int64_t size = r.required_size("file_size");
+  const std::int64_t tasks = r.optional_integer("tasks").value_or(3);
+  if (tasks < 1) r.fail("tasks", "must be >= 1");
+  const double cpu = r.optional_duration("cpu_time").value_or(0.0);
+  const std::int64_t chunk = r.optional_size("chunk_size").value_or(100'000'000);
+  if (chunk <= 0) r.fail("chunk_size", "must be > 0");
+  const bool cached = r.optional_bool("inputs_cached").value_or(false);
+  r.finish();
+  const auto h = std::find_if(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == host; });
+  if (h == s.hosts.end()) r.fail("host", fmt::format("no host named '{}'", host));
+  if (disk.empty()) disk = h->disks.front().name;
+  for (std::int64_t i = 1; i <= count; ++i) {
+    auto file_name = [&](std::int64_t k) { return count == 1 ? fmt::format("file_{}", k) : fmt::format("p{}_file_{}", i, k); };
+    for (std::int64_t k = 1; k <= tasks + 1; ++k) s.files.push_back({file_name(k), size, host, disk, k == 1 && cached});
+    AppSpec app{std::to_string(i), host, {}};
+    for (std::int64_t k = 1; k <= tasks; ++k) {
+      app.tasks.push_back(TaskSpec{std::to_string(k), {file_name(k)}, cpu, {file_name(k + 1)}, chunk, {}});
+    }
+    s.apps.push_back(std::move(app));
+  }
+}
+
+void check_workflow_acyclic(const WorkflowSpec& w, const TomlReader& r) {
+  std::map<std::string, std::size_t> by_name;
+  std::map<std::string, std::size_t> producer;
+  for (std::size_t i = 0; i < w.tasks.size(); ++i) {
+    if (!by_name.emplace(w.tasks[i].name, i).second) r.fail("tasks", fmt::format("two tasks named '{}'", w.tasks[i].name));
+    for (const auto& f : w.tasks[i].writes) {
+      if (!producer.emplace(f, i).second) r.fail("tasks", fmt::format("file '{}' is written by two tasks", f));
+    }
+  }
+  std::vector<std::vector<std::size_t>> deps(w.tasks.size());
+  for (std::size_t i = 0; i < w.tasks.size(); ++i) {
+    for (const auto& a : w.tasks[i].after) {
+      auto it = by_name.find(a);
+      if (it == by_name.end()) r.fail("tasks", fmt::format("task '{}' comes after an unknown task '{}'", w.tasks[i].name, a));
+      deps[i].push_back(it->second);
+    }
+    for (const auto& f : w.tasks[i].reads) {
+      if (auto it = producer.find(f); it != producer.end()) deps[i].push_back(it->second);
+    }
+  }
+  // Depth-first search for a cycle, reporting its tasks.
+  std::vector<int> state(w.tasks.size(), 0);
+  std::vector<std::size_t> stack;
+  std::function<void(std::size_t)> visit = [&](std::size_t t) {
+    state[t] = 1;
+    stack.push_back(t);
+    for (std::size_t d : deps[t]) {
+      if (state[d] == 1) {
+        std::string cycle;
+        for (auto it = std::find(stack.begin(), stack.end(), d); it != stack.end(); ++it) cycle += w.tasks[*it].name + " -> ";
+        r.fail("tasks", fmt::format("dependency cycle: {}{}", cycle, w.tasks[d].name));
+      }
+      if (state[d] == 0) visit(d);
+    }
+    stack.pop_back();
+    state[t] = 2;
+  };
+  for (std::size_t t = 0; t < w.tasks.size(); ++t)
+    if (state[t] == 0) visit(t);
+}
+
+Scenario resolve(const toml::table& root, const std::string& file, const std::string& profile_override) {
+  TomlReader r(root, "", file);
+  Scenario s;
+  s.source = file;
+  s.title = r.string("title", "");
+  const std::string file_profile = r.string("profile", "linux");
+  if (profile_override.empty()) {
+    s.profile = parse_profile(file_profile, [&](const std::string& m) { r.fail("profile", m); });
+  } else {
+    s.profile = parse_profile(profile_override, [](const std::string& m) -> void { throw ConfigError("--profile: " + m); });
+  }
+  s.memory_sample_interval = r.optional_duration("memory_sample_interval").value_or(1.0);
+
+  const auto hosts = r.tables("hosts");
+  if (hosts.empty()) r.fail_table("no host: add a [[hosts]] table");
+  for (std::size_t i = 0; i < hosts.size(); ++i) {
+    s.hosts.push_back(read_host(*hosts[i], r.child_path("hosts", i), i, s.profile, file));
+    for (std::size_t j = 0; j < i; ++j) {
+      if (s.hosts[j].name == s.hosts[i].name) TomlReader(*hosts[i], r.child_path("hosts", i), file).fail("name", "two hosts share this name");
+    }
+  }
+
+  const auto files = r.tables("files");
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    TomlReader f(*files[i], r.child_path("files", i), file);
+    FileSpec spec;
+    spec.name = f.required_string("name");
+    spec.size = f.required_size("size");
+    spec.host = f.string("host", s.hosts.front().name);
+    spec.disk = f.string("disk", "");
+    spec.cached = f.optional_bool("cached").value_or(false);
+    const auto h = std::find_if(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == spec.host; });
+    if (h == s.hosts.end()) f.fail("host", fmt::format("no host named '{}'", spec.host));
+    if (spec.disk.empty()) spec.disk = h->disks.front().name;
+    f.finish();
+    s.files.push_back(std::move(spec));
+  }
+  if (const toml::table* p = r.optional_table("pipelines")) expand_pipelines(*p, s, file);
+
+  const auto apps = r.tables("apps");
+  for (std::size_t i = 0; i < apps.size(); ++i) {
+    TomlReader a(*apps[i], r.child_path("apps", i), file);
+    AppSpec app;
+    app.name = a.string("name", fmt::format("app{}", i + 1));
+    app.host = a.string("host", s.hosts.front().name);
+    const std::int64_t chunk = a.optional_size("chunk_size").value_or(100'000'000);
+    const auto tasks = a.tables("tasks");
+    if (tasks.empty()) a.fail_table("an application needs at least one [[" + a.path() + ".tasks]]");
+    for (std::size_t t = 0; t < tasks.size(); ++t) app.tasks.push_back(read_task(*tasks[t], a.child_path("tasks", t), t, chunk, file, false));
+    a.finish();
+    s.apps.push_back(std::move(app));
+  }
+
+  if (const toml::table* w = r.optional_table("workflow")) {
+    TomlReader wr(*w, "workflow", file);
+    WorkflowSpec workflow;
+    workflow.name = wr.string("name", "workflow");
+    workflow.host = wr.string("host", s.hosts.front().name);
+    const std::int64_t chunk = wr.optional_size("chunk_size").value_or(100'000'000);
+    const auto tasks = wr.tables("tasks");
+    if (tasks.empty()) wr.fail_table("a workflow needs at least one [[workflow.tasks]]");
+    for (std::size_t t = 0; t < tasks.size(); ++t) {
+      workflow.tasks.push_back(read_task(*tasks[t], wr.child_path("tasks", t), t, chunk, file, true));
+    }
+    check_workflow_acyclic(workflow, wr);
+    wr.finish();
+    s.workflows.push_back(std::move(workflow));
+  }
+  if (s.apps.empty() && s.workflows.empty()) r.fail_table("no workload: add [pipelines], [[apps]] or [workflow]");
+  r.finish();
+
+  // References: every file a task names exists on the task's host; files fit their disks.
+  std::map<std::string, const FileSpec*> by_name;
+  for (const FileSpec& f : s.files) {
+    if (!by_name.emplace(f.name, &f).second) throw ConfigError(fmt::format("{}: two files named '{}'", file, f.name));
+    const HostConfig& h = *std::find_if(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == f.host; });
+    const auto d = std::find_if(h.disks.begin(), h.disks.end(), [&](const DiskSpec& x) { return x.name == f.disk; });
+    if (d == h.disks.end()) throw ConfigError(fmt::format("{}: file '{}': host '{}' has no disk '{}'", file, f.name, h.name, f.disk));
+    if (d->capacity > 0 && f.size > d->capacity) {
+      throw ConfigError(fmt::format("{}: file '{}' ({}) does not fit on disk '{}' ({})", file, f.name, units::format_size(f.size),
+                                    d->name, units::format_size(d->capacity)));
+    }
+  }
+  auto check_tasks = [&](const std::string& owner, const std::string& host, const std::vector<TaskSpec>& tasks) {
+    if (std::none_of(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == host; })) {
+      throw ConfigError(fmt::format("{}: {}: no host named '{}'", file, owner, host));
+    }
+    for (const TaskSpec& t : tasks) {
+      for (const auto* list : {&t.reads, &t.writes}) {
+        for (const std::string& name : *list) {
+          auto it = by_name.find(name);
+          if (it == by_name.end()) throw ConfigError(fmt::format("{}: {}, task '{}': unknown file '{}'", file, owner, t.name, name));
+          if (it->second->host != host) {
+            throw ConfigError(fmt::format("{}: {}, task '{}': file '{}' is on host '{}', not '{}'", file, owner, t.name, name,
+                                          it->second->host, host));
+          }
+        }
+      }
+    }
+  };
+  for (const AppSpec& a : s.apps) check_tasks("application '" + a.name + "'", a.host, a.tasks);
+  for (const WorkflowSpec& w : s.workflows) check_tasks("workflow '" + w.name + "'", w.host, w.tasks);
+  return s;
+}
+
+}  // namespace
+
+Scenario parse_scenario(const std::string& toml_text, const std::string& source_name, const Overrides& overrides,
+                        const std::string& profile_override) {
+  toml::table root;
+  try {
+    root = toml::parse(toml_text, source_name);
+  } catch (const toml::parse_error& e) {
+    throw ConfigError(fmt::format("{}:{}:{}: {}", source_name, e.source().begin.line, e.source().begin.column, e.description()));
+  }
+  for (const auto& [key, value] : overrides) apply_override(root, key, value, source_name);
+  return resolve(root, source_name, profile_override);
+}
+
+Scenario load_scenario(const std::string& path, const Overrides& overrides, const std::string& profile_override) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError(fmt::format("{}: cannot open the scenario file", path));
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_scenario(text.str(), path, overrides, profile_override);
+}
+
+}  // namespace pagecache

@@ -1,0 +1,77 @@
+// A resolved scenario written back as TOML, every default and every expanded shorthand
+// spelled out (`pcsim show`). Reading it back gives the same scenario.
+
+#include <pagecache/scenario.hpp>
+#include <pagecache/units.hpp>
+
+#include <fmt/format.h>
+
+#include <string>
+
+namespace pagecache {
+
+namespace {
+
+std::string quoted(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
+std::string list(const std::vector<std::string>& items) {
+  std::string out = "[";
+  for (std::size_t i = 0; i < items.size(); ++i) out += (i ? ", " : "") + quoted(items[i]);
+  return out + "]";
+}
+
+void write_task(std::string& out, const std::string& table, const TaskSpec& t, bool with_after) {
+  out += fmt::format("\n[[{}]]\nname = {}\nread = {}\ncompute = {}\nwrite = {}\nchunk_size = {}\n", table, quoted(t.name),
+                     list(t.reads), quoted(units::format_duration(t.compute)), list(t.writes),
+                     quoted(units::format_size(t.chunk_size)));
+  if (with_after) out += fmt::format("after = {}\n", list(t.after));
+}
+
+}  // namespace
+
+std::string to_toml(const Scenario& s) {
+  std::string out = fmt::format("# resolved from {}\n", s.source);
+  if (!s.title.empty()) out += fmt::format("title = {}\n", quoted(s.title));
+  out += fmt::format("profile = {}\nmemory_sample_interval = {}\n", quoted(to_string(s.profile)),
+                     quoted(units::format_duration(s.memory_sample_interval)));
+  for (const HostConfig& h : s.hosts) {
+    out += fmt::format(
+        "\n[[hosts]]\nname = {}\ncores = {}\nmemory = {}\nmemory_read_bw = {}\nmemory_write_bw = {}\n"
+        "memory_aggregate_read_bw = {}\nmemory_aggregate_write_bw = {}\n",
+        quoted(h.name), h.cores, quoted(units::format_size(h.memory)), quoted(units::format_bandwidth(h.memory_bandwidth.read)),
+        quoted(units::format_bandwidth(h.memory_bandwidth.write)), quoted(units::format_bandwidth(h.memory_bandwidth.aggregate_read)),
+        quoted(units::format_bandwidth(h.memory_bandwidth.aggregate_write)));
+    out += fmt::format(
+        "\n[hosts.page_cache]\nmode = {}\ndirty_ratio = {}\ndirty_background_ratio = {}\ndirty_expire = {}\nwriteback_interval = {}\n",
+        quoted(h.cache.write_mode == WriteMode::Writeback ? "writeback" : "writethrough"), h.cache.dirty_ratio,
+        h.cache.dirty_background_ratio, quoted(units::format_duration(h.cache.dirty_expire)),
+        quoted(units::format_duration(h.cache.writeback_interval)));
+    for (const DiskSpec& d : h.disks) {
+      out += fmt::format("\n[[hosts.disks]]\nname = {}\nread_bw = {}\nwrite_bw = {}\ncapacity = {}\n", quoted(d.name),
+                         quoted(units::format_bandwidth(d.read_bw)), quoted(units::format_bandwidth(d.write_bw)),
+                         quoted(units::format_size(d.capacity)));
+    }
+  }
+  for (const FileSpec& f : s.files) {
+    out += fmt::format("\n[[files]]\nname = {}\nsize = {}\nhost = {}\ndisk = {}\ncached = {}\n", quoted(f.name),
+                       quoted(units::format_size(f.size)), quoted(f.host), quoted(f.disk), f.cached);
+  }
+  for (const AppSpec& a : s.apps) {
+    out += fmt::format("\n[[apps]]\nname = {}\nhost = {}\n", quoted(a.name), quoted(a.host));
+    for (const TaskSpec& t : a.tasks) write_task(out, "apps.tasks", t, false);
+  }
+  for (const WorkflowSpec& w : s.workflows) {
+    out += fmt::format("\n[workflow]\nname = {}\nhost = {}\n", quoted(w.name), quoted(w.host));
+    for (const TaskSpec& t : w.tasks) write_task(out, "workflow.tasks", t, true);
+  }
+  return out;
+}
+
+}  // namespace pagecache

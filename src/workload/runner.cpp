@@ -1,0 +1,220 @@
+// run_scenario: builds the platform of a resolved scenario, runs its applications and
+// workflows to the end, and collects the timeline, the memory profile and the cache contents.
+
+#include <pagecache/error.hpp>
+#include <pagecache/host.hpp>
+#include <pagecache/run.hpp>
+
+#include "workload/core_slots.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <deque>
+#include <map>
+#include <memory>
+
+namespace pagecache {
+
+namespace {
+
+struct PlacedFile {
+  Host* host;
+  FileRef ref;
+};
+
+class Runner {
+ public:
+  Runner(const Scenario& scenario, const RunOptions& options) : scenario_(scenario), options_(options), share_(sim_) {
+    for (const HostConfig& config : scenario.hosts) {
+      auto host = std::make_unique<Host>(
+          sim_, share_, HostSpec{config.name, config.cores, config.memory, config.memory_bandwidth, config.cache});
+      std::map<std::string, DiskRef> disks;
+      for (const DiskSpec& d : config.disks) disks[d.name] = host->add_disk(d.name, d.read_bw, d.write_bw, d.capacity);
+      disks_[config.name] = std::move(disks);
+      host->set_memory_observer([this, name = config.name](double now, const MemoryState& m) {
+        summary().peak_dirty_bytes = std::max(summary().peak_dirty_bytes, m.dirty);
+        if (scenario_.memory_sample_interval <= 0.0) record_memory(now, name, m);
+      });
+      hosts_[config.name] = std::move(host);
+      host_order_.push_back(config.name);
+    }
+    for (const FileSpec& f : scenario.files) {
+      Host& host = *hosts_.at(f.host);
+      files_[f.name] = PlacedFile{&host, host.add_file(f.name, f.size, disks_.at(f.host).at(f.disk), f.cached)};
+      file_order_.push_back(f.name);
+    }
+  }
+
+  RunResult run() {
+    const auto wall_start = std::chrono::steady_clock::now();
+    for (const AppSpec& app : scenario_.apps) {
+      ++running_;
+      sim_.spawn(run_app(app));
+    }
+    for (const WorkflowSpec& w : scenario_.workflows) {
+      slots_.push_back(std::make_unique<workload::CoreSlots>(sim_, core_count(w.host)));
+      workload::CoreSlots& slots = *slots_.back();
+      auto& done = workflow_done_.emplace_back();
+      for (const TaskSpec& t : w.tasks) done[t.name] = std::make_unique<Event>(sim_);
+      for (const TaskSpec& t : w.tasks) {
+        ++running_;
+        sim_.spawn(run_workflow_task(w, t, slots, done));
+      }
+    }
+    if (scenario_.memory_sample_interval > 0.0) sim_.spawn(sample_memory());
+    else record_all_memory();
+
+    try {
+      std::uint64_t next_progress = 1 << 16;
+      while (sim_.step()) {
+        if (options_.progress && sim_.events_processed() >= next_progress) {
+          options_.progress(sim_.now(), sim_.events_processed());
+          next_progress += 1 << 16;
+        }
+      }
+    } catch (const SimulationError& e) {
+      const std::string what = e.what();
+      if (what.rfind("t = ", 0) == 0) throw;
+      throw SimulationError(fmt::format("t = {:.6f} s: {}", sim_.now(), what));
+    }
+    if (running_ != 0) {
+      throw SimulationError(fmt::format("t = {:.6f} s: {} task(s) never finished (waiting for each other?)", sim_.now(), running_));
+    }
+    record_all_memory();
+
+    RunSummary& s = summary();
+    s.end_time = sim_.now();
+    for (const PhaseRow& row : result_.timeline) {
+      PhaseTotals& totals = row.phase == "read" ? s.read : row.phase == "write" ? s.write : s.compute;
+      totals.seconds += row.end - row.start;
+      totals.bytes += row.bytes;
+      if (row.phase == "read") {
+        s.disk_read_bytes += row.disk_bytes;
+        s.cache_read_bytes += row.cache_bytes;
+      }
+    }
+    for (const auto& [name, host] : hosts_) {
+      s.forced_flush_bytes += host->forced_flush_bytes();
+      s.periodic_flush_bytes += host->periodic_flush_bytes();
+      s.evicted_bytes += host->evicted_bytes();
+    }
+    s.events = sim_.events_processed();
+    s.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    s.events_per_second = s.wall_seconds > 0.0 ? static_cast<double>(s.events) / s.wall_seconds : 0.0;
+    return std::move(result_);
+  }
+
+ private:
+  RunSummary& summary() { return result_.summary; }
+
+  int core_count(const std::string& host) const {
+    for (const HostConfig& h : scenario_.hosts)
+      if (h.name == host) return h.cores;
+    return 1;
+  }
+
+  void record_memory(double now, const std::string& host, const MemoryState& m) {
+    if (!result_.memory.empty() && result_.memory.back().host == host && result_.memory.back().state == m) return;
+    result_.memory.push_back({now, host, m});
+  }
+
+  void record_all_memory() {
+    for (const std::string& name : host_order_) record_memory(sim_.now(), name, hosts_.at(name)->memory());
+  }
+
+  Task<void> sample_memory() {
+    while (running_ > 0) {
+      record_all_memory();
+      co_await sim_.sleep(scenario_.memory_sample_interval);
+    }
+  }
+
+  void record_cache(const std::string& app, const TaskSpec& task, const char* phase) {
+    if (!options_.cache_contents) return;
+    for (const std::string& name : file_order_) {
+      const PlacedFile& f = files_.at(name);
+      result_.cache.push_back({app, task.name, phase, name, f.host->cached(f.ref)});
+    }
+  }
+
+  Task<void> run_task(const std::string& app, const TaskSpec& task, Host& host) {
+    PhaseRow read{app, task.name, "read", sim_.now(), 0, 0, 0, 0};
+    for (const std::string& name : task.reads) {
+      const IoResult r = co_await host.read_file(files_.at(name).ref, task.chunk_size);
+      read.bytes += r.bytes;
+      read.cache_bytes += r.cache_bytes;
+      read.disk_bytes += r.disk_bytes;
+    }
+    read.end = sim_.now();
+    result_.timeline.push_back(read);
+    record_cache(app, task, "read");
+
+    PhaseRow compute{app, task.name, "compute", sim_.now(), 0, 0, 0, 0};
+    if (task.compute > 0.0) co_await host.compute(task.compute);
+    compute.end = sim_.now();
+    result_.timeline.push_back(compute);
+
+    PhaseRow write{app, task.name, "write", sim_.now(), 0, 0, 0, 0};
+    for (const std::string& name : task.writes) {
+      const IoResult w = co_await host.write_file(files_.at(name).ref, task.chunk_size);
+      write.bytes += w.bytes;
+      write.cache_bytes += w.cache_bytes;
+      write.disk_bytes += w.disk_bytes;
+    }
+    write.end = sim_.now();
+    result_.timeline.push_back(write);
+    record_cache(app, task, "write");
+    host.release_memory(read.bytes);  // the task's buffers are freed when it ends
+  }
+
+  Task<void> run_app(const AppSpec& app) {
+    Host& host = *hosts_.at(app.host);
+    for (const TaskSpec& task : app.tasks) co_await run_task(app.name, task, host);
+    finish_one();
+  }
+
+  Task<void> run_workflow_task(const WorkflowSpec& w, const TaskSpec& task, workload::CoreSlots& slots,
+                               std::map<std::string, std::unique_ptr<Event>>& done) {
+    for (const std::string& before : task.after) co_await done.at(before)->wait();
+    for (const TaskSpec& other : w.tasks) {
+      for (const std::string& input : task.reads) {
+        if (std::find(other.writes.begin(), other.writes.end(), input) != other.writes.end()) co_await done.at(other.name)->wait();
+      }
+    }
+    co_await slots.acquire();
+    co_await run_task(w.name, task, *hosts_.at(w.host));
+    slots.release();
+    done.at(task.name)->trigger();
+    finish_one();
+  }
+
+  void finish_one() {
+    --running_;
+    if (running_ == 0) summary().makespan = sim_.now();
+  }
+
+  const Scenario& scenario_;
+  const RunOptions& options_;
+  Simulator sim_;
+  FairShare share_;
+  std::map<std::string, std::unique_ptr<Host>> hosts_;
+  std::map<std::string, std::map<std::string, DiskRef>> disks_;
+  std::vector<std::string> host_order_;
+  std::map<std::string, PlacedFile> files_;
+  std::vector<std::string> file_order_;
+  std::vector<std::unique_ptr<workload::CoreSlots>> slots_;
+  std::deque<std::map<std::string, std::unique_ptr<Event>>> workflow_done_;
+  int running_ = 0;
+  RunResult result_;
+};
+
+}  // namespace
+
+RunResult run_scenario(const Scenario& scenario, const RunOptions& options) {
+  Runner runner(scenario, options);
+  return runner.run();
+}
+
+}  // namespace pagecache

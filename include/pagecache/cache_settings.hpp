@@ -30,6 +30,10 @@ struct CacheSettings {
   /// that clean inactive data (mm/vmscan.c scans the inactive list). Off, as WRENCH-cache:
   /// eviction continues on the active list and "evictable" counts every inactive byte.
   bool reclaim_inactive_only = true;
+  /// Making room for a read may evict (and flush) the file being read, oldest data first, as
+  /// the kernel's reclaim knows no file. Off, as the paper's Algorithm 2: the file being read
+  /// is excluded, so a file whose copy and buffer exceed memory cannot be read.
+  bool reclaim_may_take_file_being_read = true;
   /// A partly flushed block is split in place. Off, as WRENCH-cache: its flushed part moves
   /// to the most-recently-used end of the inactive list.
   bool flush_splits_in_place = true;
@@ -47,6 +51,7 @@ struct CacheSettings {
     s.writeback_interval = 5.0;
     s.dirtyable_memory = false;
     s.reclaim_inactive_only = false;
+    s.reclaim_may_take_file_being_read = false;
     s.flush_splits_in_place = false;
     s.balance_after_every_change = false;
     return s;

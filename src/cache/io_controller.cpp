@@ -34,8 +34,9 @@ Task<IoTally> IoController::read_chunk(FileId file, std::int64_t chunk) {
   const std::int64_t cache_read = chunk - disk_read;
   const std::int64_t required = chunk + disk_read;  // the application's copy + the new cache copy
 
-  co_await write_back(required - cache_->free() - cache_->evictable(), file);
-  cache_->evict(required - cache_->free(), file);
+  const FileId spared = cache_->settings().reclaim_may_take_file_being_read ? kNoFile : file;
+  co_await write_back(required - cache_->free() - cache_->evictable(), spared);
+  cache_->evict(required - cache_->free(), spared);
   if (required > cache_->free()) {
     throw SimulationError(fmt::format("t = {:.6f} s: reading '{}' needs {} bytes of memory, only {} can be freed",
                                       sim_->now(), info.name, required, cache_->free()));

@@ -275,3 +275,17 @@ TEST_CASE("pcsim run without a scenario runs the embedded default and prints a s
   CHECK(pcsim("--version").output.find("pcsim ") == 0);
   CHECK(pcsim("help").status == 0);
 }
+
+TEST_CASE("the complete scenario example of the README runs", "[cli][docs]") {
+  const std::string readme = slurp(fs::path(PCSIM_SOURCE_DIR) / "README.md");
+  const std::string start = "```toml\ntitle = \"two pipelines and a workflow\"";
+  const auto begin = readme.find(start);
+  REQUIRE(begin != std::string::npos);
+  const auto body = begin + std::string("```toml\n").size();
+  const std::string toml = readme.substr(body, readme.find("```\n", body) - body);
+  const fs::path dir = scratch("readme");
+  std::ofstream(dir / "example.toml") << toml;
+  const Outcome o = pcsim(fmt::format("run '{}' --out '{}' --quiet", (dir / "example.toml").string(), (dir / "out").string()));
+  INFO(o.output);
+  CHECK(o.status == 0);
+}

@@ -70,6 +70,10 @@ class Host {
   /// A file of `size` bytes on `disk`; `cached_at_start` puts it in the page cache (clean,
   /// inactive) at time 0.
   FileRef add_file(std::string name, std::int64_t size, DiskRef disk, bool cached_at_start = false);
+  /// A file of `server` (one of its files), reached from this host over `link`, as through an
+  /// NFS mount: reads fill this host's cache from the server's cache or disk; writes go to the
+  /// server (no client write cache), which handles them as its own cache mode says.
+  FileRef add_remote_file(Host& server, FileRef server_file, const Link& link);
   const std::string& file_name(FileRef file) const;
   std::int64_t file_size(FileRef file) const;
   std::size_t file_count() const noexcept;

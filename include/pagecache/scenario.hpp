@@ -37,12 +37,22 @@ struct HostConfig {
   std::vector<DiskSpec> disks;
 };
 
+/// A network link between two hosts; a task on one host may use the other's files through it
+/// (as over an NFS mount).
+struct LinkSpec {
+  std::string name;
+  double bandwidth = 0.0;
+  double latency = 0.0;
+  std::string host_a;
+  std::string host_b;
+};
+
 struct FileSpec {
   std::string name;
   std::int64_t size = 0;
-  std::string host;
+  std::string host;  ///< where it is stored
   std::string disk;
-  bool cached = false;  ///< in the page cache (clean) at time 0
+  bool cached = false;  ///< in its host's page cache (clean) at time 0
 };
 
 /// One task: read files, compute, write files, then release its buffers.
@@ -77,10 +87,14 @@ struct Scenario {
   /// 0: one memory.csv row per change; else one row per interval (seconds).
   double memory_sample_interval = 1.0;
   std::vector<HostConfig> hosts;
+  std::vector<LinkSpec> links;
   std::vector<FileSpec> files;
   std::vector<AppSpec> apps;
   std::vector<WorkflowSpec> workflows;
 };
+
+/// The link between two hosts, or nullptr.
+const LinkSpec* find_link(const Scenario& scenario, const std::string& a, const std::string& b);
 
 /// Reads and resolves a scenario file. `overrides` are (dotted key, TOML value) pairs applied
 /// to the file's contents before anything is checked, e.g. {"pipelines.count", "16"}.

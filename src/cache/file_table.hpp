@@ -14,10 +14,22 @@
 
 namespace pagecache::cache {
 
+class IoController;
+
+/// A file stored on another host and reached over a network link (an NFS mount): reads go to
+/// that host's I/O controller, which serves them from its page cache or its disk.
+struct RemoteFile {
+  IoController* server = nullptr;
+  FileId server_file = 0;
+  const Link* link = nullptr;
+};
+
 struct FileInfo {
   std::string name;
   std::int64_t size = 0;
-  const Disk* disk = nullptr;
+  const Disk* disk = nullptr;  // local files
+  RemoteFile remote;           // remote files (disk == nullptr)
+  bool is_remote() const noexcept { return remote.server != nullptr; }
 };
 
 class FileTable {
@@ -25,6 +37,10 @@ class FileTable {
   FileId add(std::string name, std::int64_t size, const Disk& disk) {
     if (size < 0) throw ConfigError(fmt::format("file '{}': negative size {} bytes", name, size));
     files_.push_back({std::move(name), size, &disk});
+    return static_cast<FileId>(files_.size() - 1);
+  }
+  FileId add_remote(std::string name, std::int64_t size, RemoteFile remote) {
+    files_.push_back({std::move(name), size, nullptr, remote});
     return static_cast<FileId>(files_.size() - 1);
   }
   const FileInfo& operator[](FileId file) const { return files_.at(file); }

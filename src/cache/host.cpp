@@ -68,6 +68,12 @@ FileRef Host::add_file(std::string name, std::int64_t size, DiskRef disk_ref, bo
   return FileRef{id};
 }
 
+FileRef Host::add_remote_file(Host& server, FileRef server_file, const Link& link) {
+  const cache::FileId id = server.impl_->id(server_file);
+  const cache::FileInfo& info = server.impl_->files[id];
+  return FileRef{impl_->files.add_remote(info.name, info.size, cache::RemoteFile{&server.impl_->io, id, &link})};
+}
+
 const std::string& Host::file_name(FileRef file) const { return impl_->files[impl_->id(file)].name; }
 std::int64_t Host::file_size(FileRef file) const { return impl_->files[impl_->id(file)].size; }
 std::size_t Host::file_count() const noexcept { return impl_->files.size(); }

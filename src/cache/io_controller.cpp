@@ -28,15 +28,20 @@ Task<std::int64_t> IoController::write_back(std::int64_t amount, FileId excluded
   co_return total;
 }
 
+Task<void> IoController::make_room(std::int64_t required, FileId spared) {
+  co_await write_back(required - cache_->free() - cache_->evictable(), spared);
+  cache_->evict(required - cache_->free(), spared);
+}
+
 Task<IoTally> IoController::read_chunk(FileId file, std::int64_t chunk) {
   const FileInfo& info = (*files_)[file];
+  if (info.is_remote()) co_return co_await read_chunk_remote(file, chunk);
   const std::int64_t disk_read = std::clamp<std::int64_t>(info.size - cache_->cached(file), 0, chunk);
   const std::int64_t cache_read = chunk - disk_read;
   const std::int64_t required = chunk + disk_read;  // the application's copy + the new cache copy
 
   const FileId spared = cache_->settings().reclaim_may_take_file_being_read ? kNoFile : file;
-  co_await write_back(required - cache_->free() - cache_->evictable(), spared);
-  cache_->evict(required - cache_->free(), spared);
+  co_await make_room(required, spared);
   if (required > cache_->free()) {
     throw SimulationError(fmt::format("t = {:.6f} s: reading '{}' needs {} bytes of memory, only {} can be freed",
                                       sim_->now(), info.name, required, cache_->free()));
@@ -50,7 +55,78 @@ Task<IoTally> IoController::read_chunk(FileId file, std::int64_t chunk) {
   co_return IoTally{.bytes = chunk, .cache_bytes = cache_read, .disk_bytes = disk_read};
 }
 
+Task<IoTally> IoController::read_chunk_remote(FileId file, std::int64_t chunk) {
+  // A client read (NFS): what this host's cache lacks comes from the server, over the link,
+  // and is kept in this host's cache (clean); the rest is a hit in this host's cache.
+  const FileInfo& info = (*files_)[file];
+  const std::int64_t remote_read = std::clamp<std::int64_t>(info.size - cache_->cached(file), 0, chunk);
+  const std::int64_t cache_read = chunk - remote_read;
+  const std::int64_t required = chunk + remote_read;
+  const FileId spared = cache_->settings().reclaim_may_take_file_being_read ? kNoFile : file;
+  co_await make_room(required, spared);
+  if (required > cache_->free()) {
+    throw SimulationError(fmt::format("t = {:.6f} s: reading '{}' needs {} bytes of memory, only {} can be freed",
+                                      sim_->now(), info.name, required, cache_->free()));
+  }
+  cache_->add_clean(file, remote_read, sim_->now());
+  cache_->reaccess(file, cache_read, sim_->now());
+  cache_->allocate_anonymous(chunk);
+  if (remote_read > 0) {
+    co_await info.remote.server->serve_read(info.remote.server_file, remote_read, *info.remote.link,
+                                            memory_->write_spec(remote_read));
+  }
+  if (cache_read > 0) co_await memory_->read(cache_read);
+  // From this host's point of view, data from the server is not from its own cache.
+  co_return IoTally{.bytes = chunk, .cache_bytes = cache_read, .disk_bytes = remote_read};
+}
+
+Task<void> IoController::serve_read(FileId file, std::int64_t bytes, const Link& link, FlowSpec client_copy) {
+  const FileInfo& info = (*files_)[file];
+  const std::int64_t disk_read = std::clamp<std::int64_t>(info.size - cache_->cached(file), 0, bytes);
+  const std::int64_t cache_read = bytes - disk_read;
+  const FileId spared = cache_->settings().reclaim_may_take_file_being_read ? kNoFile : file;
+  co_await make_room(disk_read, spared);
+  if (disk_read > cache_->free()) {
+    throw SimulationError(fmt::format("t = {:.6f} s: serving '{}' needs {} bytes of cache, only {} can be freed", sim_->now(),
+                                      info.name, disk_read, cache_->free()));
+  }
+  cache_->add_clean(file, disk_read, sim_->now());
+  cache_->reaccess(file, cache_read, sim_->now());
+  // Each part is one flow through the source device, the link and the client's memory: the
+  // most loaded of them sets the pace.
+  if (disk_read > 0) {
+    FlowSpec spec = client_copy;
+    spec.work = static_cast<double>(disk_read);
+    co_await link.send_through(spec.through(info.disk->read_usage()));
+  }
+  if (cache_read > 0) {
+    const FlowSpec server_copy = memory_->read_spec(cache_read);
+    FlowSpec spec = client_copy;
+    spec.work = static_cast<double>(cache_read);
+    spec.bound = std::min(spec.bound, server_copy.bound);
+    co_await link.send_through(spec.through(server_copy.usages[0]));
+  }
+}
+
+Task<void> IoController::serve_write(FileId file, std::int64_t bytes, const Link& link) {
+  const FileInfo& info = (*files_)[file];
+  if (cache_->settings().write_mode == WriteMode::Writethrough) {
+    co_await link.send_through(FlowSpec{.work = static_cast<double>(bytes)}.through(info.disk->write_usage()));
+    cache_->evict(bytes - cache_->free(), file);
+    cache_->add_clean(file, std::min(bytes, cache_->free()), sim_->now());
+    co_return;
+  }
+  co_await link.send(bytes);
+  co_await write_chunk_writeback(file, bytes);
+}
+
 Task<IoTally> IoController::write_chunk(FileId file, std::int64_t chunk) {
+  const FileInfo& info = (*files_)[file];
+  if (info.is_remote()) {
+    // No client write cache (the paper's NFS setting): every write goes to the server.
+    co_await info.remote.server->serve_write(info.remote.server_file, chunk, *info.remote.link);
+    co_return IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
+  }
   if (cache_->settings().write_mode == WriteMode::Writethrough) co_return co_await write_chunk_writethrough(file, chunk);
   co_return co_await write_chunk_writeback(file, chunk);
 }

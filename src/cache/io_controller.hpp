@@ -49,6 +49,15 @@ class IoController {
   /// Writes `bytes` to `file` in chunks of `chunk_size` bytes.
   Task<IoTally> write_file(FileId file, std::int64_t bytes, std::int64_t chunk_size);
 
+  /// Serving another host (this one is an NFS server): sends `bytes` of `file` over `link`,
+  /// from this host's page cache or, for what is not cached, from its disk (then cached).
+  /// `client_copy` is the client's side of the transfer (its copy into its own page cache):
+  /// each part is one flow through the source device, the link and the client's memory.
+  Task<void> serve_read(FileId file, std::int64_t bytes, const Link& link, FlowSpec client_copy);
+  /// Receives `bytes` of `file` over `link` and writes them as this host's cache mode says
+  /// (writethrough: to disk, then cached clean; writeback: into the cache, dirty).
+  Task<void> serve_write(FileId file, std::int64_t bytes, const Link& link);
+
   /// Bytes written to devices to make room or to respect the dirty ratio (not counting the
   /// periodic flusher's).
   std::int64_t flushed_bytes() const noexcept { return flushed_; }
@@ -60,6 +69,9 @@ class IoController {
   /// Copies `bytes` into the cache: the memory transfer, then a new dirty block.
   Task<void> write_to_cache(FileId file, std::int64_t bytes);
   Task<IoTally> write_chunk_writethrough(FileId file, std::int64_t chunk);
+  Task<IoTally> read_chunk_remote(FileId file, std::int64_t chunk);
+  /// Makes room for `required` bytes (flush, then evict), sparing `spared`.
+  Task<void> make_room(std::int64_t required, FileId spared);
 
   Simulator* sim_;
   PageCache* cache_;

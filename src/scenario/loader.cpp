@@ -22,6 +22,13 @@ CacheSettings settings_for(Profile profile) {
   return profile == Profile::Paper ? CacheSettings::paper() : CacheSettings::kernel();
 }
 
+const LinkSpec* find_link(const Scenario& scenario, const std::string& a, const std::string& b) {
+  for (const LinkSpec& l : scenario.links) {
+    if ((l.host_a == a && l.host_b == b) || (l.host_a == b && l.host_b == a)) return &l;
+  }
+  return nullptr;
+}
+
 namespace {
 
 using scenario::TomlReader;
@@ -180,6 +187,7 @@ void expand_pipelines(const toml::table& table, Scenario& s, const std::string& 
   const std::int64_t count = r.optional_integer("count").value_or(1);
   if (count < 1) r.fail("count", "must be >= 1");
   const std::string host = r.string("host", s.hosts.empty() ? std::string() : s.hosts.front().name);
+  const std::string files_host = r.string("files_host", host);
   std::string disk = r.string("disk", "");
   const std::int64_t size = r.required_size("file_size");
   const std::int64_t tasks = r.optional_integer("tasks").value_or(3);
@@ -189,12 +197,15 @@ void expand_pipelines(const toml::table& table, Scenario& s, const std::string& 
   if (chunk <= 0) r.fail("chunk_size", "must be > 0");
   const bool cached = r.optional_bool("inputs_cached").value_or(false);
   r.finish();
-  const auto h = std::find_if(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == host; });
-  if (h == s.hosts.end()) r.fail("host", fmt::format("no host named '{}'", host));
+  if (std::none_of(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == host; })) {
+    r.fail("host", fmt::format("no host named '{}'", host));
+  }
+  const auto h = std::find_if(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == files_host; });
+  if (h == s.hosts.end()) r.fail("files_host", fmt::format("no host named '{}'", files_host));
   if (disk.empty()) disk = h->disks.front().name;
   for (std::int64_t i = 1; i <= count; ++i) {
     auto file_name = [&](std::int64_t k) { return count == 1 ? fmt::format("file_{}", k) : fmt::format("p{}_file_{}", i, k); };
-    for (std::int64_t k = 1; k <= tasks + 1; ++k) s.files.push_back({file_name(k), size, host, disk, k == 1 && cached});
+    for (std::int64_t k = 1; k <= tasks + 1; ++k) s.files.push_back({file_name(k), size, files_host, disk, k == 1 && cached});
     AppSpec app{std::to_string(i), host, {}};
     for (std::int64_t k = 1; k <= tasks; ++k) {
       app.tasks.push_back(TaskSpec{std::to_string(k), {file_name(k)}, cpu, {file_name(k + 1)}, chunk, {}});
@@ -264,6 +275,28 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
     for (std::size_t j = 0; j < i; ++j) {
       if (s.hosts[j].name == s.hosts[i].name) TomlReader(*hosts[i], r.child_path("hosts", i), file).fail("name", "two hosts share this name");
     }
+  }
+
+  const auto links = r.tables("links");
+  for (std::size_t i = 0; i < links.size(); ++i) {
+    TomlReader l(*links[i], r.child_path("links", i), file);
+    LinkSpec link;
+    link.name = l.string("name", fmt::format("link{}", i + 1));
+    link.bandwidth = l.required_bandwidth("bandwidth");
+    if (link.bandwidth <= 0.0) l.fail("bandwidth", "must be > 0");
+    link.latency = l.optional_duration("latency").value_or(0.0);
+    const std::vector<std::string> ends = l.strings("hosts");
+    if (ends.size() != 2 || ends[0] == ends[1]) l.fail("hosts", "a link joins two different hosts: hosts = [\"a\", \"b\"]");
+    for (const std::string& end : ends) {
+      if (std::none_of(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == end; })) {
+        l.fail("hosts", fmt::format("no host named '{}'", end));
+      }
+    }
+    link.host_a = ends[0];
+    link.host_b = ends[1];
+    if (find_link(s, link.host_a, link.host_b) != nullptr) l.fail("hosts", "these hosts already have a link");
+    l.finish();
+    s.links.push_back(std::move(link));
   }
 
   const auto files = r.tables("files");
@@ -336,9 +369,9 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
         for (const std::string& name : *list) {
           auto it = by_name.find(name);
           if (it == by_name.end()) throw ConfigError(fmt::format("{}: {}, task '{}': unknown file '{}'", file, owner, t.name, name));
-          if (it->second->host != host) {
-            throw ConfigError(fmt::format("{}: {}, task '{}': file '{}' is on host '{}', not '{}'", file, owner, t.name, name,
-                                          it->second->host, host));
+          if (it->second->host != host && find_link(s, host, it->second->host) == nullptr) {
+            throw ConfigError(fmt::format("{}: {}, task '{}': file '{}' is on host '{}', and no link joins it to '{}'", file,
+                                          owner, t.name, name, it->second->host, host));
           }
         }
       }

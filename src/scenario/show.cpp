@@ -59,6 +59,11 @@ std::string to_toml(const Scenario& s) {
                          quoted(units::format_size(d.capacity)));
     }
   }
+  for (const LinkSpec& l : s.links) {
+    out += fmt::format("\n[[links]]\nname = {}\nbandwidth = {}\nlatency = {}\nhosts = {}\n", quoted(l.name),
+                       quoted(units::format_bandwidth(l.bandwidth)), quoted(units::format_duration(l.latency)),
+                       list({l.host_a, l.host_b}));
+  }
   for (const FileSpec& f : s.files) {
     out += fmt::format("\n[[files]]\nname = {}\nsize = {}\nhost = {}\ndisk = {}\ncached = {}\n", quoted(f.name),
                        quoted(units::format_size(f.size)), quoted(f.host), quoted(f.disk), f.cached);

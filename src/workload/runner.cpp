@@ -40,6 +40,7 @@ class Runner {
       hosts_[config.name] = std::move(host);
       host_order_.push_back(config.name);
     }
+    for (const LinkSpec& l : scenario.links) links_[{l.host_a, l.host_b}] = &links_storage_.emplace_back(share_, l.name, l.bandwidth, l.latency);
     for (const FileSpec& f : scenario.files) {
       Host& host = *hosts_.at(f.host);
       files_[f.name] = PlacedFile{&host, host.add_file(f.name, f.size, disks_.at(f.host).at(f.disk), f.cached)};
@@ -109,6 +110,22 @@ class Runner {
  private:
   RunSummary& summary() { return result_.summary; }
 
+  // The file as seen from `host`: its own, or the server's through the link between them
+  // (registered once per host and file).
+  FileRef file_on(const std::string& host, const std::string& name) {
+    const PlacedFile& stored = files_.at(name);
+    Host& client = *hosts_.at(host);
+    if (stored.host == &client) return stored.ref;
+    auto key = std::make_pair(host, name);
+    if (auto it = remote_files_.find(key); it != remote_files_.end()) return it->second;
+    const std::string& server = stored.host->name();
+    auto link = links_.find({host, server});
+    if (link == links_.end()) link = links_.find({server, host});
+    const FileRef ref = client.add_remote_file(*stored.host, stored.ref, *link->second);
+    remote_files_.emplace(key, ref);
+    return ref;
+  }
+
   int core_count(const std::string& host) const {
     for (const HostConfig& h : scenario_.hosts)
       if (h.name == host) return h.cores;
@@ -142,7 +159,7 @@ class Runner {
   Task<void> run_task(const std::string& app, const TaskSpec& task, Host& host) {
     PhaseRow read{app, task.name, "read", sim_.now(), 0, 0, 0, 0};
     for (const std::string& name : task.reads) {
-      const IoResult r = co_await host.read_file(files_.at(name).ref, task.chunk_size);
+      const IoResult r = co_await host.read_file(file_on(host.name(), name), task.chunk_size);
       read.bytes += r.bytes;
       read.cache_bytes += r.cache_bytes;
       read.disk_bytes += r.disk_bytes;
@@ -158,7 +175,7 @@ class Runner {
 
     PhaseRow write{app, task.name, "write", sim_.now(), 0, 0, 0, 0};
     for (const std::string& name : task.writes) {
-      const IoResult w = co_await host.write_file(files_.at(name).ref, task.chunk_size);
+      const IoResult w = co_await host.write_file(file_on(host.name(), name), task.chunk_size);
       write.bytes += w.bytes;
       write.cache_bytes += w.cache_bytes;
       write.disk_bytes += w.disk_bytes;
@@ -202,7 +219,10 @@ class Runner {
   std::map<std::string, std::unique_ptr<Host>> hosts_;
   std::map<std::string, std::map<std::string, DiskRef>> disks_;
   std::vector<std::string> host_order_;
+  std::deque<Link> links_storage_;
+  std::map<std::pair<std::string, std::string>, const Link*> links_;
   std::map<std::string, PlacedFile> files_;
+  std::map<std::pair<std::string, std::string>, FileRef> remote_files_;
   std::vector<std::string> file_order_;
   std::vector<std::unique_ptr<workload::CoreSlots>> slots_;
   std::deque<std::map<std::string, std::unique_ptr<Event>>> workflow_done_;

@@ -41,15 +41,15 @@ pagecache::Scenario load(const std::string& path, const std::vector<std::string>
   return pagecache::load_scenario(path, parse_sets(sets), profile);
 }
 
-// Progress on a terminal only: simulated time reached and events per second, at most five
-// times a second, on one line of stderr.
+// Progress on a terminal only, for runs longer than half a second: simulated time reached and
+// events per second, at most five times a second, on one line of stderr.
 class Progress {
  public:
   explicit Progress(bool enabled) : enabled_(enabled && ::isatty(STDERR_FILENO) == 1) {}
   void update(double sim_time, std::uint64_t events) {
     if (!enabled_) return;
     const auto now = std::chrono::steady_clock::now();
-    if (now - last_ < std::chrono::milliseconds(200)) return;
+    if (now - start_ < std::chrono::milliseconds(500) || now - last_ < std::chrono::milliseconds(200)) return;
     last_ = now;
     const double wall = std::chrono::duration<double>(now - start_).count();
     fmt::print(stderr, "\rsimulated {:.1f} s, {} events, {:.2f} M events/s   ", sim_time, events,

@@ -9,6 +9,10 @@
 
 namespace pagecache::cache {
 
+namespace {
+constexpr std::int64_t kPageSize = 4096;
+}  // namespace
+
 Task<std::int64_t> IoController::write_back(std::int64_t amount, FileId excluded) {
   if (amount <= 0) co_return 0;
   std::vector<PageCache::Flushed> taken;
@@ -28,9 +32,29 @@ Task<std::int64_t> IoController::write_back(std::int64_t amount, FileId excluded
   co_return total;
 }
 
-Task<void> IoController::make_room(std::int64_t required, FileId spared) {
-  co_await write_back(required - cache_->free() - cache_->evictable(), spared);
-  cache_->evict(required - cache_->free(), spared);
+IoController::IoController(Simulator& sim, PageCache& cache, const Memory& memory, FileTable& files, Flusher& flusher)
+    : sim_(&sim), cache_(&cache), memory_(&memory), files_(&files), flusher_(&flusher) {
+  cache_->set_progress_hook([this] {
+    if (progress_ && !progress_->triggered()) progress_->trigger();
+  });
+}
+
+Task<void> IoController::wait_for_progress() {
+  if (!progress_ || progress_->triggered()) progress_.emplace(*sim_);
+  co_await progress_->wait();
+}
+
+Task<void> IoController::make_room(std::int64_t required, FileId spared, const std::string& what) {
+  for (;;) {
+    co_await write_back(required - cache_->free() - cache_->evictable(), spared);
+    cache_->evict(required - cache_->free(), spared);
+    if (required <= cache_->free()) co_return;
+    if (cache_->writeback() == 0 && cache_->reserved() == 0) {
+      throw SimulationError(fmt::format("t = {:.6f} s: {} needs {} bytes of memory, only {} can be freed", sim_->now(), what,
+                                        required, cache_->free()));
+    }
+    co_await wait_for_progress();
+  }
 }
 
 Task<IoTally> IoController::read_chunk(FileId file, std::int64_t chunk) {
@@ -41,11 +65,7 @@ Task<IoTally> IoController::read_chunk(FileId file, std::int64_t chunk) {
   const std::int64_t required = chunk + disk_read;  // the application's copy + the new cache copy
 
   const FileId spared = cache_->settings().reclaim_may_take_file_being_read ? kNoFile : file;
-  co_await make_room(required, spared);
-  if (required > cache_->free()) {
-    throw SimulationError(fmt::format("t = {:.6f} s: reading '{}' needs {} bytes of memory, only {} can be freed",
-                                      sim_->now(), info.name, required, cache_->free()));
-  }
+  co_await make_room(required, spared, fmt::format("reading '{}'", info.name));
   cache_->add_clean(file, disk_read, sim_->now());
   cache_->reaccess(file, cache_read, sim_->now());
   cache_->allocate_anonymous(chunk);
@@ -63,11 +83,7 @@ Task<IoTally> IoController::read_chunk_remote(FileId file, std::int64_t chunk) {
   const std::int64_t cache_read = chunk - remote_read;
   const std::int64_t required = chunk + remote_read;
   const FileId spared = cache_->settings().reclaim_may_take_file_being_read ? kNoFile : file;
-  co_await make_room(required, spared);
-  if (required > cache_->free()) {
-    throw SimulationError(fmt::format("t = {:.6f} s: reading '{}' needs {} bytes of memory, only {} can be freed",
-                                      sim_->now(), info.name, required, cache_->free()));
-  }
+  co_await make_room(required, spared, fmt::format("reading '{}'", info.name));
   cache_->add_clean(file, remote_read, sim_->now());
   cache_->reaccess(file, cache_read, sim_->now());
   cache_->allocate_anonymous(chunk);
@@ -85,11 +101,7 @@ Task<void> IoController::serve_read(FileId file, std::int64_t bytes, const Link&
   const std::int64_t disk_read = std::clamp<std::int64_t>(info.size - cache_->cached(file), 0, bytes);
   const std::int64_t cache_read = bytes - disk_read;
   const FileId spared = cache_->settings().reclaim_may_take_file_being_read ? kNoFile : file;
-  co_await make_room(disk_read, spared);
-  if (disk_read > cache_->free()) {
-    throw SimulationError(fmt::format("t = {:.6f} s: serving '{}' needs {} bytes of cache, only {} can be freed", sim_->now(),
-                                      info.name, disk_read, cache_->free()));
-  }
+  co_await make_room(disk_read, spared, fmt::format("serving '{}'", info.name));
   cache_->add_clean(file, disk_read, sim_->now());
   cache_->reaccess(file, cache_read, sim_->now());
   // Each part is one flow through the source device, the link and the client's memory: the
@@ -157,10 +169,17 @@ Task<IoTally> IoController::write_chunk_writeback(FileId file, std::int64_t chun
   while (remaining > 0) {
     const std::int64_t flushed = co_await write_back(remaining, kNoFile);
     const std::int64_t evicted = cache_->evict(remaining - cache_->free(), file);
-    const std::int64_t to_cache = std::min(remaining, cache_->free());
+    std::int64_t to_cache = std::min(remaining, cache_->free());
+    // Memory is handed out in pages: a sliver of free memory (other copies in flight hold the
+    // rest) is not worth a transfer of a few bytes; wait for more instead.
+    if (to_cache < remaining && to_cache < kPageSize) to_cache = 0;
     if (to_cache == 0 && flushed == 0 && evicted == 0) {
-      throw SimulationError(fmt::format("t = {:.6f} s: writing '{}': no memory can be freed for {} bytes",
-                                        sim_->now(), (*files_)[file].name, remaining));
+      // Nothing to flush or evict now: other writers' data may still be in flight.
+      if (cache_->writeback() == 0 && cache_->reserved() == 0) {
+        throw SimulationError(fmt::format("t = {:.6f} s: writing '{}': no memory can be freed for {} bytes", sim_->now(),
+                                          (*files_)[file].name, remaining));
+      }
+      co_await wait_for_progress();
     }
     if (to_cache > 0) co_await write_to_cache(file, to_cache);
     remaining -= to_cache;

@@ -13,9 +13,12 @@
 #include "cache/page_cache.hpp"
 
 #include <pagecache/devices.hpp>
+#include <pagecache/event.hpp>
 #include <pagecache/simulator.hpp>
 
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <vector>
 
 namespace pagecache::cache {
@@ -35,8 +38,7 @@ struct IoTally {
 
 class IoController {
  public:
-  IoController(Simulator& sim, PageCache& cache, const Memory& memory, FileTable& files, Flusher& flusher) noexcept
-      : sim_(&sim), cache_(&cache), memory_(&memory), files_(&files), flusher_(&flusher) {}
+  IoController(Simulator& sim, PageCache& cache, const Memory& memory, FileTable& files, Flusher& flusher);
 
   /// Reads the next `chunk` bytes of `file` (Algorithm 2). The chunk's copy stays in
   /// application memory until released.
@@ -70,8 +72,12 @@ class IoController {
   Task<void> write_to_cache(FileId file, std::int64_t bytes);
   Task<IoTally> write_chunk_writethrough(FileId file, std::int64_t chunk);
   Task<IoTally> read_chunk_remote(FileId file, std::int64_t chunk);
-  /// Makes room for `required` bytes (flush, then evict), sparing `spared`.
-  Task<void> make_room(std::int64_t required, FileId spared);
+  /// Makes room for `required` bytes (flush, then evict), sparing `spared`; if that is not
+  /// enough while other transfers still hold memory (writebacks, copies in flight), waits for
+  /// them and tries again. Throws SimulationError when nothing can ever free enough.
+  Task<void> make_room(std::int64_t required, FileId spared, const std::string& what);
+  /// Waits until memory held by transfers in flight may have been released.
+  Task<void> wait_for_progress();
 
   Simulator* sim_;
   PageCache* cache_;
@@ -79,6 +85,7 @@ class IoController {
   FileTable* files_;
   Flusher* flusher_;
   std::int64_t flushed_ = 0;
+  std::optional<Event> progress_;
 };
 
 }  // namespace pagecache::cache

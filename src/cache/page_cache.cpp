@@ -58,6 +58,7 @@ void PageCache::release_anonymous(std::int64_t bytes) {
   PC_ASSERT(bytes >= 0 && bytes <= anonymous_);
   anonymous_ -= bytes;
   settle();
+  if (progress_hook_) progress_hook_();
 }
 
 // --- Per file -------------------------------------------------------------------------------
@@ -175,6 +176,7 @@ void PageCache::commit_dirty(FileId file, std::int64_t bytes, double now) {
   PC_ASSERT(bytes >= 0 && bytes <= reserved_);
   reserved_ -= bytes;
   add_dirty(file, bytes, now);
+  if (progress_hook_) progress_hook_();
 }
 
 void PageCache::reaccess(FileId file, std::int64_t bytes, double now) {
@@ -265,6 +267,7 @@ void PageCache::end_writeback(const Flushed& taken) {
     }
   }
   settle();
+  if (progress_hook_) progress_hook_();
 }
 
 std::int64_t PageCache::evict(std::int64_t amount, FileId excluded) {

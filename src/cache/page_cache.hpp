@@ -36,6 +36,10 @@ class PageCache {
   ~PageCache();
 
   const CacheSettings& settings() const noexcept { return settings_; }
+  /// Calls `on_progress` when memory that was tied up may be reclaimable now: a writeback
+  /// ended, a copy in flight landed, application memory was released. Writers and readers that
+  /// found nothing to reclaim wait for it.
+  void set_progress_hook(std::function<void()> on_progress) { progress_hook_ = std::move(on_progress); }
   /// Calls `observer` after every change of the memory state (memory profiles, peaks).
   void set_observer(std::function<void()> observer) { observer_ = std::move(observer); }
   /// Runs check_invariants() after every mutating operation; on by default in debug builds.
@@ -157,6 +161,7 @@ class PageCache {
   std::uint64_t next_token_ = 1;
   std::int64_t evicted_total_ = 0;
   std::function<void()> observer_;
+  std::function<void()> progress_hook_;
 #ifdef NDEBUG
   bool checking_ = false;
 #else

@@ -68,11 +68,11 @@ class Runner {
     else record_all_memory();
 
     try {
-      std::uint64_t next_progress = 1 << 16;
+      std::uint64_t next_progress = 1 << 12;
       while (sim_.step()) {
         if (options_.progress && sim_.events_processed() >= next_progress) {
           options_.progress(sim_.now(), sim_.events_processed());
-          next_progress += 1 << 16;
+          next_progress += 1 << 12;
         }
       }
     } catch (const SimulationError& e) {

@@ -156,33 +156,29 @@ class Runner {
     }
   }
 
-  Task<void> run_task(const std::string& app, const TaskSpec& task, Host& host) {
-    PhaseRow read{app, task.name, "read", sim_.now(), 0, 0, 0, 0};
-    for (const std::string& name : task.reads) {
-      const IoResult r = co_await host.read_file(file_on(host.name(), name), task.chunk_size);
-      read.bytes += r.bytes;
-      read.cache_bytes += r.cache_bytes;
-      read.disk_bytes += r.disk_bytes;
+  // One I/O phase: every file read (or written) whole, one after the other.
+  Task<PhaseRow> io_phase(const std::string& app, const TaskSpec& task, Host& host, bool reading) {
+    PhaseRow row{app, task.name, reading ? "read" : "write", sim_.now(), 0, 0, 0, 0};
+    for (const std::string& name : reading ? task.reads : task.writes) {
+      const FileRef file = file_on(host.name(), name);
+      const IoResult r = reading ? co_await host.read_file(file, task.chunk_size) : co_await host.write_file(file, task.chunk_size);
+      row.bytes += r.bytes;
+      row.cache_bytes += r.cache_bytes;
+      row.disk_bytes += r.disk_bytes;
     }
-    read.end = sim_.now();
-    result_.timeline.push_back(read);
-    record_cache(app, task, "read");
+    row.end = sim_.now();
+    result_.timeline.push_back(row);
+    record_cache(app, task, row.phase.c_str());
+    co_return row;
+  }
 
+  Task<void> run_task(const std::string& app, const TaskSpec& task, Host& host) {
+    const PhaseRow read = co_await io_phase(app, task, host, true);
     PhaseRow compute{app, task.name, "compute", sim_.now(), 0, 0, 0, 0};
     if (task.compute > 0.0) co_await host.compute(task.compute);
     compute.end = sim_.now();
     result_.timeline.push_back(compute);
-
-    PhaseRow write{app, task.name, "write", sim_.now(), 0, 0, 0, 0};
-    for (const std::string& name : task.writes) {
-      const IoResult w = co_await host.write_file(file_on(host.name(), name), task.chunk_size);
-      write.bytes += w.bytes;
-      write.cache_bytes += w.cache_bytes;
-      write.disk_bytes += w.disk_bytes;
-    }
-    write.end = sim_.now();
-    result_.timeline.push_back(write);
-    record_cache(app, task, "write");
+    co_await io_phase(app, task, host, false);
     host.release_memory(read.bytes);  // the task's buffers are freed when it ends
   }
 

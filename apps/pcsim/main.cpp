@@ -9,12 +9,14 @@
 #include <pagecache/version.hpp>
 
 #include "report/outputs.hpp"
+#include "validate/validation.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include <chrono>
 #include <cstdio>
+#include <fstream>
 #include <string>
 #include <unistd.h>
 #include <utility>
@@ -117,6 +119,16 @@ int main(int argc, char** argv) {
   show->add_option("--profile", profile, "model profile, overriding the scenario's")->check(CLI::IsMember({"paper", "linux"}));
   show->add_option("--set", sets, "override a scenario key: KEY=VALUE (repeatable)");
 
+  auto* validate = app.add_subcommand("validate", "compare the paper's experiments with the real measurements");
+  std::string json_path;
+  std::string data_dir = std::string(PCSIM_SOURCE_DIR) + "/validation/paper";
+  std::string scenarios_dir = std::string(PCSIM_SOURCE_DIR) + "/scenarios/paper";
+  validate->add_option("--json", json_path, "also write the results as JSON to this file");
+  validate->add_option("--profile", profile, "model profile, overriding the scenarios'")->check(CLI::IsMember({"paper", "linux"}));
+  validate->add_option("--set", sets, "override a key of every scenario: KEY=VALUE (repeatable)");
+  validate->add_option("--data", data_dir, "the validation data")->capture_default_str();
+  validate->add_option("--scenarios", scenarios_dir, "the paper's scenarios")->capture_default_str();
+
   auto* help = app.add_subcommand("help", "show this help");
 
   try {
@@ -133,6 +145,16 @@ int main(int argc, char** argv) {
   try {
     if (help->parsed()) {
       fmt::print("{}", app.help());
+      return 0;
+    }
+    if (validate->parsed()) {
+      const auto report = pagecache::validate::run({data_dir, scenarios_dir, profile, parse_sets(sets)});
+      fmt::print("{}", report.text());
+      if (!json_path.empty()) {
+        std::ofstream out(json_path);
+        out << report.json();
+        if (!out) throw std::runtime_error("cannot write " + json_path);
+      }
       return 0;
     }
     if (show->parsed()) {

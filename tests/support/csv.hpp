@@ -23,10 +23,15 @@ inline std::vector<CsvRow> read_csv(const std::string& path) {
     return cells;
   };
   std::string line;
-  std::getline(in, line);
+  auto next_line = [&]() -> bool {
+    if (!std::getline(in, line)) return false;
+    if (!line.empty() && line.back() == '\r') line.pop_back();  // files written on Windows
+    return true;
+  };
+  next_line();
   const auto header = split(line);
   std::vector<CsvRow> rows;
-  while (std::getline(in, line)) {
+  while (next_line()) {
     if (line.empty()) continue;
     const auto cells = split(line);
     CsvRow row;

@@ -1,0 +1,260 @@
+#include "validate/validation.hpp"
+
+#include <pagecache/error.hpp>
+#include <pagecache/run.hpp>
+#include <pagecache/scenario.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace pagecache::validate {
+
+namespace {
+
+using Row = std::map<std::string, std::string>;
+
+std::vector<Row> read_csv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError(fmt::format("{}: cannot open the validation data (see --data)", path));
+  auto split = [](const std::string& line) {
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell);
+    return cells;
+  };
+  std::string line;
+  auto next_line = [&]() -> bool {
+    if (!std::getline(in, line)) return false;
+    if (!line.empty() && line.back() == '\r') line.pop_back();  // files written on Windows
+    return true;
+  };
+  next_line();
+  const auto header = split(line);
+  std::vector<Row> rows;
+  while (next_line()) {
+    if (line.empty()) continue;
+    const auto cells = split(line);
+    Row row;
+    for (std::size_t i = 0; i < header.size() && i < cells.size(); ++i) row[header[i]] = cells[i];
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+double num(const Row& row, const char* key) { return std::stod(row.at(key)); }
+double pct(double sim, double real) { return 100.0 * std::abs(sim - real) / real; }
+
+using Overrides = std::vector<std::pair<std::string, std::string>>;
+
+Overrides with(const Options& o, Overrides more) {
+  Overrides all = o.overrides;
+  all.insert(all.end(), more.begin(), more.end());
+  return all;
+}
+
+// --- Exp 1 ----------------------------------------------------------------------------------
+
+CaseResult exp1(const Options& o, int size_gb, double cpu_seconds) {
+  CaseResult c;
+  c.name = fmt::format("exp1_{}gb", size_gb);
+  const Scenario scenario = load_scenario(
+      o.scenario_dir + "/exp1.toml",
+      with(o, {{"pipelines.file_size", fmt::format("\"{} GB\"", size_gb)}, {"pipelines.cpu_time", fmt::format("\"{} s\"", cpu_seconds)}}),
+      o.profile);
+  const RunResult run = run_scenario(scenario);
+
+  std::map<std::pair<int, std::string>, double> real, wrench, real_end;
+  for (const Row& r : read_csv(o.data_dir + "/exp1_real_phase_times.csv")) {
+    if (std::stoi(r.at("file_size_gb")) != size_gb) continue;
+    real[{std::stoi(r.at("task")), r.at("phase")}] = num(r, "duration_s");
+    real_end[{std::stoi(r.at("task")), r.at("phase")}] = num(r, "end_s");
+  }
+  for (const Row& r : read_csv(o.data_dir + "/exp1_wrench_cache_phase_times.csv")) {
+    if (std::stoi(r.at("file_size_gb")) == size_gb) wrench[{std::stoi(r.at("task")), r.at("phase")}] = num(r, "duration_s");
+  }
+  if (real.empty()) throw ConfigError(fmt::format("no real Exp 1 data for {} GB", size_gb));
+
+  // Real memory at an instant: the atop sample nearest in time. Page cache without tmpfs.
+  std::vector<Row> memory;
+  for (Row& r : read_csv(o.data_dir + "/exp1_real_memory_profile.csv"))
+    if (std::stoi(r.at("file_size_gb")) == size_gb) memory.push_back(std::move(r));
+  auto real_memory_at = [&](double t) {
+    const Row* best = &memory.front();
+    for (const Row& r : memory)
+      if (std::abs(num(r, "time_s") - t) < std::abs(num(*best, "time_s") - t)) best = &r;
+    return std::pair{(num(*best, "cached_mb") - num(*best, "shmem_mb")) * 1e6, num(*best, "dirty_mb") * 1e6};
+  };
+  auto sim_memory_at = [&](double t) {
+    const MemoryRow* best = &run.memory.front();
+    for (const MemoryRow& m : run.memory)
+      if (std::abs(m.time - t) < std::abs(best->time - t)) best = &m;
+    return std::pair{static_cast<double>(best->state.cached + best->state.reserved), static_cast<double>(best->state.dirty)};
+  };
+  const double total = static_cast<double>(scenario.hosts.front().memory);
+
+  double sum = 0.0, wsum = 0.0, worst_dirty = 0.0, worst_cached = 0.0;
+  int count = 0;
+  c.table = fmt::format("  {:<6} {:<6} {:>9} {:>9} {:>8} {:>9} {:>8} | {:>9} {:>9} {:>9} {:>9}\n", "task", "phase", "real_s", "pcsim_s",
+                        "err%", "wrench_s", "err%", "dirty_GB", "real", "cached_GB", "real");
+  for (const PhaseRow& p : run.timeline) {
+    if (p.phase == "compute") continue;
+    const auto key = std::pair{std::stoi(p.task), p.phase};
+    const double sim = p.end - p.start;
+    const double e = pct(sim, real.at(key));
+    const double we = pct(wrench.at(key), real.at(key));
+    sum += e;
+    wsum += we;
+    ++count;
+    const auto [sim_cached, sim_dirty] = sim_memory_at(p.end);
+    const auto [real_cached, real_dirty] = real_memory_at(real_end.at(key));
+    worst_dirty = std::max(worst_dirty, 100.0 * std::abs(sim_dirty - real_dirty) / total);
+    worst_cached = std::max(worst_cached, 100.0 * std::abs(sim_cached - real_cached) / total);
+    c.table += fmt::format("  {:<6} {:<6} {:>9.2f} {:>9.2f} {:>8.1f} {:>9.2f} {:>8.1f} | {:>9.1f} {:>9.1f} {:>9.1f} {:>9.1f}\n", p.task,
+                           p.phase, real.at(key), sim, e, wrench.at(key), we, sim_dirty / 1e9, real_dirty / 1e9, sim_cached / 1e9,
+                           real_cached / 1e9);
+  }
+  c.mean_error_pct = sum / count;
+  c.wrench_mean_error_pct = wsum / count;
+  c.extra.emplace_back("max_dirty_diff_pct_of_memory", worst_dirty);
+  c.extra.emplace_back("max_cached_diff_pct_of_memory", worst_cached);
+
+  double worst_file = 0.0;
+  std::map<std::tuple<std::string, std::string, std::string>, double> sim_cache;
+  for (const CacheRow& r : run.cache) sim_cache[{r.task, r.phase, r.file}] = static_cast<double>(r.cached) / 1e9;
+  for (const Row& r : read_csv(o.data_dir + "/exp1_real_cache_contents.csv")) {
+    if (std::stoi(r.at("file_size_gb")) != size_gb) continue;
+    const auto it = sim_cache.find({r.at("after_task"), r.at("after_phase"), r.at("file")});
+    if (it != sim_cache.end()) worst_file = std::max(worst_file, std::abs(it->second - num(r, "cached_gb")));
+  }
+  c.extra.emplace_back("max_file_cache_diff_gb", worst_file);
+  return c;
+}
+
+// --- Exp 2 and 3: per n, mean per-pipeline total read and write time -----------------------
+
+struct PerN {
+  double read = 0.0;
+  double write = 0.0;
+};
+
+std::map<int, PerN> real_per_n(const std::string& path) {
+  // Sum over pipelines and tasks, divided by n, averaged over repetitions.
+  std::map<std::pair<int, int>, PerN> per_rep;
+  for (const Row& r : read_csv(path)) {
+    PerN& p = per_rep[{std::stoi(r.at("n_pipelines")), std::stoi(r.at("repetition"))}];
+    (r.at("phase") == "read" ? p.read : p.write) += num(r, "duration_s");
+  }
+  std::map<int, PerN> sums;
+  std::map<int, int> reps;
+  for (const auto& [key, p] : per_rep) {
+    sums[key.first].read += p.read / key.first;
+    sums[key.first].write += p.write / key.first;
+    ++reps[key.first];
+  }
+  for (auto& [n, p] : sums) {
+    p.read /= reps[n];
+    p.write /= reps[n];
+  }
+  return sums;
+}
+
+std::map<int, PerN> simulated_per_n(const std::string& path) {
+  std::map<int, PerN> out;
+  for (const Row& r : read_csv(path)) {
+    const int n = std::stoi(r.at("n_pipelines"));
+    if (r.at("phase") == "read") out[n].read += num(r, "duration_s") / n;
+    if (r.at("phase") == "write") out[n].write += num(r, "duration_s") / n;
+  }
+  return out;
+}
+
+CaseResult concurrent(const Options& o, const std::string& name, const std::string& scenario_file, const std::string& real_file,
+                      const std::string& wrench_file) {
+  CaseResult c;
+  c.name = name;
+  const auto real = real_per_n(o.data_dir + "/" + real_file);
+  const auto wrench = simulated_per_n(o.data_dir + "/" + wrench_file);
+  double r_sum = 0, w_sum = 0, wr_sum = 0, ww_sum = 0;
+  c.table = fmt::format("  {:>3} {:>9} {:>9} {:>7} {:>9} {:>7} | {:>9} {:>9} {:>7} {:>9} {:>7}\n", "n", "read_real", "pcsim", "err%",
+                        "wrench", "err%", "write_real", "pcsim", "err%", "wrench", "err%");
+  for (const auto& [n, truth] : real) {
+    const Scenario scenario = load_scenario(o.scenario_dir + "/" + scenario_file, with(o, {{"pipelines.count", std::to_string(n)}}), o.profile);
+    RunOptions options;
+    options.cache_contents = false;
+    const RunResult run = run_scenario(scenario, options);
+    PerN sim;
+    for (const PhaseRow& p : run.timeline) {
+      if (p.phase == "read") sim.read += (p.end - p.start) / n;
+      if (p.phase == "write") sim.write += (p.end - p.start) / n;
+    }
+    const PerN w = wrench.at(n);
+    const double er = pct(sim.read, truth.read), ew = pct(sim.write, truth.write);
+    const double wer = pct(w.read, truth.read), wew = pct(w.write, truth.write);
+    r_sum += er;
+    w_sum += ew;
+    wr_sum += wer;
+    ww_sum += wew;
+    c.table += fmt::format("  {:>3} {:>9.2f} {:>9.2f} {:>7.1f} {:>9.2f} {:>7.1f} | {:>9.2f} {:>9.2f} {:>7.1f} {:>9.2f} {:>7.1f}\n", n,
+                           truth.read, sim.read, er, w.read, wer, truth.write, sim.write, ew, w.write, wew);
+  }
+  const double count = static_cast<double>(real.size());
+  c.read_mean_error_pct = r_sum / count;
+  c.write_mean_error_pct = w_sum / count;
+  c.mean_error_pct = (r_sum + w_sum) / (2 * count);
+  c.wrench_read_mean_error_pct = wr_sum / count;
+  c.wrench_write_mean_error_pct = ww_sum / count;
+  c.wrench_mean_error_pct = (wr_sum + ww_sum) / (2 * count);
+  return c;
+}
+
+}  // namespace
+
+Report run(const Options& o) {
+  Report report;
+  report.cases.push_back(exp1(o, 20, 28.0));
+  report.cases.push_back(exp1(o, 100, 155.0));
+  report.cases.push_back(concurrent(o, "exp2_local", "exp2.toml", "exp2_real_phase_times.csv", "exp2_wrench_cache_phase_times.csv"));
+  report.cases.push_back(concurrent(o, "exp3_nfs", "exp3.toml", "exp3_real_phase_times.csv", "exp3_wrench_cache_phase_times.csv"));
+  return report;
+}
+
+std::string Report::text() const {
+  std::string out;
+  for (const CaseResult& c : cases) {
+    out += fmt::format("\n{}: mean error {:.1f} % (WRENCH-cache {:.1f} %)", c.name, c.mean_error_pct, c.wrench_mean_error_pct);
+    if (c.read_mean_error_pct >= 0) {
+      out += fmt::format("; read {:.1f} % (WRENCH-cache {:.1f} %), write {:.1f} % (WRENCH-cache {:.1f} %)", c.read_mean_error_pct,
+                         c.wrench_read_mean_error_pct, c.write_mean_error_pct, c.wrench_write_mean_error_pct);
+    }
+    out += "\n";
+    for (const auto& [key, value] : c.extra) out += fmt::format("  {} = {:.2f}\n", key, value);
+    out += c.table;
+  }
+  return out;
+}
+
+std::string Report::json() const {
+  std::string out = "[\n";
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const CaseResult& c = cases[i];
+    out += fmt::format("  {{\"case\": \"{}\", \"mean_error_pct\": {:.4f}, \"wrench_cache_mean_error_pct\": {:.4f}", c.name,
+                       c.mean_error_pct, c.wrench_mean_error_pct);
+    if (c.read_mean_error_pct >= 0) {
+      out += fmt::format(
+          ", \"read_mean_error_pct\": {:.4f}, \"write_mean_error_pct\": {:.4f}, \"wrench_cache_read_mean_error_pct\": {:.4f}, "
+          "\"wrench_cache_write_mean_error_pct\": {:.4f}",
+          c.read_mean_error_pct, c.write_mean_error_pct, c.wrench_read_mean_error_pct, c.wrench_write_mean_error_pct);
+    }
+    for (const auto& [key, value] : c.extra) out += fmt::format(", \"{}\": {:.4f}", key, value);
+    out += i + 1 < cases.size() ? "},\n" : "}\n";
+  }
+  return out + "]\n";
+}
+
+}  // namespace pagecache::validate

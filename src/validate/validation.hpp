@@ -1,0 +1,41 @@
+#pragma once
+// `pcsim validate`: runs the paper's experiments with the shipped scenarios and compares them
+// with the real measurements (validation/paper/, copied from the paper's repository), with the
+// paper's metric: per-phase absolute relative error |sim - real| / real, and its mean; for
+// Exp 2 and 3 per number of pipelines n against the mean of the 5 real repetitions, then the
+// mean over n. WRENCH-cache's published figures are shown beside pcsim's.
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace pagecache::validate {
+
+struct Options {
+  std::string data_dir;      ///< validation/paper
+  std::string scenario_dir;  ///< scenarios/paper
+  std::string profile;       ///< "" : the scenarios' own
+  std::vector<std::pair<std::string, std::string>> overrides;
+};
+
+struct CaseResult {
+  std::string name;
+  double mean_error_pct = 0.0;
+  double read_mean_error_pct = -1.0;   ///< Exp 2/3 only
+  double write_mean_error_pct = -1.0;  ///< Exp 2/3 only
+  double wrench_mean_error_pct = 0.0;
+  double wrench_read_mean_error_pct = -1.0;
+  double wrench_write_mean_error_pct = -1.0;
+  std::vector<std::pair<std::string, double>> extra;  ///< other figures (memory profile, cache contents)
+  std::string table;                                  ///< printable detail
+};
+
+struct Report {
+  std::vector<CaseResult> cases;
+  std::string text() const;
+  std::string json() const;
+};
+
+Report run(const Options& options);
+
+}  // namespace pagecache::validate

@@ -26,9 +26,11 @@ struct CacheSettings {
   /// Dirty thresholds are fractions of free + cached memory, as the kernel's dirtyable memory
   /// (mm/page-writeback.c, global_dirtyable_memory). Off: free + cached - dirty, the paper's.
   bool dirtyable_memory = true;
-  /// Eviction makes room from clean inactive data only, and a read's "evictable" memory is
-  /// that clean inactive data (mm/vmscan.c scans the inactive list). Off, as WRENCH-cache:
-  /// eviction continues on the active list and "evictable" counts every inactive byte.
+  /// Eviction makes room from clean inactive data, and a read's "evictable" memory is that
+  /// clean inactive data (mm/vmscan.c scans the inactive list); when none is left, the oldest
+  /// active data is deactivated and reclaimed if clean (shrink_active_list). Off, as
+  /// WRENCH-cache: eviction goes on to clean active data in place, and "evictable" counts
+  /// every inactive byte.
   bool reclaim_inactive_only = true;
   /// Making room for a read may evict (and flush) the file being read, oldest data first, as
   /// the kernel's reclaim knows no file. Off, as the paper's Algorithm 2: the file being read

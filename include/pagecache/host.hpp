@@ -34,6 +34,8 @@ struct HostSpec {
   std::int64_t memory = 0;  ///< bytes of RAM
   MemoryBandwidth memory_bandwidth;
   CacheSettings cache;
+  /// Memory held from the start and never released (e.g. tmpfs), counted as anonymous.
+  std::int64_t memory_in_use = 0;
 };
 
 /// A disk of a host (index in the order of add_disk).

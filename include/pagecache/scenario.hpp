@@ -32,6 +32,9 @@ struct HostConfig {
   std::string name;
   int cores = 1;
   std::int64_t memory = 0;
+  /// Memory neither free nor reclaimable at the start (e.g. tmpfs contents): counted as
+  /// application memory for the whole run.
+  std::int64_t memory_in_use = 0;
   MemoryBandwidth memory_bandwidth;
   CacheSettings cache;
   std::vector<DiskSpec> disks;

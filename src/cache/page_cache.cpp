@@ -272,19 +272,30 @@ void PageCache::end_writeback(const Flushed& taken) {
 
 std::int64_t PageCache::evict(std::int64_t amount, FileId excluded) {
   std::int64_t evicted = 0;
+  auto take = [&](Block& block) {
+    Block& victim = block.size > amount - evicted ? split_front(block, amount - evicted) : block;
+    evicted += victim.size;
+    evicted_total_ += victim.size;
+    destroy(victim);
+  };
   for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
     if (kind == ListKind::Active && settings_.reclaim_inactive_only) break;
     LruList& list = list_of(kind);
     Block* block = list.front(BlockState::Clean);
     while (block != nullptr && evicted < amount) {
       Block* next = list.next(*block, BlockState::Clean);
-      if (block->file != excluded) {
-        Block& victim = block->size > amount - evicted ? split_front(*block, amount - evicted) : *block;
-        evicted += victim.size;
-        evicted_total_ += victim.size;
-        destroy(victim);
-      }
+      if (block->file != excluded) take(*block);
       block = next;
+    }
+  }
+  if (settings_.reclaim_inactive_only) {
+    // Active list aging (mm/vmscan.c, shrink_active_list): with no clean inactive data left,
+    // the oldest active data is deactivated, and reclaimed if it is clean.
+    while (evicted < amount && !active_.empty()) {
+      Block& oldest = *active_.front();
+      unlink(oldest);
+      append(oldest, ListKind::Inactive);
+      if (oldest.state == BlockState::Clean && oldest.file != excluded) take(oldest);
     }
   }
   settle();

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <map>
@@ -129,9 +130,11 @@ HostConfig read_host(const toml::table& table, std::string path, std::size_t ind
   HostConfig h;
   h.name = r.string("name", fmt::format("host{}", index + 1));
   h.cores = static_cast<int>(r.optional_integer("cores").value_or(1));
+  h.memory_in_use = r.optional_size("memory_in_use").value_or(0);
   if (h.cores < 1) r.fail("cores", "must be >= 1");
   h.memory = r.required_size("memory");
   if (h.memory <= 0) r.fail("memory", "must be > 0");
+  if (h.memory_in_use >= h.memory) r.fail("memory_in_use", "must be less than the memory");
   h.memory_bandwidth.read = r.required_bandwidth("memory_read_bw");
   h.memory_bandwidth.write = r.required_bandwidth("memory_write_bw");
   h.memory_bandwidth.aggregate_read = r.optional_bandwidth("memory_aggregate_read_bw").value_or(h.memory_bandwidth.read);
@@ -255,33 +258,21 @@ void check_workflow_acyclic(const WorkflowSpec& w, const TomlReader& r) {
     if (state[t] == 0) visit(t);
 }
 
-Scenario resolve(const toml::table& root, const std::string& file, const std::string& profile_override) {
-  TomlReader r(root, "", file);
-  Scenario s;
-  s.source = file;
-  s.title = r.string("title", "");
-  const std::string file_profile = r.string("profile", "linux");
-  if (profile_override.empty()) {
-    s.profile = parse_profile(file_profile, [&](const std::string& m) { r.fail("profile", m); });
-  } else {
-    s.profile = parse_profile(profile_override, [](const std::string& m) -> void { throw ConfigError("--profile: " + m); });
-  }
-  s.memory_sample_interval = r.optional_duration("memory_sample_interval").value_or(1.0);
-
+// The platform part of a scenario or of a platform file: [[hosts]] and [[links]].
+void read_platform(TomlReader& r, Scenario& s, const std::string& file) {
   const auto hosts = r.tables("hosts");
-  if (hosts.empty()) r.fail_table("no host: add a [[hosts]] table");
   for (std::size_t i = 0; i < hosts.size(); ++i) {
-    s.hosts.push_back(read_host(*hosts[i], r.child_path("hosts", i), i, s.profile, file));
-    for (std::size_t j = 0; j < i; ++j) {
-      if (s.hosts[j].name == s.hosts[i].name) TomlReader(*hosts[i], r.child_path("hosts", i), file).fail("name", "two hosts share this name");
+    HostConfig host = read_host(*hosts[i], r.child_path("hosts", i), s.hosts.size(), s.profile, file);
+    for (const HostConfig& other : s.hosts) {
+      if (other.name == host.name) TomlReader(*hosts[i], r.child_path("hosts", i), file).fail("name", "two hosts share this name");
     }
+    s.hosts.push_back(std::move(host));
   }
-
   const auto links = r.tables("links");
   for (std::size_t i = 0; i < links.size(); ++i) {
     TomlReader l(*links[i], r.child_path("links", i), file);
     LinkSpec link;
-    link.name = l.string("name", fmt::format("link{}", i + 1));
+    link.name = l.string("name", fmt::format("link{}", s.links.size() + 1));
     link.bandwidth = l.required_bandwidth("bandwidth");
     if (link.bandwidth <= 0.0) l.fail("bandwidth", "must be > 0");
     link.latency = l.optional_duration("latency").value_or(0.0);
@@ -298,6 +289,52 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
     l.finish();
     s.links.push_back(std::move(link));
   }
+}
+
+Scenario resolve(const toml::table& root, const std::string& file, const std::string& profile_override) {
+  TomlReader r(root, "", file);
+  Scenario s;
+  s.source = file;
+  s.title = r.string("title", "");
+  const std::string file_profile = r.string("profile", "linux");
+  if (profile_override.empty()) {
+    s.profile = parse_profile(file_profile, [&](const std::string& m) { r.fail("profile", m); });
+  } else {
+    s.profile = parse_profile(profile_override, [](const std::string& m) -> void { throw ConfigError("--profile: " + m); });
+  }
+  s.memory_sample_interval = r.optional_duration("memory_sample_interval").value_or(1.0);
+
+  // platform = "file.toml", or one per profile: platform = { paper = "a.toml", linux = "b.toml" }
+  if (const toml::node* platform = r.raw("platform")) {
+    std::string path;
+    if (platform->is_string()) {
+      path = *platform->value<std::string>();
+    } else if (const toml::table* per_profile = platform->as_table()) {
+      const toml::node* chosen = per_profile->get(to_string(s.profile));
+      if (chosen == nullptr || !chosen->is_string()) r.fail("platform", fmt::format("no platform file for profile '{}'", to_string(s.profile)));
+      path = *chosen->value<std::string>();
+    } else {
+      r.fail("platform", "expected a file name, or a table of file names per profile");
+    }
+    const std::filesystem::path relative_to = std::filesystem::path(file).parent_path();
+    const std::string resolved = std::filesystem::path(path).is_absolute() ? path : (relative_to / path).lexically_normal().string();
+    std::ifstream in(resolved);
+    if (!in) r.fail("platform", fmt::format("cannot open the platform file {}", resolved));
+    std::stringstream text;
+    text << in.rdbuf();
+    toml::table platform_root;
+    try {
+      platform_root = toml::parse(text.str(), resolved);
+    } catch (const toml::parse_error& e) {
+      throw ConfigError(fmt::format("{}:{}:{}: {}", resolved, e.source().begin.line, e.source().begin.column, e.description()));
+    }
+    TomlReader p(platform_root, "", resolved);
+    p.string("title", "");
+    read_platform(p, s, resolved);
+    p.finish();
+  }
+  read_platform(r, s, file);
+  if (s.hosts.empty()) r.fail_table("no host: add a [[hosts]] table, or a platform file");
 
   const auto files = r.tables("files");
   for (std::size_t i = 0; i < files.size(); ++i) {

@@ -43,9 +43,10 @@ std::string to_toml(const Scenario& s) {
                      quoted(units::format_duration(s.memory_sample_interval)));
   for (const HostConfig& h : s.hosts) {
     out += fmt::format(
-        "\n[[hosts]]\nname = {}\ncores = {}\nmemory = {}\nmemory_read_bw = {}\nmemory_write_bw = {}\n"
+        "\n[[hosts]]\nname = {}\ncores = {}\nmemory = {}\nmemory_in_use = {}\nmemory_read_bw = {}\nmemory_write_bw = {}\n"
         "memory_aggregate_read_bw = {}\nmemory_aggregate_write_bw = {}\n",
-        quoted(h.name), h.cores, quoted(units::format_size(h.memory)), quoted(units::format_bandwidth(h.memory_bandwidth.read)),
+        quoted(h.name), h.cores, quoted(units::format_size(h.memory)), quoted(units::format_size(h.memory_in_use)),
+        quoted(units::format_bandwidth(h.memory_bandwidth.read)),
         quoted(units::format_bandwidth(h.memory_bandwidth.write)), quoted(units::format_bandwidth(h.memory_bandwidth.aggregate_read)),
         quoted(units::format_bandwidth(h.memory_bandwidth.aggregate_write)));
     out += fmt::format(

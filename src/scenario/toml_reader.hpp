@@ -109,6 +109,9 @@ class TomlReader {
     return out;
   }
 
+  /// The key's node, of any type (nullptr if absent), marked as read.
+  const toml::node* raw(const std::string& key) { return take(key); }
+
   const toml::table* optional_table(const std::string& key) {
     const toml::node* node = take(key);
     if (node == nullptr) return nullptr;

@@ -29,7 +29,7 @@ class Runner {
   Runner(const Scenario& scenario, const RunOptions& options) : scenario_(scenario), options_(options), share_(sim_) {
     for (const HostConfig& config : scenario.hosts) {
       auto host = std::make_unique<Host>(
-          sim_, share_, HostSpec{config.name, config.cores, config.memory, config.memory_bandwidth, config.cache});
+          sim_, share_, HostSpec{config.name, config.cores, config.memory, config.memory_bandwidth, config.cache, config.memory_in_use});
       std::map<std::string, DiskRef> disks;
       for (const DiskSpec& d : config.disks) disks[d.name] = host->add_disk(d.name, d.read_bw, d.write_bw, d.capacity);
       disks_[config.name] = std::move(disks);

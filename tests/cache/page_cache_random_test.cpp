@@ -221,6 +221,24 @@ class Reference {
         }
       }
     }
+    if (s_.reclaim_inactive_only) {
+      // Aging: the oldest active block goes to the inactive tail, and is reclaimed if clean.
+      while (evicted < amount && !active.empty()) {
+        RefBlock b = active.front();
+        active.erase(active.begin());
+        if (b.state == BlockState::Clean && b.file != excluded) {
+          if (b.size > amount - evicted) {
+            b.size -= amount - evicted;
+            evicted = amount;
+            inactive.push_back(b);
+          } else {
+            evicted += b.size;
+          }
+        } else {
+          inactive.push_back(b);
+        }
+      }
+    }
     settle();
     return evicted;
   }

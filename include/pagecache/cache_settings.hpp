@@ -23,6 +23,11 @@ struct CacheSettings {
   /// vm.dirty_writeback_centisecs, in seconds: period of the flusher.
   double writeback_interval = 5.0;
 
+  /// Background writeback (mm/page-writeback.c, wb_over_bg_thresh): above
+  /// dirty_background_ratio of dirtyable memory the flusher writes the oldest dirty data at
+  /// once, concurrently with the writers, until dirty data is back under that threshold. Off,
+  /// as the paper: dirty data waits for dirty_expire or for a writer to hit dirty_ratio.
+  bool background_writeback = true;
   /// Dirty thresholds are fractions of free + cached memory, as the kernel's dirtyable memory
   /// (mm/page-writeback.c, global_dirtyable_memory). Off: free + cached - dirty, the paper's.
   bool dirtyable_memory = true;
@@ -52,6 +57,7 @@ struct CacheSettings {
     s.dirty_expire = 30.0;
     s.writeback_interval = 5.0;
     s.dirtyable_memory = false;
+    s.background_writeback = false;
     s.reclaim_inactive_only = false;
     s.reclaim_may_take_file_being_read = false;
     s.flush_splits_in_place = false;

@@ -1,8 +1,7 @@
 #include "cache/flusher.hpp"
 
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
+#include <limits>
 
 namespace pagecache::cache {
 
@@ -12,35 +11,58 @@ void Flusher::start() {
   sim_->spawn(periodic());
 }
 
+bool Flusher::background_due() const {
+  const CacheSettings& s = cache_->settings();
+  if (!s.background_writeback || cache_->dirty() == 0) return false;
+  return static_cast<double>(cache_->dirty_and_writeback()) > s.dirty_background_ratio * static_cast<double>(cache_->dirtyable());
+}
+
 void Flusher::notify_dirty() {
-  if (wake_ && !wake_->triggered()) wake_->trigger();
+  if (wake_ && !wake_->triggered() && (parked_ || background_due())) wake_->trigger();
+}
+
+Task<void> Flusher::write_block(double cutoff) {
+  const PageCache::Flushed taken = cache_->flush_expired_block(cutoff);
+  if (taken.bytes == 0) co_return;
+  flushed_ += taken.bytes;
+  co_await (*files_)[taken.file].disk->write(taken.bytes);
+  cache_->end_writeback(taken);
 }
 
 Task<void> Flusher::periodic() {
   const double interval = cache_->settings().writeback_interval;
   const double expire = cache_->settings().dirty_expire;
+  constexpr double kAnyAge = std::numeric_limits<double>::infinity();
   double tick = sim_->now();
   for (;;) {
-    if (sim_->now() < tick) {
-      if (cache_->dirty() == 0) {
-        wake_.emplace(*sim_);
-        co_await wake_->wait();
-        wake_.reset();
-        // Back on the cadence: the first tick time at or after now.
-        if (sim_->now() > tick) tick += std::ceil((sim_->now() - tick) / interval) * interval;
+    if (background_due()) {
+      // Background writeback: the oldest dirty data, one block at a time, until the dirty
+      // data is back under the background threshold.
+      co_await write_block(kAnyAge);
+      continue;
+    }
+    if (sim_->now() >= tick) {
+      // Periodic writeback of the data dirty for longer than dirty_expire at the tick.
+      const double cutoff = tick - expire;
+      while (cache_->dirty() > 0) {
+        const std::int64_t before = flushed_;
+        co_await write_block(cutoff);
+        if (flushed_ == before) break;
       }
-      co_await sim_->sleep_until(tick);
+      // A tick that took longer than the interval is followed by the next one at once.
+      tick = std::max(tick + interval, sim_->now());
+      continue;
     }
-    const double cutoff = tick - expire;
-    for (;;) {
-      const PageCache::Flushed taken = cache_->flush_expired_block(cutoff);
-      if (taken.bytes == 0) break;
-      flushed_ += taken.bytes;
-      co_await (*files_)[taken.file].disk->write(taken.bytes);
-      cache_->end_writeback(taken);
-    }
-    // A tick that took longer than the interval is followed by the next one at once.
-    tick = std::max(tick + interval, sim_->now());
+    // Idle until the next tick, or, with no dirty data at all, until some appears; background
+    // writeback becoming due wakes it early.
+    parked_ = cache_->dirty() == 0;
+    wake_.emplace(*sim_);
+    if (parked_) co_await wake_->wait();
+    else co_await wake_->wait_for(tick - sim_->now());
+    wake_.reset();
+    parked_ = false;
+    // Back on the cadence: the first tick time at or after now.
+    if (sim_->now() > tick) tick += std::ceil((sim_->now() - tick) / interval) * interval;
   }
 }
 

@@ -1,7 +1,10 @@
 #pragma once
-// Flusher: the periodic writeback process (paper Algorithm 1). Every writeback_interval it
-// writes, one block at a time, the dirty data older than dirty_expire, inactive list first,
-// sharing the disks with everything else; then it sleeps for what is left of the interval.
+// Flusher: the writeback process. Periodic writeback (paper Algorithm 1): every
+// writeback_interval it writes, one block at a time, the dirty data older than dirty_expire,
+// inactive list first, sharing the disks with everything else; then it sleeps for what is
+// left of the interval. Background writeback (the kernel's, mm/page-writeback.c; switched by
+// CacheSettings::background_writeback): whenever dirty data exceeds dirty_background_ratio of
+// dirtyable memory, it writes the oldest dirty data until it is back under that threshold.
 //
 // When no dirty data is left it parks instead of ticking, and is woken by notify_dirty(); it
 // then resumes on the same cadence (its ticks stay at the same times as if it had ticked all
@@ -26,13 +29,16 @@ class Flusher {
 
   /// Starts the periodic process; its first tick is at now().
   void start();
-  /// New dirty data: wakes the flusher if it is parked.
+  /// New dirty data: wakes the flusher if it is parked or if background writeback is due.
   void notify_dirty();
   /// Bytes written back by the flusher so far.
   std::int64_t flushed_bytes() const noexcept { return flushed_; }
 
  private:
   Task<void> periodic();
+  bool background_due() const;
+  /// Writes back the least recently used dirty block older than `cutoff` (if any).
+  Task<void> write_block(double cutoff);
 
   Simulator* sim_;
   PageCache* cache_;
@@ -40,6 +46,7 @@ class Flusher {
   std::optional<Event> wake_;
   std::int64_t flushed_ = 0;
   bool started_ = false;
+  bool parked_ = false;
 };
 
 }  // namespace pagecache::cache

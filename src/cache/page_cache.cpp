@@ -5,8 +5,19 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdlib>
+#include <string_view>
 
 namespace pagecache::cache {
+
+bool PageCache::checking_by_default() {
+  if (const char* value = std::getenv("PAGECACHE_CHECK_INVARIANTS")) return std::string_view(value) != "0";
+#ifdef NDEBUG
+  return false;
+#else
+  return true;
+#endif
+}
 
 PageCache::PageCache(std::int64_t total_memory, const CacheSettings& settings)
     : settings_(settings), total_(total_memory) {

@@ -147,6 +147,9 @@ class PageCache {
   /// Cuts the first `head_size` bytes of `block` off into a new block placed right before the
   /// rest, in every list; returns the head.
   Block& split_front(Block& block, std::int64_t head_size);
+  /// On in debug builds, off otherwise; the environment variable PAGECACHE_CHECK_INVARIANTS
+  /// (0 or 1) overrides it, e.g. to run large simulations quickly in a debug build.
+  static bool checking_by_default();
   /// After a mutation: balance if the settings say so, then check if checking.
   void settle();
 
@@ -162,11 +165,7 @@ class PageCache {
   std::int64_t evicted_total_ = 0;
   std::function<void()> observer_;
   std::function<void()> progress_hook_;
-#ifdef NDEBUG
-  bool checking_ = false;
-#else
-  bool checking_ = true;  // debug builds check every invariant after every operation
-#endif
+  bool checking_ = checking_by_default();
 };
 
 }  // namespace pagecache::cache

@@ -172,3 +172,35 @@ TEST_CASE("concurrent applications under memory pressure keep every invariant", 
     }
   }
 }
+
+TEST_CASE("background writeback starts above dirty_background_ratio, not at expiry", "[host][flusher]") {
+  // 10 GB host, no application memory: dirtyable memory is 10 GB, the background threshold
+  // 1 GB (ratio 0.1). 2 GB are written at 1000 MB/s (0-2 s). With background writeback the
+  // flusher starts as soon as dirty data passes 1 GB (1.1 s) and writes the oldest data at
+  // 100 MB/s until 1 GB or less is left: about 1 GB, so by 12.5 s dirty + writeback <= 1 GB
+  // plus one block. Without it, all 2 GB stay dirty until they expire (30 s).
+  for (const bool background : {true, false}) {
+    CacheSettings settings = CacheSettings::kernel();
+    settings.background_writeback = background;
+    settings.dirty_background_ratio = 0.1;
+    settings.dirty_ratio = 0.4;
+    Simulator sim;
+    FairShare share(sim);
+    Host host(sim, share, small_host(settings));
+    const FileRef file = host.add_file("out", 2000 * MB, host.add_disk("d", 100e6, 100e6));
+    double written = 0;
+    sim.spawn(write_then_record(sim, host, file, written));
+    sim.run_until(12.5);
+    CHECK(written == Catch::Detail::Approx(2.0));
+    const MemoryState m = host.memory();
+    INFO("background " << background << ": dirty " << m.dirty << ", writeback " << m.writeback);
+    if (background) {
+      CHECK(m.dirty + m.writeback <= 1100 * MB);
+      CHECK(m.dirty + m.writeback >= 900 * MB);
+    } else {
+      CHECK(m.dirty == 2000 * MB);
+    }
+    sim.run();
+    CHECK(host.memory().dirty == 0);
+  }
+}

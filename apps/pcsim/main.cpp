@@ -126,6 +126,8 @@ int main(int argc, char** argv) {
   validate->add_option("--json", json_path, "also write the results as JSON to this file");
   validate->add_option("--profile", profile, "model profile, overriding the scenarios'")->check(CLI::IsMember({"paper", "linux"}));
   validate->add_option("--set", sets, "override a key of every scenario: KEY=VALUE (repeatable)");
+  std::vector<std::string> switches;
+  validate->add_option("--switch", switches, "force a page-cache switch on every host: NAME=true|false (ablations)");
   validate->add_option("--data", data_dir, "the validation data")->capture_default_str();
   validate->add_option("--scenarios", scenarios_dir, "the paper's scenarios")->capture_default_str();
 
@@ -148,7 +150,12 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (validate->parsed()) {
-      const auto report = pagecache::validate::run({data_dir, scenarios_dir, profile, parse_sets(sets)});
+      std::vector<std::pair<std::string, bool>> forced;
+      for (const auto& [name, value] : parse_sets(switches)) {
+        if (value != "true" && value != "false") throw pagecache::ConfigError("--switch " + name + ": use true or false");
+        forced.emplace_back(name, value == "true");
+      }
+      const auto report = pagecache::validate::run({data_dir, scenarios_dir, profile, parse_sets(sets), forced});
       fmt::print("{}", report.text());
       if (!json_path.empty()) {
         std::ofstream out(json_path);

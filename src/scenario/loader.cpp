@@ -99,6 +99,19 @@ void apply_override(toml::table& root, const std::string& key, const std::string
   }
 }
 
+}  // namespace
+
+std::vector<std::pair<std::string, bool*>> cache_switches(CacheSettings& s) {
+  return {{"background_writeback", &s.background_writeback},
+          {"dirtyable_memory", &s.dirtyable_memory},
+          {"reclaim_inactive_only", &s.reclaim_inactive_only},
+          {"reclaim_may_take_file_being_read", &s.reclaim_may_take_file_being_read},
+          {"flush_splits_in_place", &s.flush_splits_in_place},
+          {"balance_after_every_change", &s.balance_after_every_change}};
+}
+
+namespace {
+
 CacheSettings read_page_cache(const toml::table* table, const TomlReader& parent, Profile profile, const std::string& file) {
   CacheSettings s = settings_for(profile);
   if (table == nullptr) return s;
@@ -120,6 +133,10 @@ CacheSettings read_page_cache(const toml::table* table, const TomlReader& parent
   if (auto v = r.optional_duration("writeback_interval")) {
     if (*v <= 0.0) r.fail("writeback_interval", "must be > 0");
     s.writeback_interval = *v;
+  }
+  // The model's switches (MODEL.md §6), defaults from the profile.
+  for (const auto& [key, flag] : cache_switches(s)) {
+    if (auto v = r.optional_bool(key)) *flag = *v;
   }
   r.finish();
   return s;

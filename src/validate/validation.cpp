@@ -48,6 +48,23 @@ std::vector<Row> read_csv(const std::string& path) {
 }
 
 double num(const Row& row, const char* key) { return std::stod(row.at(key)); }
+
+Scenario load(const Options& o, const std::string& file, const std::vector<std::pair<std::string, std::string>>& overrides) {
+  Scenario s = load_scenario(file, overrides, o.profile);
+  for (HostConfig& h : s.hosts) {
+    for (const auto& [key, value] : o.switches) {
+      bool found = false;
+      for (const auto& [name, flag] : cache_switches(h.cache)) {
+        if (name == key) {
+          *flag = value;
+          found = true;
+        }
+      }
+      if (!found) throw ConfigError(fmt::format("--switch: unknown page-cache switch '{}'", key));
+    }
+  }
+  return s;
+}
 double pct(double sim, double real) { return 100.0 * std::abs(sim - real) / real; }
 
 using Overrides = std::vector<std::pair<std::string, std::string>>;
@@ -63,10 +80,9 @@ Overrides with(const Options& o, Overrides more) {
 CaseResult exp1(const Options& o, int size_gb, double cpu_seconds) {
   CaseResult c;
   c.name = fmt::format("exp1_{}gb", size_gb);
-  const Scenario scenario = load_scenario(
-      o.scenario_dir + "/exp1.toml",
-      with(o, {{"pipelines.file_size", fmt::format("\"{} GB\"", size_gb)}, {"pipelines.cpu_time", fmt::format("\"{} s\"", cpu_seconds)}}),
-      o.profile);
+  const Scenario scenario = load(
+      o, o.scenario_dir + "/exp1.toml",
+      with(o, {{"pipelines.file_size", fmt::format("\"{} GB\"", size_gb)}, {"pipelines.cpu_time", fmt::format("\"{} s\"", cpu_seconds)}}));
   const RunResult run = run_scenario(scenario);
 
   std::map<std::pair<int, std::string>, double> real, wrench, real_end;
@@ -184,7 +200,7 @@ CaseResult concurrent(const Options& o, const std::string& name, const std::stri
   c.table = fmt::format("  {:>3} {:>9} {:>9} {:>7} {:>9} {:>7} | {:>9} {:>9} {:>7} {:>9} {:>7}\n", "n", "read_real", "pcsim", "err%",
                         "wrench", "err%", "write_real", "pcsim", "err%", "wrench", "err%");
   for (const auto& [n, truth] : real) {
-    const Scenario scenario = load_scenario(o.scenario_dir + "/" + scenario_file, with(o, {{"pipelines.count", std::to_string(n)}}), o.profile);
+    const Scenario scenario = load(o, o.scenario_dir + "/" + scenario_file, with(o, {{"pipelines.count", std::to_string(n)}}));
     RunOptions options;
     options.cache_contents = false;
     const RunResult run = run_scenario(scenario, options);

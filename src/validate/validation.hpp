@@ -16,6 +16,8 @@ struct Options {
   std::string scenario_dir;  ///< scenarios/paper
   std::string profile;       ///< "" : the scenarios' own
   std::vector<std::pair<std::string, std::string>> overrides;
+  /// Page-cache switches forced on every host (ablations), e.g. {"background_writeback", false}.
+  std::vector<std::pair<std::string, bool>> switches;
 };
 
 struct CaseResult {

@@ -204,3 +204,26 @@ TEST_CASE("background writeback starts above dirty_background_ratio, not at expi
     CHECK(host.memory().dirty == 0);
   }
 }
+
+TEST_CASE("reading a file whose copy and buffer exceed memory needs reclaim of the file itself", "[host]") {
+  // 10 GB host, a 6 GB file: 6 GB of buffer + 6 GB of cache do not fit. The kernel reclaims the
+  // file's own oldest pages and the read ends at disk speed (6 GB at 1000 MB/s: 6 s); the
+  // paper's Algorithm 2 spares the file being read and cannot go on.
+  for (const bool may_take : {true, false}) {
+    CacheSettings settings = CacheSettings::paper();
+    settings.reclaim_may_take_file_being_read = may_take;
+    Simulator sim;
+    FairShare share(sim);
+    Host host(sim, share, small_host(settings));
+    const FileRef file = host.add_file("big", 6000 * MB, host.add_disk("d", 1000e6, 1000e6));
+    auto reader = [](Host& h, FileRef f) -> Task<void> { (void)co_await h.read_file(f, 100 * MB); };
+    sim.spawn(reader(host, file));
+    if (may_take) {
+      sim.run();
+      CHECK(sim.now() == Catch::Detail::Approx(6.0));
+      CHECK(host.cached(file) == 4000 * MB);  // what is left beside the 6 GB buffer
+    } else {
+      CHECK_THROWS_WITH(sim.run(), Catch::Contains("reading 'big'"));
+    }
+  }
+}

@@ -181,3 +181,21 @@ TEST_CASE("the dirty thresholds' base is free + cached (kernel) or free + clean 
   CHECK(kernel.dirtyable() == 400 + 300);
   CHECK(paper.dirtyable() == 400 + 300 - 100);
 }
+
+TEST_CASE("with balance_after_every_change an eviction rebalances the lists at once", "[page_cache]") {
+  // Inactive 600 (file 0), then 300 of file 1 re-read: active 300. Evicting 500 leaves
+  // inactive 100, active 300 > 2 x 100. The kernel settings rebalance now: moving x makes
+  // 300 - x <= 2 (100 + x), x = 34. WRENCH-cache balances only after reads.
+  for (const bool always : {true, false}) {
+    CacheSettings settings = CacheSettings::paper();
+    settings.balance_after_every_change = always;
+    PageCache cache(10000, settings);
+    cache.set_checking(true);
+    cache.add_clean(0, 600, 0.0);
+    cache.add_clean(1, 300, 0.0);
+    cache.reaccess(1, 300, 1.0);
+    CHECK(cache.evict(500, kNoFile) == 500);
+    CHECK(cache.list(A).bytes() == (always ? 266 : 300));
+    CHECK(cache.list(I).bytes() == (always ? 134 : 100));
+  }
+}

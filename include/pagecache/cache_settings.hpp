@@ -28,6 +28,11 @@ struct CacheSettings {
   /// once, concurrently with the writers, until dirty data is back under that threshold. Off,
   /// as the paper: dirty data waits for dirty_expire or for a writer to hit dirty_ratio.
   bool background_writeback = true;
+  /// Two-touch activation (mm/swap.c, mark_page_accessed): data read from a device is marked
+  /// referenced by that read; cached data read again is activated only if referenced, else it
+  /// is just marked. Written data is not referenced: written then read once, it stays
+  /// inactive. Off, as the paper: any re-read activates.
+  bool two_touch_activation = true;
   /// Dirty thresholds are fractions of free + cached memory, as the kernel's dirtyable memory
   /// (mm/page-writeback.c, global_dirtyable_memory). Off: free + cached - dirty, the paper's.
   bool dirtyable_memory = true;
@@ -58,6 +63,7 @@ struct CacheSettings {
     s.writeback_interval = 5.0;
     s.dirtyable_memory = false;
     s.background_writeback = false;
+    s.two_touch_activation = false;
     s.reclaim_inactive_only = false;
     s.reclaim_may_take_file_being_read = false;
     s.flush_splits_in_place = false;

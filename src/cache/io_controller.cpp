@@ -66,7 +66,7 @@ Task<IoTally> IoController::read_chunk(FileId file, std::int64_t chunk) {
 
   const FileId spared = cache_->settings().reclaim_may_take_file_being_read ? kNoFile : file;
   co_await make_room(required, spared, fmt::format("reading '{}'", info.name));
-  cache_->add_clean(file, disk_read, sim_->now());
+  cache_->add_read(file, disk_read, sim_->now());
   cache_->reaccess(file, cache_read, sim_->now());
   cache_->allocate_anonymous(chunk);
 
@@ -84,7 +84,7 @@ Task<IoTally> IoController::read_chunk_remote(FileId file, std::int64_t chunk) {
   const std::int64_t required = chunk + remote_read;
   const FileId spared = cache_->settings().reclaim_may_take_file_being_read ? kNoFile : file;
   co_await make_room(required, spared, fmt::format("reading '{}'", info.name));
-  cache_->add_clean(file, remote_read, sim_->now());
+  cache_->add_read(file, remote_read, sim_->now());
   cache_->reaccess(file, cache_read, sim_->now());
   cache_->allocate_anonymous(chunk);
   if (remote_read > 0) {
@@ -102,7 +102,7 @@ Task<void> IoController::serve_read(FileId file, std::int64_t bytes, const Link&
   const std::int64_t cache_read = bytes - disk_read;
   const FileId spared = cache_->settings().reclaim_may_take_file_being_read ? kNoFile : file;
   co_await make_room(disk_read, spared, fmt::format("serving '{}'", info.name));
-  cache_->add_clean(file, disk_read, sim_->now());
+  cache_->add_read(file, disk_read, sim_->now());
   cache_->reaccess(file, cache_read, sim_->now());
   // Each part is one flow through the source device, the link and the client's memory: the
   // most loaded of them sets the pace.

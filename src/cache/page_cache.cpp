@@ -162,17 +162,24 @@ void PageCache::settle() {
 
 // --- Cache contents -------------------------------------------------------------------------
 
-void PageCache::add_new(FileId file, std::int64_t bytes, BlockState state, double now) {
+void PageCache::add_new(FileId file, std::int64_t bytes, BlockState state, double now, bool referenced) {
   PC_ASSERT(bytes >= 0);
   if (bytes == 0) return;
   if (bytes > free()) {
     throw SimulationError(fmt::format("cannot cache {} bytes: only {} free", bytes, free()));
   }
-  append(new_block(file, bytes, state, now), ListKind::Inactive);
+  Block& block = new_block(file, bytes, state, now);
+  block.referenced = referenced;
+  append(block, ListKind::Inactive);
   settle();
 }
 
 void PageCache::add_clean(FileId file, std::int64_t bytes, double now) { add_new(file, bytes, BlockState::Clean, now); }
+
+void PageCache::add_read(FileId file, std::int64_t bytes, double now) {
+  // The read that brought the data in is its first touch.
+  add_new(file, bytes, BlockState::Clean, now, settings_.two_touch_activation);
+}
 
 void PageCache::add_dirty(FileId file, std::int64_t bytes, double now) { add_new(file, bytes, BlockState::Dirty, now); }
 
@@ -195,23 +202,40 @@ void PageCache::reaccess(FileId file, std::int64_t bytes, double now) {
   FileEntry& entry = file_entry(file);
   std::int64_t left = bytes;
   std::int64_t merged_clean = 0;
-  for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
-    FileOrder& flist = file_list(entry, kind);
-    while (left > 0 && !flist.empty()) {
-      Block& front = flist.front();
-      Block& block = front.size > left ? split_front(front, left) : front;
-      left -= block.size;
-      if (block.state == BlockState::Clean) {
-        merged_clean += block.size;
-        destroy(block);
-      } else {
-        // Dirty (or under writeback) data moves on its own, keeping its entry time. A block
-        // already on the active list is taken from the front of the file's active list, so
-        // appending it again cannot meet it twice.
-        unlink(block);
-        append(block, ListKind::Active);
-      }
+  // Activation: clean data read is merged into one new block; dirty (or writeback) data moves
+  // on its own, keeping its entry time.
+  auto activate = [&](Block& block) {
+    if (block.state == BlockState::Clean) {
+      merged_clean += block.size;
+      destroy(block);
+    } else {
+      unlink(block);
+      block.referenced = false;
+      append(block, ListKind::Active);
     }
+  };
+  // Inactive blocks, least recently used first. With two-touch activation, a block read for
+  // the first time since it entered the cache is only marked referenced and stays in place
+  // (mark_page_accessed); read again, it is activated.
+  auto it = entry.inactive.begin();
+  while (left > 0 && it != entry.inactive.end()) {
+    Block& front = *it;
+    Block& block = front.size > left ? split_front(front, left) : front;
+    ++it;
+    left -= block.size;
+    if (settings_.two_touch_activation && !block.referenced) {
+      block.referenced = true;
+      continue;
+    }
+    activate(block);
+  }
+  // Active blocks: taken from the front of the file's active list and moved to the back, so
+  // that none is met twice.
+  while (left > 0 && !entry.active.empty()) {
+    Block& front = entry.active.front();
+    Block& block = front.size > left ? split_front(front, left) : front;
+    left -= block.size;
+    activate(block);
   }
   PC_ASSERT(left == 0);
   if (merged_clean > 0) append(new_block(file, merged_clean, BlockState::Clean, now), ListKind::Active);
@@ -305,6 +329,7 @@ std::int64_t PageCache::evict(std::int64_t amount, FileId excluded) {
     while (evicted < amount && !active_.empty()) {
       Block& oldest = *active_.front();
       unlink(oldest);
+      oldest.referenced = false;
       append(oldest, ListKind::Inactive);
       if (oldest.state == BlockState::Clean && oldest.file != excluded) take(oldest);
     }
@@ -324,6 +349,7 @@ void PageCache::balance() {
     Block& block = front->size > to_move ? split_front(*front, to_move) : *front;
     to_move -= block.size;
     unlink(block);
+    block.referenced = false;
     append(block, ListKind::Inactive);
   }
 }

@@ -79,8 +79,12 @@ class PageCache {
   std::size_t file_count() const noexcept { return files_.size(); }
 
   // --- Cache contents ---------------------------------------------------------------------
-  /// New data read from a device: a clean block at the MRU end of the inactive list.
+  /// New clean data (written through, or in the cache from the start): a clean block at the
+  /// MRU end of the inactive list.
   void add_clean(FileId file, std::int64_t bytes, double now);
+  /// New data read from a device by an application: like add_clean, and with two-touch
+  /// activation this read is its first touch (the next one activates it).
+  void add_read(FileId file, std::int64_t bytes, double now);
   /// New data written: a dirty block (entry time `now`) at the MRU end of the inactive list.
   void add_dirty(FileId file, std::int64_t bytes, double now);
   /// Takes `bytes` of free memory for a copy into the cache that is about to start (throws
@@ -90,7 +94,9 @@ class PageCache {
   /// Re-access of `bytes` cached bytes of `file` by a read: inactive blocks first, then
   /// active ones, least recently used first. Clean data read is merged into one block at the
   /// MRU end of the active list; dirty blocks move there individually, keeping their entry
-  /// times. A block read only in part is split and only the part read moves.
+  /// times. A block read only in part is split and only the part read moves. With two-touch
+  /// activation, inactive data not touched since it entered the cache is only marked
+  /// referenced and stays where it is.
   void reaccess(FileId file, std::int64_t bytes, double now);
 
   /// Bytes of one file taken for writing to its device.
@@ -139,7 +145,7 @@ class PageCache {
 
   Block& new_block(FileId file, std::int64_t size, BlockState state, double now);
   /// New data of `file` at the MRU end of the inactive list, taken from free memory.
-  void add_new(FileId file, std::int64_t bytes, BlockState state, double now);
+  void add_new(FileId file, std::int64_t bytes, BlockState state, double now, bool referenced = false);
   void append(Block& block, ListKind kind);
   void unlink(Block& block);
   void destroy(Block& block);

@@ -28,6 +28,7 @@ struct RefBlock {
   BlockState state;
   double entry;
   std::uint64_t token;  // writeback in progress
+  bool referenced = false;
 };
 
 class Reference {
@@ -71,9 +72,9 @@ class Reference {
     if (s_.balance_after_every_change) balance();
   }
 
-  void add(FileId f, std::int64_t bytes, BlockState st, double now) {
+  void add(FileId f, std::int64_t bytes, BlockState st, double now, bool referenced = false) {
     if (bytes == 0) return;
-    inactive.push_back({f, bytes, st, now, 0});
+    inactive.push_back({f, bytes, st, now, 0, referenced});
     settle();
   }
 
@@ -90,6 +91,7 @@ class Reference {
         active.erase(active.begin());
       }
       move -= b.size;
+      b.referenced = false;
       inactive.push_back(b);
     }
   }
@@ -97,23 +99,40 @@ class Reference {
   void reaccess(FileId f, std::int64_t bytes, double now) {
     std::int64_t left = bytes;
     std::int64_t merged = 0;
-    // Inactive blocks of f in order.
+    // Inactive blocks of f in order; with two-touch activation an unreferenced one is only
+    // marked (the part read, split off in place).
     for (std::size_t i = 0; i < inactive.size() && left > 0;) {
       if (inactive[i].file != f) {
         ++i;
         continue;
       }
       RefBlock b = inactive[i];
-      if (b.size > left) {
-        inactive[i].size -= left;
-        b.size = left;
-        ++i;  // the rest stays
+      const bool partial = b.size > left;
+      if (partial) b.size = left;
+      left -= b.size;
+      if (s_.two_touch_activation && !b.referenced) {
+        b.referenced = true;
+        if (partial) {
+          inactive[i].size -= b.size;
+          inactive.insert(inactive.begin() + static_cast<std::ptrdiff_t>(i), b);
+        } else {
+          inactive[i] = b;
+        }
+        i += partial ? 2 : 1;
+        continue;
+      }
+      if (partial) {
+        inactive[i].size -= b.size;
+        ++i;
       } else {
         inactive.erase(inactive.begin() + static_cast<std::ptrdiff_t>(i));
       }
-      left -= b.size;
-      if (b.state == BlockState::Clean) merged += b.size;
-      else active.push_back(b);
+      if (b.state == BlockState::Clean) {
+        merged += b.size;
+      } else {
+        b.referenced = false;
+        active.push_back(b);
+      }
     }
     // Active blocks of f that were there before this call, in order.
     std::size_t originals = active.size();
@@ -123,6 +142,7 @@ class Reference {
         continue;
       }
       RefBlock b = active[i];
+      b.referenced = false;
       if (b.size > left) {
         active[i].size -= left;
         b.size = left;
@@ -226,6 +246,7 @@ class Reference {
       while (evicted < amount && !active.empty()) {
         RefBlock b = active.front();
         active.erase(active.begin());
+        b.referenced = false;
         if (b.state == BlockState::Clean && b.file != excluded) {
           if (b.size > amount - evicted) {
             b.size -= amount - evicted;
@@ -261,6 +282,7 @@ void compare(const PageCache& cache, const Reference& ref, std::uint64_t step) {
       REQUIRE(it->file == e.file);
       REQUIRE(it->size == e.size);
       REQUIRE(it->state == e.state);
+      REQUIRE(it->referenced == e.referenced);
       ++it;
     }
   }
@@ -288,7 +310,7 @@ void run_random(const CacheSettings& settings, std::uint64_t seed, int steps) {
   for (int step = 0; step < steps; ++step) {
     now += static_cast<double>(pick(0, 3));
     const auto file = static_cast<FileId>(pick(0, kFiles - 1));
-    const auto op = pick(0, 11);
+    const auto op = pick(0, 12);
     switch (op) {
       case 0:
       case 1: {  // new data read or written
@@ -390,6 +412,12 @@ void run_random(const CacheSettings& settings, std::uint64_t seed, int steps) {
         cache.balance();
         ref.balance();
         break;
+      case 12: {  // data read from a device by an application
+        const std::int64_t bytes = std::min<std::int64_t>(pick(1, 120), cache.free());
+        cache.add_read(file, bytes, now);
+        ref.add(file, bytes, BlockState::Clean, now, settings.two_touch_activation);
+        break;
+      }
       default:
         break;
     }

@@ -199,3 +199,26 @@ TEST_CASE("with balance_after_every_change an eviction rebalances the lists at o
     CHECK(cache.list(I).bytes() == (always ? 134 : 100));
   }
 }
+
+TEST_CASE("two-touch activation: written data read once stays inactive, data read twice is activated", "[page_cache]") {
+  // Kernel behaviour (mark_page_accessed): file 0 is written (not referenced), file 1 read
+  // from disk (referenced by that read). Reading each once more: file 0 is only marked
+  // referenced and stays inactive; file 1 is activated. A third read activates file 0. The
+  // paper's model activates at the first re-read.
+  for (const bool two_touch : {true, false}) {
+    CacheSettings settings = CacheSettings::kernel();
+    settings.two_touch_activation = two_touch;
+    settings.balance_after_every_change = false;
+    PageCache cache(10000, settings);
+    cache.set_checking(true);
+    cache.add_dirty(0, 100, 0.0);
+    cache.add_read(1, 100, 0.0);
+    cache.add_clean(2, 1000, 0.0);  // keeps active <= 2 x inactive
+    cache.reaccess(0, 100, 1.0);
+    cache.reaccess(1, 100, 1.0);
+    CHECK(cache.cached(0, ListKind::Inactive) == (two_touch ? 100 : 0));
+    CHECK(cache.cached(1, ListKind::Active) == 100);
+    cache.reaccess(0, 100, 2.0);
+    CHECK(cache.cached(0, ListKind::Active) == 100);
+  }
+}

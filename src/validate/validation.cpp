@@ -1,5 +1,7 @@
 #include "validate/validation.hpp"
 
+#include "validate/csv.hpp"
+
 #include <pagecache/error.hpp>
 #include <pagecache/run.hpp>
 #include <pagecache/scenario.hpp>
@@ -17,35 +19,7 @@ namespace pagecache::validate {
 
 namespace {
 
-using Row = std::map<std::string, std::string>;
-
-std::vector<Row> read_csv(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError(fmt::format("{}: cannot open the validation data (see --data)", path));
-  auto split = [](const std::string& line) {
-    std::vector<std::string> cells;
-    std::stringstream ss(line);
-    for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell);
-    return cells;
-  };
-  std::string line;
-  auto next_line = [&]() -> bool {
-    if (!std::getline(in, line)) return false;
-    if (!line.empty() && line.back() == '\r') line.pop_back();  // files written on Windows
-    return true;
-  };
-  next_line();
-  const auto header = split(line);
-  std::vector<Row> rows;
-  while (next_line()) {
-    if (line.empty()) continue;
-    const auto cells = split(line);
-    Row row;
-    for (std::size_t i = 0; i < header.size() && i < cells.size(); ++i) row[header[i]] = cells[i];
-    rows.push_back(std::move(row));
-  }
-  return rows;
-}
+using Row = CsvRow;
 
 double num(const Row& row, const char* key) { return std::stod(row.at(key)); }
 

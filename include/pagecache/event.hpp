@@ -24,7 +24,7 @@ class EventWaiter {
   ~EventWaiter();
 
  protected:
-  bool ready() const noexcept;
+  bool ready() noexcept;
   void suspend(std::coroutine_handle<> waiting);
   bool triggered() const noexcept { return triggered_; }
 
@@ -64,7 +64,7 @@ class Event {
   class WaitAwaiter : public detail::EventWaiter {
    public:
     explicit WaitAwaiter(Event& event) noexcept : EventWaiter(event, -1.0) {}
-    bool await_ready() const noexcept { return ready(); }
+    bool await_ready() noexcept { return ready(); }
     void await_suspend(std::coroutine_handle<> waiting) { suspend(waiting); }
     void await_resume() const noexcept {}
   };
@@ -72,7 +72,7 @@ class Event {
   class TimedWaitAwaiter : public detail::EventWaiter {
    public:
     TimedWaitAwaiter(Event& event, double timeout) noexcept : EventWaiter(event, timeout) {}
-    bool await_ready() const noexcept { return ready(); }
+    bool await_ready() noexcept { return ready(); }
     void await_suspend(std::coroutine_handle<> waiting) { suspend(waiting); }
     /// True if the event was triggered, false if the timeout expired first.
     bool await_resume() const noexcept { return triggered(); }

@@ -16,13 +16,10 @@ EventWaiter::~EventWaiter() {
   }
 }
 
-bool EventWaiter::ready() const noexcept {
-  if (event_ != nullptr && event_->triggered_) {
-    // Completed without suspending: report it as triggered.
-    const_cast<EventWaiter*>(this)->triggered_ = true;
-    return true;
-  }
-  return false;
+bool EventWaiter::ready() noexcept {
+  // An event already triggered completes the wait without suspending, as triggered.
+  if (event_ != nullptr && event_->triggered_) triggered_ = true;
+  return triggered_;
 }
 
 void EventWaiter::suspend(std::coroutine_handle<> waiting) {

@@ -360,7 +360,7 @@ void FairShare::withdraw(detail::FlowState* flow) noexcept {
 }
 
 void FairShare::check_invariants() const {
-  std::size_t registered = 0;
+  std::size_t flows_seen = 0;  // each flow counted once, on its first resource
   for (const auto& r : impl_->resources) {
     std::size_t coupled = 0;
     for (std::size_t slot = 0; slot < r.flows.size(); ++slot) {
@@ -371,7 +371,7 @@ void FairShare::check_invariants() const {
       }
       PC_ASSERT_MSG(found, fmt::format("flow registry of '{}' out of step", r.name));
       if (flow->usage_count > 1) ++coupled;
-      if (flow->usage_count == 1) ++registered;
+      if (flow->usages[0].resource.index == r.index) ++flows_seen;
       if (r.coupled > 0) {
         PC_ASSERT(flow->mode == FlowMode::Explicit);
         PC_ASSERT(flow->rate > 0.0 && static_cast<bool>(flow->completion));
@@ -388,7 +388,7 @@ void FairShare::check_invariants() const {
     }
     PC_ASSERT_MSG(utilization(ResourceId{r.index}) <= 1.0 + 1e-9, fmt::format("'{}' over capacity", r.name));
   }
-  PC_ASSERT(registered <= impl_->active);
+  PC_ASSERT_MSG(flows_seen == impl_->active, fmt::format("{} flows registered, {} active", flows_seen, impl_->active));
   PC_ASSERT(impl_->pool.in_use() == impl_->active);
 }
 

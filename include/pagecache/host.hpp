@@ -81,10 +81,14 @@ class Host {
   std::size_t file_count() const noexcept;
 
   /// Reads the whole file in chunks of `chunk_size` bytes; each chunk's copy is kept in
-  /// application memory until release_memory().
-  Task<IoResult> read_file(FileRef file, std::int64_t chunk_size);
-  /// Writes the file's whole size in chunks of `chunk_size` bytes.
-  Task<IoResult> write_file(FileRef file, std::int64_t chunk_size);
+  /// application memory until release_memory(). `direct`: O_DIRECT, bypassing the page cache.
+  Task<IoResult> read_file(FileRef file, std::int64_t chunk_size, bool direct = false);
+  /// Writes the file's whole size in chunks of `chunk_size` bytes. `direct`: O_DIRECT.
+  Task<IoResult> write_file(FileRef file, std::int64_t chunk_size, bool direct = false);
+  /// fsync(2): returns when every dirty byte of the file is on its disk.
+  Task<void> fsync(FileRef file);
+  /// Deletes the file's data from the page cache (unlink): dirty data is discarded unwritten.
+  Task<void> delete_file(FileRef file);
   /// Runs `core_seconds` of computation on one core's worth of the host's CPU at most.
   Task<void> compute(double core_seconds);
   /// Frees application memory (a task's buffers at its end).

@@ -68,6 +68,9 @@ struct TaskSpec {
   std::vector<std::string> writes;
   std::int64_t chunk_size = 0;
   std::vector<std::string> after;  ///< workflow tasks that must end first (besides file producers)
+  bool fsync = false;      ///< fsync each written file before the task ends
+  bool direct_io = false;  ///< reads and writes bypass the page cache (O_DIRECT)
+  std::vector<std::string> deletes;  ///< files deleted when the task ends
 };
 
 /// An application: tasks run one after the other on one host.

@@ -10,7 +10,7 @@
 
 #include <cstdint>
 #include <string>
-#include <vector>
+#include <deque>
 
 namespace pagecache::cache {
 
@@ -32,6 +32,8 @@ struct FileInfo {
   bool is_remote() const noexcept { return remote.server != nullptr; }
 };
 
+// Files are added while the simulation runs (remote files, on first use) and processes hold
+// references to their FileInfo across waits: a deque keeps those references valid.
 class FileTable {
  public:
   FileId add(std::string name, std::int64_t size, const Disk& disk) {
@@ -48,7 +50,7 @@ class FileTable {
   std::size_t size() const noexcept { return files_.size(); }
 
  private:
-  std::vector<FileInfo> files_;
+  std::deque<FileInfo> files_;
 };
 
 }  // namespace pagecache::cache

@@ -85,19 +85,23 @@ IoResult to_result(double start, double end, const cache::IoTally& tally) {
 }
 }  // namespace
 
-Task<IoResult> Host::read_file(FileRef file, std::int64_t chunk_size) {
+Task<IoResult> Host::read_file(FileRef file, std::int64_t chunk_size, bool direct) {
   const cache::FileId id = impl_->id(file);
   const double start = impl_->sim.now();
-  const cache::IoTally tally = co_await impl_->io.read_file(id, chunk_size);
+  const cache::IoTally tally = co_await impl_->io.read_file(id, chunk_size, direct);
   co_return to_result(start, impl_->sim.now(), tally);
 }
 
-Task<IoResult> Host::write_file(FileRef file, std::int64_t chunk_size) {
+Task<IoResult> Host::write_file(FileRef file, std::int64_t chunk_size, bool direct) {
   const cache::FileId id = impl_->id(file);
   const double start = impl_->sim.now();
-  const cache::IoTally tally = co_await impl_->io.write_file(id, impl_->files[id].size, chunk_size);
+  const cache::IoTally tally = co_await impl_->io.write_file(id, impl_->files[id].size, chunk_size, direct);
   co_return to_result(start, impl_->sim.now(), tally);
 }
+
+Task<void> Host::fsync(FileRef file) { co_await impl_->io.fsync(impl_->id(file)); }
+
+Task<void> Host::delete_file(FileRef file) { co_await impl_->io.drop(impl_->id(file)); }
 
 Task<void> Host::compute(double core_seconds) { co_await impl_->cpu.compute(core_seconds); }
 

@@ -194,23 +194,57 @@ Task<IoTally> IoController::write_chunk_writethrough(FileId file, std::int64_t c
   co_return IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
 }
 
-Task<IoTally> IoController::read_file(FileId file, std::int64_t chunk_size) {
+Task<IoTally> IoController::read_file(FileId file, std::int64_t chunk_size, bool direct) {
   if (chunk_size <= 0) throw ConfigError(fmt::format("chunk size must be > 0, got {}", chunk_size));
+  const FileInfo& info = (*files_)[file];
+  if (direct && info.is_remote()) throw ConfigError(fmt::format("'{}': direct I/O on a remote file is not modelled", info.name));
   IoTally total;
-  const std::int64_t size = (*files_)[file].size;
-  for (std::int64_t offset = 0; offset < size; offset += chunk_size) {
-    total += co_await read_chunk(file, std::min(chunk_size, size - offset));
+  for (std::int64_t offset = 0; offset < info.size; offset += chunk_size) {
+    const std::int64_t chunk = std::min(chunk_size, info.size - offset);
+    if (!direct) {
+      total += co_await read_chunk(file, chunk);
+      continue;
+    }
+    // O_DIRECT: only the application's buffer takes memory; the data comes from the disk.
+    co_await make_room(chunk, kNoFile, fmt::format("reading '{}'", info.name));
+    cache_->allocate_anonymous(chunk);
+    co_await info.disk->read(chunk);
+    total += IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
   }
   co_return total;
 }
 
-Task<IoTally> IoController::write_file(FileId file, std::int64_t bytes, std::int64_t chunk_size) {
+Task<IoTally> IoController::write_file(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool direct) {
   if (chunk_size <= 0) throw ConfigError(fmt::format("chunk size must be > 0, got {}", chunk_size));
+  const FileInfo& info = (*files_)[file];
+  if (direct && info.is_remote()) throw ConfigError(fmt::format("'{}': direct I/O on a remote file is not modelled", info.name));
   IoTally total;
   for (std::int64_t offset = 0; offset < bytes; offset += chunk_size) {
-    total += co_await write_chunk(file, std::min(chunk_size, bytes - offset));
+    const std::int64_t chunk = std::min(chunk_size, bytes - offset);
+    if (!direct) {
+      total += co_await write_chunk(file, chunk);
+      continue;
+    }
+    co_await info.disk->write(chunk);  // O_DIRECT: straight to the disk
+    total += IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
   }
   co_return total;
+}
+
+Task<void> IoController::fsync(FileId file) {
+  const FileInfo& info = (*files_)[file];
+  if (info.is_remote()) co_return;  // no client write cache: nothing is dirty here
+  std::vector<PageCache::Flushed> taken;
+  const std::int64_t bytes = cache_->flush_file(file, taken);
+  flushed_ += bytes;
+  if (bytes > 0) co_await info.disk->write(bytes);
+  for (const auto& part : taken) cache_->end_writeback(part);
+  while (cache_->writeback(file) > 0) co_await wait_for_progress();  // the flusher's, or a writer's
+}
+
+Task<void> IoController::drop(FileId file) {
+  while (cache_->writeback(file) > 0) co_await wait_for_progress();
+  cache_->drop_file(file);
 }
 
 }  // namespace pagecache::cache

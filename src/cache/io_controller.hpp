@@ -46,10 +46,17 @@ class IoController {
   /// Writes `chunk` bytes to `file` (Algorithm 3 in writeback mode; disk then cache in
   /// writethrough mode).
   Task<IoTally> write_chunk(FileId file, std::int64_t chunk);
-  /// Reads a whole file in chunks of `chunk_size` bytes.
-  Task<IoTally> read_file(FileId file, std::int64_t chunk_size);
-  /// Writes `bytes` to `file` in chunks of `chunk_size` bytes.
-  Task<IoTally> write_file(FileId file, std::int64_t bytes, std::int64_t chunk_size);
+  /// Reads a whole file in chunks of `chunk_size` bytes; `direct`: bypassing the page cache
+  /// (O_DIRECT: from the disk into the application's buffer).
+  Task<IoTally> read_file(FileId file, std::int64_t chunk_size, bool direct = false);
+  /// Writes `bytes` to `file` in chunks of `chunk_size` bytes; `direct`: straight to the disk.
+  Task<IoTally> write_file(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool direct = false);
+  /// fsync: writes back every dirty byte of `file` and waits for it, and for writebacks of it
+  /// already in progress.
+  Task<void> fsync(FileId file);
+  /// Deletes the file's cached data (dirty data is discarded, never written), once its
+  /// writebacks in progress have ended.
+  Task<void> drop(FileId file);
 
   /// Serving another host (this one is an NFS server): sends `bytes` of `file` over `link`,
   /// from this host's page cache or, for what is not cached, from its disk (then cached).

@@ -273,6 +273,47 @@ std::int64_t PageCache::flush(std::int64_t amount, FileId excluded, std::vector<
   return flushed;
 }
 
+std::int64_t PageCache::flush_file(FileId file, std::vector<Flushed>& out) {
+  std::int64_t flushed = 0;
+  const std::uint64_t token = next_token_++;
+  FileEntry& entry = file_entry(file);
+  for (FileOrder* flist : {&entry.inactive, &entry.active}) {
+    for (Block& block : *flist) {
+      if (block.state != BlockState::Dirty) continue;
+      block.writeback_batch = token;
+      flushed += block.size;
+      set_state(block, BlockState::Writeback);
+    }
+  }
+  if (flushed > 0) out.push_back({file, flushed, token});
+  settle();
+  return flushed;
+}
+
+std::int64_t PageCache::writeback(FileId file) const noexcept {
+  if (file >= files_.size()) return 0;
+  std::int64_t bytes = 0;
+  for (const FileOrder* flist : {&files_[file].inactive, &files_[file].active}) {
+    for (const Block& block : *flist) {
+      if (block.state == BlockState::Writeback) bytes += block.size;
+    }
+  }
+  return bytes;
+}
+
+void PageCache::drop_file(FileId file) {
+  FileEntry& entry = file_entry(file);
+  for (FileOrder* flist : {&entry.inactive, &entry.active}) {
+    while (!flist->empty()) {
+      Block& block = flist->front();
+      PC_ASSERT_MSG(block.state != BlockState::Writeback, "a file is dropped while being written back");
+      destroy(block);
+    }
+  }
+  settle();
+  if (progress_hook_) progress_hook_();
+}
+
 PageCache::Flushed PageCache::flush_expired_block(double cutoff) {
   for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
     LruList& list = list_of(kind);

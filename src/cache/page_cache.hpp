@@ -118,6 +118,13 @@ class PageCache {
   /// split or moved meanwhile).
   void end_writeback(const Flushed& taken);
 
+  /// Takes every dirty byte of `file` for writing back (fsync), as flush() does.
+  std::int64_t flush_file(FileId file, std::vector<Flushed>& out);
+  /// Bytes of `file` being written back now.
+  std::int64_t writeback(FileId file) const noexcept;
+  /// Drops every block of `file` (the file is deleted): clean data is freed, dirty data is
+  /// discarded. None of it may be in writeback (wait for it first).
+  void drop_file(FileId file);
   /// Deletes up to `amount` bytes of clean data, least recently used first (inactive list,
   /// then, unless settings().reclaim_inactive_only, the active list), skipping `excluded`.
   /// Returns how many. Takes no simulated time.

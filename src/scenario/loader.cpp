@@ -197,6 +197,9 @@ TaskSpec read_task(const toml::table& table, std::string path, std::size_t index
   t.chunk_size = r.optional_size("chunk_size").value_or(default_chunk);
   if (t.chunk_size <= 0) r.fail("chunk_size", "must be > 0");
   if (with_after) t.after = r.strings("after");
+  t.fsync = r.optional_bool("fsync").value_or(false);
+  t.direct_io = r.optional_bool("direct_io").value_or(false);
+  t.deletes = r.strings("delete");
   r.finish();
   return t;
 }
@@ -420,7 +423,7 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
       throw ConfigError(fmt::format("{}: {}: no host named '{}'", file, owner, host));
     }
     for (const TaskSpec& t : tasks) {
-      for (const auto* list : {&t.reads, &t.writes}) {
+      for (const auto* list : {&t.reads, &t.writes, &t.deletes}) {
         for (const std::string& name : *list) {
           auto it = by_name.find(name);
           if (it == by_name.end()) throw ConfigError(fmt::format("{}: {}, task '{}': unknown file '{}'", file, owner, t.name, name));

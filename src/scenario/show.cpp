@@ -31,6 +31,7 @@ void write_task(std::string& out, const std::string& table, const TaskSpec& t, b
   out += fmt::format("\n[[{}]]\nname = {}\nread = {}\ncompute = {}\nwrite = {}\nchunk_size = {}\n", table, quoted(t.name),
                      list(t.reads), quoted(units::format_duration(t.compute)), list(t.writes),
                      quoted(units::format_size(t.chunk_size)));
+  out += fmt::format("fsync = {}\ndirect_io = {}\ndelete = {}\n", t.fsync, t.direct_io, list(t.deletes));
   if (with_after) out += fmt::format("after = {}\n", list(t.after));
 }
 

@@ -161,7 +161,9 @@ class Runner {
     PhaseRow row{app, task.name, reading ? "read" : "write", sim_.now(), 0, 0, 0, 0};
     for (const std::string& name : reading ? task.reads : task.writes) {
       const FileRef file = file_on(host.name(), name);
-      const IoResult r = reading ? co_await host.read_file(file, task.chunk_size) : co_await host.write_file(file, task.chunk_size);
+      const IoResult r = reading ? co_await host.read_file(file, task.chunk_size, task.direct_io)
+                                 : co_await host.write_file(file, task.chunk_size, task.direct_io);
+      if (!reading && task.fsync) co_await host.fsync(file);
       row.bytes += r.bytes;
       row.cache_bytes += r.cache_bytes;
       row.disk_bytes += r.disk_bytes;
@@ -180,6 +182,11 @@ class Runner {
     result_.timeline.push_back(compute);
     co_await io_phase(app, task, host, false);
     host.release_memory(read.bytes);  // the task's buffers are freed when it ends
+    for (const std::string& name : task.deletes) {
+      co_await host.delete_file(file_on(host.name(), name));
+      const PlacedFile& stored = files_.at(name);
+      if (stored.host != &host) co_await stored.host->delete_file(stored.ref);  // on the server too
+    }
   }
 
   Task<void> run_app(const AppSpec& app) {

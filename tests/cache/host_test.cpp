@@ -227,3 +227,70 @@ TEST_CASE("reading a file whose copy and buffer exceed memory needs reclaim of t
     }
   }
 }
+
+TEST_CASE("fsync returns when the file's dirty data is on disk", "[host][features]") {
+  // 500 MB written into the cache at 1000 MB/s (0.5 s), then fsync: 500 MB at 100 MB/s, 5 s.
+  Simulator sim;
+  FairShare share(sim);
+  Host host(sim, share, small_host(CacheSettings::kernel()));
+  const FileRef file = host.add_file("out", 500 * MB, host.add_disk("d", 100e6, 100e6));
+  double synced = 0;
+  auto writer = [](Simulator& s, Host& h, FileRef f, double& done) -> Task<void> {
+    co_await h.write_file(f, 100 * MB);
+    co_await h.fsync(f);
+    done = s.now();
+  };
+  sim.spawn(writer(sim, host, file, synced));
+  sim.run_until(5.4);
+  CHECK(synced == 0.0);
+  sim.run();
+  CHECK(synced == Catch::Detail::Approx(5.5));
+  CHECK(host.dirty(file) == 0);
+  CHECK(host.cached(file) == 500 * MB);
+}
+
+TEST_CASE("direct I/O bypasses the page cache", "[host][features]") {
+  // 1 GB read twice with O_DIRECT: both from disk at 100 MB/s (10 s each), nothing cached;
+  // then written directly: 10 s at 100 MB/s, nothing dirty.
+  Simulator sim;
+  FairShare share(sim);
+  Host host(sim, share, small_host(CacheSettings::kernel()));
+  const DiskRef disk = host.add_disk("d", 100e6, 100e6);
+  const FileRef in = host.add_file("in", 1000 * MB, disk);
+  const FileRef out = host.add_file("out", 1000 * MB, disk);
+  std::vector<IoResult> results;
+  auto app = [](Host& h, FileRef i, FileRef o, std::vector<IoResult>& r) -> Task<void> {
+    for (int k = 0; k < 2; ++k) {
+      r.push_back(co_await h.read_file(i, 100 * MB, true));
+      h.release_memory(r.back().bytes);
+    }
+    r.push_back(co_await h.write_file(o, 100 * MB, true));
+  };
+  sim.spawn(app(host, in, out, results));
+  sim.run();
+  REQUIRE(results.size() == 3);
+  for (const IoResult& r : results) {
+    CHECK(r.end - r.start == Catch::Detail::Approx(10.0));
+    CHECK(r.disk_bytes == 1000 * MB);
+  }
+  CHECK(host.memory().cached == 0);
+}
+
+TEST_CASE("a deleted file's dirty data is discarded, never written", "[host][features]") {
+  // 500 MB written (dirty), then the file is deleted before it expires: the cache is empty,
+  // and the flusher writes nothing.
+  Simulator sim;
+  FairShare share(sim);
+  Host host(sim, share, small_host(CacheSettings::kernel()));
+  const FileRef file = host.add_file("tmp", 500 * MB, host.add_disk("d", 100e6, 100e6));
+  auto app = [](Host& h, FileRef f) -> Task<void> {
+    co_await h.write_file(f, 100 * MB);
+    co_await h.delete_file(f);
+  };
+  sim.spawn(app(host, file));
+  sim.run();
+  CHECK(host.cached(file) == 0);
+  CHECK(host.memory().dirty == 0);
+  CHECK(host.periodic_flush_bytes() == 0);
+  CHECK(sim.now() == Catch::Detail::Approx(5.0));  // the flusher's next tick, which finds nothing
+}

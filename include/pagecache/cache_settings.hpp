@@ -33,6 +33,10 @@ struct CacheSettings {
   /// is just marked. Written data is not referenced: written then read once, it stays
   /// inactive. Off, as the paper: any re-read activates.
   bool two_touch_activation = true;
+  /// Files being written keep their pages: eviction takes other clean data first, and the
+  /// clean data of files open for writing only when nothing else is left (the paper observed
+  /// this of the kernel: a file's freshly written pages outlive older data). Off, as the paper.
+  bool protect_files_being_written = true;
   /// Dirty thresholds are fractions of free + cached memory, as the kernel's dirtyable memory
   /// (mm/page-writeback.c, global_dirtyable_memory). Off: free + cached - dirty, the paper's.
   bool dirtyable_memory = true;
@@ -64,6 +68,7 @@ struct CacheSettings {
     s.dirtyable_memory = false;
     s.background_writeback = false;
     s.two_touch_activation = false;
+    s.protect_files_being_written = false;
     s.reclaim_inactive_only = false;
     s.reclaim_may_take_file_being_read = false;
     s.flush_splits_in_place = false;

@@ -219,6 +219,7 @@ Task<IoTally> IoController::write_file(FileId file, std::int64_t bytes, std::int
   const FileInfo& info = (*files_)[file];
   if (direct && info.is_remote()) throw ConfigError(fmt::format("'{}': direct I/O on a remote file is not modelled", info.name));
   IoTally total;
+  cache_->set_being_written(file, true);
   for (std::int64_t offset = 0; offset < bytes; offset += chunk_size) {
     const std::int64_t chunk = std::min(chunk_size, bytes - offset);
     if (!direct) {
@@ -228,6 +229,7 @@ Task<IoTally> IoController::write_file(FileId file, std::int64_t bytes, std::int
     co_await info.disk->write(chunk);  // O_DIRECT: straight to the disk
     total += IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
   }
+  cache_->set_being_written(file, false);
   co_return total;
 }
 

@@ -354,29 +354,43 @@ std::int64_t PageCache::evict(std::int64_t amount, FileId excluded) {
     evicted_total_ += victim.size;
     destroy(victim);
   };
-  for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
-    if (kind == ListKind::Active && settings_.reclaim_inactive_only) break;
-    LruList& list = list_of(kind);
-    Block* block = list.front(BlockState::Clean);
-    while (block != nullptr && evicted < amount) {
-      Block* next = list.next(*block, BlockState::Clean);
-      if (block->file != excluded) take(*block);
-      block = next;
+  // One reclaim pass; `spare_written` also skips the files open for writing.
+  auto pass = [&](bool spare_written) {
+    auto spared = [&](const Block& block) {
+      return block.file == excluded || (spare_written && files_[block.file].writers > 0);
+    };
+    for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
+      if (kind == ListKind::Active && settings_.reclaim_inactive_only) break;
+      LruList& list = list_of(kind);
+      Block* block = list.front(BlockState::Clean);
+      while (block != nullptr && evicted < amount) {
+        Block* next = list.next(*block, BlockState::Clean);
+        if (!spared(*block)) take(*block);
+        block = next;
+      }
     }
-  }
-  if (settings_.reclaim_inactive_only) {
-    // Active list aging (mm/vmscan.c, shrink_active_list): with no clean inactive data left,
-    // the oldest active data is deactivated, and reclaimed if it is clean.
-    while (evicted < amount && !active_.empty()) {
-      Block& oldest = *active_.front();
-      unlink(oldest);
-      oldest.referenced = false;
-      append(oldest, ListKind::Inactive);
-      if (oldest.state == BlockState::Clean && oldest.file != excluded) take(oldest);
+    if (settings_.reclaim_inactive_only) {
+      // Active list aging (mm/vmscan.c, shrink_active_list): with no clean inactive data left,
+      // the oldest active data is deactivated, and reclaimed if it is clean.
+      while (evicted < amount && !active_.empty()) {
+        Block& oldest = *active_.front();
+        unlink(oldest);
+        oldest.referenced = false;
+        append(oldest, ListKind::Inactive);
+        if (oldest.state == BlockState::Clean && !spared(oldest)) take(oldest);
+      }
     }
-  }
+  };
+  pass(settings_.protect_files_being_written);
+  if (evicted < amount && settings_.protect_files_being_written) pass(false);
   settle();
   return evicted;
+}
+
+void PageCache::set_being_written(FileId file, bool writing) {
+  FileEntry& entry = file_entry(file);
+  entry.writers += writing ? 1 : -1;
+  PC_ASSERT(entry.writers >= 0);
 }
 
 void PageCache::balance() {

@@ -129,6 +129,9 @@ class PageCache {
   /// then, unless settings().reclaim_inactive_only, the active list), skipping `excluded`.
   /// Returns how many. Takes no simulated time.
   std::int64_t evict(std::int64_t amount, FileId excluded);
+  /// A write of `file` starts (true) or ends (false). With protect_files_being_written,
+  /// eviction spares files being written while other clean data is left.
+  void set_being_written(FileId file, bool writing);
   /// Bytes evicted so far.
   std::int64_t evicted_bytes() const noexcept { return evicted_total_; }
   /// Moves least recently used active data to the inactive list until active <= 2 x inactive.
@@ -144,6 +147,7 @@ class PageCache {
     std::int64_t inactive_bytes = 0;
     std::int64_t active_bytes = 0;
     std::int64_t dirty_bytes = 0;
+    int writers = 0;  // writes in progress
   };
 
   FileEntry& file_entry(FileId file);

@@ -104,6 +104,7 @@ void apply_override(toml::table& root, const std::string& key, const std::string
 std::vector<std::pair<std::string, bool*>> cache_switches(CacheSettings& s) {
   return {{"background_writeback", &s.background_writeback},
           {"two_touch_activation", &s.two_touch_activation},
+          {"protect_files_being_written", &s.protect_files_being_written},
           {"dirtyable_memory", &s.dirtyable_memory},
           {"reclaim_inactive_only", &s.reclaim_inactive_only},
           {"reclaim_may_take_file_being_read", &s.reclaim_may_take_file_being_read},

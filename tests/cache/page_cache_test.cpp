@@ -222,3 +222,24 @@ TEST_CASE("two-touch activation: written data read once stays inactive, data rea
     CHECK(cache.cached(0, ListKind::Active) == 100);
   }
 }
+
+TEST_CASE("files being written keep their pages while other clean data is left", "[page_cache]") {
+  // Inactive, oldest first: file 0 (100, clean, being written), file 1 (100, clean). With the
+  // protection, evicting 100 takes file 1 although file 0 is older; evicting 50 more must then
+  // take file 0. Without it, plain LRU order: file 0 goes first.
+  for (const bool protect : {true, false}) {
+    CacheSettings settings = CacheSettings::kernel();
+    settings.protect_files_being_written = protect;
+    PageCache cache(10000, settings);
+    cache.set_checking(true);
+    cache.add_clean(0, 100, 0.0);
+    cache.add_clean(1, 100, 0.0);
+    cache.set_being_written(0, true);
+    CHECK(cache.evict(100, kNoFile) == 100);
+    CHECK(cache.cached(0) == (protect ? 100 : 0));
+    CHECK(cache.cached(1) == (protect ? 0 : 100));
+    CHECK(cache.evict(50, kNoFile) == 50);
+    CHECK(cache.cached(0) + cache.cached(1) == 50);
+    cache.set_being_written(0, false);
+  }
+}

@@ -20,7 +20,10 @@ pagecache::Task<void> reader(const pagecache::Disk& disk, std::int64_t flows, st
   }
 }
 
-void BM_DiskConcurrentFlows(benchmark::State& state) {
+// N processes, each running `per_process` flows back to back on the device that
+// `make_device(share)` builds; reports the wall time per flow start+finish.
+template <class MakeDevice, class Process>
+void run_concurrent_flows(benchmark::State& state, MakeDevice make_device, Process process) {
   const auto concurrent = state.range(0);
   // At least 2*10^5 flows per iteration and 20 per process, so that every N measures a long
   // steady state (each finish followed by a start) rather than the initial burst.
@@ -30,8 +33,8 @@ void BM_DiskConcurrentFlows(benchmark::State& state) {
     state.PauseTiming();
     auto sim = std::make_unique<pagecache::Simulator>();
     auto share = std::make_unique<pagecache::FairShare>(*sim);
-    pagecache::Disk disk(*share, "disk", 500e6, 400e6);
-    for (std::int64_t p = 0; p < concurrent; ++p) sim->spawn(reader(disk, per_process, p));
+    const auto device = make_device(*share);
+    for (std::int64_t p = 0; p < concurrent; ++p) sim->spawn(process(*device, per_process, p));
     state.ResumeTiming();
     sim->run();
     state.PauseTiming();  // teardown is not part of the figure
@@ -43,6 +46,12 @@ void BM_DiskConcurrentFlows(benchmark::State& state) {
   state.SetItemsProcessed(flows);
   state.counters["time_per_flow"] =
       benchmark::Counter(static_cast<double>(flows), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+void BM_DiskConcurrentFlows(benchmark::State& state) {
+  run_concurrent_flows(
+      state, [](pagecache::FairShare& share) { return std::make_unique<pagecache::Disk>(share, "disk", 500e6, 400e6); },
+      &reader);
 }
 BENCHMARK(BM_DiskConcurrentFlows)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -59,27 +68,13 @@ pagecache::Task<void> copier(const pagecache::Memory& memory, std::int64_t flows
 }
 
 void BM_MemoryConcurrentFlows(benchmark::State& state) {
-  const auto concurrent = state.range(0);
-  const std::int64_t per_process = std::max<std::int64_t>(20, 200'000 / concurrent);
-  std::int64_t flows = 0;
-  for (auto _ : state) {
-    state.PauseTiming();
-    auto sim = std::make_unique<pagecache::Simulator>();
-    auto share = std::make_unique<pagecache::FairShare>(*sim);
-    // Aggregate about 5 flows' worth: with more flows the aggregate binds.
-    pagecache::Memory memory(*share, "memory", pagecache::MemoryBandwidth{6.8e9, 2.7e9, 34e9, 14e9});
-    for (std::int64_t p = 0; p < concurrent; ++p) sim->spawn(copier(memory, per_process, p));
-    state.ResumeTiming();
-    sim->run();
-    state.PauseTiming();
-    share.reset();
-    sim.reset();
-    state.ResumeTiming();
-    flows += concurrent * per_process;
-  }
-  state.SetItemsProcessed(flows);
-  state.counters["time_per_flow"] =
-      benchmark::Counter(static_cast<double>(flows), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  // Aggregate about 5 flows' worth: with more flows the aggregate binds.
+  run_concurrent_flows(
+      state,
+      [](pagecache::FairShare& share) {
+        return std::make_unique<pagecache::Memory>(share, "memory", pagecache::MemoryBandwidth{6.8e9, 2.7e9, 34e9, 14e9});
+      },
+      &copier);
 }
 BENCHMARK(BM_MemoryConcurrentFlows)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::kMillisecond)->UseRealTime();
 

@@ -28,6 +28,14 @@ struct CacheSettings {
   /// once, concurrently with the writers, until dirty data is back under that threshold. Off,
   /// as the paper: dirty data waits for dirty_expire or for a writer to hit dirty_ratio.
   bool background_writeback = true;
+  /// Dirty throttling (mm/page-writeback.c, balance_dirty_pages): a writer never flushes
+  /// itself. It writes at memory speed while dirty + writeback data is under the kernel's
+  /// setpoint, halfway between the freerun ceiling ((dirty_ratio + dirty_background_ratio) / 2)
+  /// and dirty_ratio; there it is paused until writeback frees quota, so writers together
+  /// dirty data as fast as the devices clean it. Needs background_writeback (the flusher does
+  /// the writing); without it, writers flush as in the paper. Off, as the paper: a writer at
+  /// dirty_ratio flushes a chunk's worth itself, then writes the chunk.
+  bool dirty_throttling = true;
   /// Two-touch activation (mm/swap.c, mark_page_accessed): data read from a device is marked
   /// referenced by that read; cached data read again is activated only if referenced, else it
   /// is just marked. Written data is not referenced: written then read once, it stays
@@ -67,6 +75,7 @@ struct CacheSettings {
     s.writeback_interval = 5.0;
     s.dirtyable_memory = false;
     s.background_writeback = false;
+    s.dirty_throttling = false;
     s.two_touch_activation = false;
     s.protect_files_being_written = false;
     s.reclaim_inactive_only = false;

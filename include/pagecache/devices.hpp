@@ -25,7 +25,8 @@ class Disk {
   /// `capacity` is the storage size in bytes (0: unlimited).
   Disk(FairShare& share, std::string name, double read_bw, double write_bw, std::int64_t capacity = 0);
 
-  FlowAwaiter read(std::int64_t bytes) const;
+  /// `bound`: the most the reader can take (e.g. Memory::fresh_copy_rate()).
+  FlowAwaiter read(std::int64_t bytes, double bound = kUnbounded) const;
   FlowAwaiter write(std::int64_t bytes) const;
   Usage read_usage() const noexcept { return {resource_, 1.0 / read_bw_}; }
   Usage write_usage() const noexcept { return {resource_, 1.0 / write_bw_}; }
@@ -50,9 +51,13 @@ struct MemoryBandwidth {
   double write = 0.0;            ///< per-flow write (application buffer -> cache)
   double aggregate_read = 0.0;   ///< all flows together, reading
   double aggregate_write = 0.0;  ///< all flows together, writing
+  /// First touch of fresh application memory (MODEL.md §6.10): the page fault and the zeroing
+  /// of each page a thread writes for the first time, in bytes per second of one thread;
+  /// 0: free. A read into a newly allocated buffer pays it on top of the copy.
+  double first_touch = 0.0;
 
   /// One channel shared by everything, as in the paper: the per-flow bounds equal the aggregate.
-  static MemoryBandwidth shared_channel(double bandwidth) { return {bandwidth, bandwidth, bandwidth, bandwidth}; }
+  static MemoryBandwidth shared_channel(double bandwidth) { return {bandwidth, bandwidth, bandwidth, bandwidth, 0.0}; }
 };
 
 class Memory {
@@ -64,6 +69,14 @@ class Memory {
   /// Flow specs for use in a multi-resource flow (bound included).
   FlowSpec read_spec(std::int64_t bytes) const;
   FlowSpec write_spec(std::int64_t bytes) const;
+  /// A cached read into fresh application memory: the copy and the first touch of every
+  /// destination page, done one after the other by the reading thread (its rate is
+  /// 1 / (1 / read + 1 / first_touch)); the zeroing also loads the aggregate as a write.
+  FlowSpec read_into_fresh_spec(std::int64_t bytes) const;
+  FlowAwaiter read_into_fresh(std::int64_t bytes) const;
+  /// The fastest a thread can take data into fresh application memory (copy and first
+  /// touch): the bound of a device read into a new buffer. Unbounded if first touch is free.
+  double fresh_copy_rate() const noexcept;
 
   ResourceId resource() const noexcept { return resource_; }
   const MemoryBandwidth& bandwidth() const noexcept { return bandwidth_; }

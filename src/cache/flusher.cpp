@@ -14,7 +14,7 @@ void Flusher::start() {
 bool Flusher::background_due() const {
   const CacheSettings& s = cache_->settings();
   if (!s.background_writeback || cache_->dirty() == 0) return false;
-  return static_cast<double>(cache_->dirty_and_writeback()) > s.dirty_background_ratio * static_cast<double>(cache_->dirtyable());
+  return cache_->dirty_and_writeback() > cache_->dirty_limits().background;
 }
 
 void Flusher::notify_dirty() {

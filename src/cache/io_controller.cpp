@@ -70,8 +70,11 @@ Task<IoTally> IoController::read_chunk(FileId file, std::int64_t chunk) {
   cache_->reaccess(file, cache_read, sim_->now());
   cache_->allocate_anonymous(chunk);
 
-  if (disk_read > 0) co_await info.disk->read(disk_read);
-  if (cache_read > 0) co_await memory_->read(cache_read);
+  // The application's buffer is fresh memory: the reader faults in and zeroes each page it
+  // copies into. From the disk that overlaps the device's transfer (readahead), from the
+  // cache it adds to the copy.
+  if (disk_read > 0) co_await info.disk->read(disk_read, memory_->fresh_copy_rate());
+  if (cache_read > 0) co_await memory_->read_into_fresh(cache_read);
   co_return IoTally{.bytes = chunk, .cache_bytes = cache_read, .disk_bytes = disk_read};
 }
 
@@ -88,10 +91,11 @@ Task<IoTally> IoController::read_chunk_remote(FileId file, std::int64_t chunk) {
   cache_->reaccess(file, cache_read, sim_->now());
   cache_->allocate_anonymous(chunk);
   if (remote_read > 0) {
-    co_await info.remote.server->serve_read(info.remote.server_file, remote_read, *info.remote.link,
-                                            memory_->write_spec(remote_read));
+    FlowSpec client_copy = memory_->write_spec(remote_read);
+    client_copy.bound = std::min(client_copy.bound, memory_->fresh_copy_rate());
+    co_await info.remote.server->serve_read(info.remote.server_file, remote_read, *info.remote.link, client_copy);
   }
-  if (cache_read > 0) co_await memory_->read(cache_read);
+  if (cache_read > 0) co_await memory_->read_into_fresh(cache_read);
   // From this host's point of view, data from the server is not from its own cache.
   co_return IoTally{.bytes = chunk, .cache_bytes = cache_read, .disk_bytes = remote_read};
 }
@@ -152,8 +156,48 @@ Task<void> IoController::write_to_cache(FileId file, std::int64_t bytes) {
   flusher_->notify_dirty();
 }
 
+Task<IoTally> IoController::write_chunk_throttled(FileId file, std::int64_t chunk) {
+  // balance_dirty_pages: the writer never writes back itself. Under the setpoint it dirties
+  // pages at memory speed; at the setpoint it sleeps until the flusher's writeback frees
+  // quota (each writeback that ends wakes it). The kernel paces writers smoothly, a pause
+  // every few pages; here a writer takes what quota there is, so writers together go exactly
+  // as fast as writeback once the setpoint is reached.
+  std::int64_t remaining = chunk;
+  while (remaining > 0) {
+    const std::int64_t in_use = cache_->dirty_and_writeback();
+    const std::int64_t quota = cache_->dirty_limits().setpoint - in_use;
+    // With nothing dirty there is nothing to wait for: a setpoint below one page (a tiny
+    // dirty_ratio) still lets the writer go, a chunk at a time, as the kernel's minimum pause.
+    std::int64_t want = in_use == 0 ? remaining : std::min(remaining, quota);
+    if (want < std::min(remaining, kPageSize)) {
+      flusher_->notify_dirty();
+      co_await wait_for_progress();
+      continue;
+    }
+    cache_->evict(want - cache_->free(), file);
+    const std::int64_t to_cache = std::min(want, cache_->free());
+    if (to_cache < std::min(want, kPageSize)) {
+      // Out of memory with nothing clean to reclaim: dirty data must be written first, as
+      // reclaim does (pageout), or copies and writebacks in flight must land.
+      const std::int64_t flushed = co_await write_back(want - cache_->free(), kNoFile);
+      if (flushed == 0) {
+        if (cache_->writeback() == 0 && cache_->reserved() == 0) {
+          throw SimulationError(fmt::format("t = {:.6f} s: writing '{}': no memory can be freed for {} bytes", sim_->now(),
+                                            (*files_)[file].name, remaining));
+        }
+        co_await wait_for_progress();
+      }
+      continue;
+    }
+    co_await write_to_cache(file, to_cache);
+    remaining -= to_cache;
+  }
+  co_return IoTally{.bytes = chunk, .cache_bytes = chunk, .disk_bytes = 0};
+}
+
 Task<IoTally> IoController::write_chunk_writeback(FileId file, std::int64_t chunk) {
   const CacheSettings& settings = cache_->settings();
+  if (settings.dirty_throttling && settings.background_writeback) co_return co_await write_chunk_throttled(file, chunk);
   const auto limit = [&] {
     return static_cast<std::int64_t>(std::floor(settings.dirty_ratio * static_cast<double>(cache_->dirtyable())));
   };
@@ -208,7 +252,7 @@ Task<IoTally> IoController::read_file(FileId file, std::int64_t chunk_size, bool
     // O_DIRECT: only the application's buffer takes memory; the data comes from the disk.
     co_await make_room(chunk, kNoFile, fmt::format("reading '{}'", info.name));
     cache_->allocate_anonymous(chunk);
-    co_await info.disk->read(chunk);
+    co_await info.disk->read(chunk, memory_->fresh_copy_rate());
     total += IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
   }
   co_return total;

@@ -62,6 +62,17 @@ class PageCache {
   /// Memory the dirty thresholds are fractions of: free + cached (kernel) or
   /// free + cached - dirty (paper; dirty including writeback), per settings().dirtyable_memory.
   std::int64_t dirtyable() const noexcept;
+  /// The dirty thresholds now, in bytes (mm/page-writeback.c, domain_dirty_limits and
+  /// balance_dirty_pages): `background` = dirty_background_ratio x dirtyable (half of `limit`
+  /// if that ratio is not below dirty_ratio, as the kernel clamps it), `limit` = dirty_ratio x
+  /// dirtyable, and `setpoint`, where a throttled writer's pace equals writeback's: halfway
+  /// between the freerun ceiling (background + limit) / 2 and the limit.
+  struct DirtyLimits {
+    std::int64_t background = 0;
+    std::int64_t limit = 0;
+    std::int64_t setpoint = 0;
+  };
+  DirtyLimits dirty_limits() const noexcept;
   /// Memory a read may count on freeing by eviction before it must flush: clean inactive data
   /// (kernel) or every inactive byte (WRENCH-cache), the excluded file's included.
   std::int64_t evictable() const noexcept;

@@ -103,6 +103,7 @@ void apply_override(toml::table& root, const std::string& key, const std::string
 
 std::vector<std::pair<std::string, bool*>> cache_switches(CacheSettings& s) {
   return {{"background_writeback", &s.background_writeback},
+          {"dirty_throttling", &s.dirty_throttling},
           {"two_touch_activation", &s.two_touch_activation},
           {"protect_files_being_written", &s.protect_files_being_written},
           {"dirtyable_memory", &s.dirtyable_memory},
@@ -165,6 +166,9 @@ HostConfig read_host(const toml::table& table, std::string path, std::size_t ind
   for (const auto& [key, bw] : bandwidths) {
     if (bw <= 0.0) r.fail(key, "must be > 0");
   }
+  // Absent or "0 MB/s": first touch of fresh memory costs nothing.
+  h.memory_bandwidth.first_touch = r.optional_bandwidth("memory_first_touch_bw").value_or(0.0);
+  if (h.memory_bandwidth.first_touch < 0.0) r.fail("memory_first_touch_bw", "must be >= 0 (0: free)");
   h.cache = read_page_cache(r.optional_table("page_cache"), r, profile, file);
   const auto disks = r.tables("disks");
   for (std::size_t i = 0; i < disks.size(); ++i) {

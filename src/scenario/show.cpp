@@ -45,11 +45,12 @@ std::string to_toml(const Scenario& s) {
   for (const HostConfig& h : s.hosts) {
     out += fmt::format(
         "\n[[hosts]]\nname = {}\ncores = {}\nmemory = {}\nmemory_in_use = {}\nmemory_read_bw = {}\nmemory_write_bw = {}\n"
-        "memory_aggregate_read_bw = {}\nmemory_aggregate_write_bw = {}\n",
+        "memory_aggregate_read_bw = {}\nmemory_aggregate_write_bw = {}\nmemory_first_touch_bw = {}\n",
         quoted(h.name), h.cores, quoted(units::format_size(h.memory)), quoted(units::format_size(h.memory_in_use)),
         quoted(units::format_bandwidth(h.memory_bandwidth.read)),
         quoted(units::format_bandwidth(h.memory_bandwidth.write)), quoted(units::format_bandwidth(h.memory_bandwidth.aggregate_read)),
-        quoted(units::format_bandwidth(h.memory_bandwidth.aggregate_write)));
+        quoted(units::format_bandwidth(h.memory_bandwidth.aggregate_write)),
+        quoted(units::format_bandwidth(h.memory_bandwidth.first_touch)));
     out += fmt::format(
         "\n[hosts.page_cache]\nmode = {}\ndirty_ratio = {}\ndirty_background_ratio = {}\ndirty_expire = {}\nwriteback_interval = {}\n",
         quoted(h.cache.write_mode == WriteMode::Writeback ? "writeback" : "writethrough"), h.cache.dirty_ratio,

@@ -28,9 +28,9 @@ Disk::Disk(FairShare& share, std::string name, double read_bw, double write_bw, 
   resource_ = share.add_resource(std::move(name));
 }
 
-FlowAwaiter Disk::read(std::int64_t bytes) const {
+FlowAwaiter Disk::read(std::int64_t bytes, double bound) const {
   require_bytes(bytes, "disk read");
-  return share_->transfer(FlowSpec{.work = static_cast<double>(bytes)}.through(read_usage()));
+  return share_->transfer(FlowSpec{.work = static_cast<double>(bytes), .bound = bound}.through(read_usage()));
 }
 
 FlowAwaiter Disk::write(std::int64_t bytes) const {
@@ -44,6 +44,9 @@ Memory::Memory(FairShare& share, std::string name, MemoryBandwidth bandwidth)
   require_positive(bandwidth.write, name, "write bandwidth");
   require_positive(bandwidth.aggregate_read, name, "aggregate read bandwidth");
   require_positive(bandwidth.aggregate_write, name, "aggregate write bandwidth");
+  if (!(bandwidth.first_touch >= 0.0) || !std::isfinite(bandwidth.first_touch)) {
+    throw ConfigError(fmt::format("{}: first-touch bandwidth must be >= 0 (0: free), got {}", name, bandwidth.first_touch));
+  }
   resource_ = share.add_resource(std::move(name));
 }
 
@@ -59,7 +62,21 @@ FlowSpec Memory::write_spec(std::int64_t bytes) const {
       {resource_, 1.0 / bandwidth_.aggregate_write});
 }
 
+FlowSpec Memory::read_into_fresh_spec(std::int64_t bytes) const {
+  FlowSpec spec = read_spec(bytes);
+  if (bandwidth_.first_touch <= 0.0) return spec;
+  spec.bound = fresh_copy_rate();
+  spec.usages[0].cost += 1.0 / bandwidth_.aggregate_write;
+  return spec;
+}
+
+double Memory::fresh_copy_rate() const noexcept {
+  if (bandwidth_.first_touch <= 0.0) return kUnbounded;
+  return 1.0 / (1.0 / bandwidth_.read + 1.0 / bandwidth_.first_touch);
+}
+
 FlowAwaiter Memory::read(std::int64_t bytes) const { return share_->transfer(read_spec(bytes)); }
+FlowAwaiter Memory::read_into_fresh(std::int64_t bytes) const { return share_->transfer(read_into_fresh_spec(bytes)); }
 FlowAwaiter Memory::write(std::int64_t bytes) const { return share_->transfer(write_spec(bytes)); }
 
 Link::Link(FairShare& share, std::string name, double bandwidth, double latency)

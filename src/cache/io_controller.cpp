@@ -160,23 +160,38 @@ Task<IoTally> IoController::write_chunk_throttled(FileId file, std::int64_t chun
   // balance_dirty_pages: the writer never writes back itself. Under the setpoint it dirties
   // pages at memory speed; at the setpoint it sleeps until the flusher's writeback frees
   // quota (each writeback that ends wakes it). The kernel paces writers smoothly, a pause
-  // every few pages; here a writer takes what quota there is, so writers together go exactly
-  // as fast as writeback once the setpoint is reached.
+  // every few pages; here a writer moves at least a granule at a time (the kernel's smallest
+  // writeback chunk, MIN_WRITEBACK_PAGES), so that blocks do not shrink without end as
+  // writers share what writeback frees.
+  constexpr std::int64_t kGranule = 4 * 1024 * 1024;
   std::int64_t remaining = chunk;
+  bool throttled = false;
   while (remaining > 0) {
-    const std::int64_t in_use = cache_->dirty_and_writeback();
-    const std::int64_t quota = cache_->dirty_limits().setpoint - in_use;
-    // With nothing dirty there is nothing to wait for: a setpoint below one page (a tiny
-    // dirty_ratio) still lets the writer go, a chunk at a time, as the kernel's minimum pause.
-    std::int64_t want = in_use == 0 ? remaining : std::min(remaining, quota);
-    if (want < std::min(remaining, kPageSize)) {
+    // Copies in flight count: their pages are being dirtied.
+    const std::int64_t in_use = cache_->dirty_and_writeback() + cache_->reserved();
+    const PageCache::DirtyLimits limits = cache_->dirty_limits();
+    const std::int64_t quota = limits.setpoint - in_use;
+    const std::int64_t piece = std::min(remaining, kGranule);
+    // Under the background threshold nothing would write back for the writer to wait for:
+    // it goes on (a setpoint within a granule of it only happens on tiny memories).
+    if (quota < piece && in_use > limits.background) {
+      if (!throttled) ++throttled_writers_;
+      throttled = true;
       flusher_->notify_dirty();
       co_await wait_for_progress();
       continue;
     }
+    std::int64_t want = std::min(remaining, std::max(quota, piece));
+    if (throttled) {
+      // The kernel paces every throttled writer of a device at the same rate: what writeback
+      // freed is shared with the writers still waiting, not taken by the first one woken.
+      want = std::min(want, std::max(quota / throttled_writers_, piece));
+      --throttled_writers_;
+      throttled = false;
+    }
     cache_->evict(want - cache_->free(), file);
     const std::int64_t to_cache = std::min(want, cache_->free());
-    if (to_cache < std::min(want, kPageSize)) {
+    if (to_cache < std::min(want, kGranule)) {
       // Out of memory with nothing clean to reclaim: dirty data must be written first, as
       // reclaim does (pageout), or copies and writebacks in flight must land.
       const std::int64_t flushed = co_await write_back(want - cache_->free(), kNoFile);

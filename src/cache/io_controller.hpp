@@ -94,6 +94,7 @@ class IoController {
   FileTable* files_;
   Flusher* flusher_;
   std::int64_t flushed_ = 0;
+  std::int64_t throttled_writers_ = 0;  // writers waiting for dirty quota
   std::optional<Event> progress_;
 };
 

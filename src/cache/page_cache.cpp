@@ -47,7 +47,9 @@ std::int64_t PageCache::writeback() const noexcept {
 }
 
 std::int64_t PageCache::dirtyable() const noexcept {
-  return settings_.dirtyable_memory ? free() + cached() : free() + cached() - dirty() - writeback();
+  // Copies into the cache in flight (reserved) are file pages already, as the kernel's pages
+  // are dirtied one by one while the copy runs.
+  return settings_.dirtyable_memory ? free() + cached() + reserved_ : free() + cached() - dirty() - writeback();
 }
 
 std::int64_t PageCache::dirty_and_writeback() const noexcept { return dirty() + writeback(); }

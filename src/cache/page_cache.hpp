@@ -59,8 +59,9 @@ class PageCache {
   /// What the dirty thresholds limit: data dirty or being written back (as the kernel's
   /// balance_dirty_pages counts NR_FILE_DIRTY + NR_WRITEBACK).
   std::int64_t dirty_and_writeback() const noexcept;
-  /// Memory the dirty thresholds are fractions of: free + cached (kernel) or
-  /// free + cached - dirty (paper; dirty including writeback), per settings().dirtyable_memory.
+  /// Memory the dirty thresholds are fractions of: free + cached + copies into the cache in
+  /// flight (kernel) or free + cached - dirty (paper; dirty including writeback), per
+  /// settings().dirtyable_memory.
   std::int64_t dirtyable() const noexcept;
   /// The dirty thresholds now, in bytes (mm/page-writeback.c, domain_dirty_limits and
   /// balance_dirty_pages): `background` = dirty_background_ratio x dirtyable (half of `limit`

@@ -6,6 +6,8 @@
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 #include <string>
 #include <vector>
@@ -293,4 +295,106 @@ TEST_CASE("a deleted file's dirty data is discarded, never written", "[host][fea
   CHECK(host.memory().dirty == 0);
   CHECK(host.periodic_flush_bytes() == 0);
   CHECK(sim.now() == Catch::Detail::Approx(5.0));  // the flusher's next tick, which finds nothing
+}
+
+TEST_CASE("dirty throttling holds writers at the kernel's setpoint and paces them at the disk's speed", "[host][throttling]") {
+  // 10 GB host, no application memory: dirtyable memory is 10 GB; dirty_ratio 0.4 and
+  // dirty_background_ratio 0.1 put the background threshold at 1 GB, the limit at 4 GB, the
+  // freerun ceiling at 2.5 GB and the setpoint at (2.5 + 4) / 2 = 3.25 GB. 6 GB are written
+  // in 100 MB chunks at 1000 MB/s. Background writeback starts when dirty data passes 1 GB
+  // (1.1 s) and writes one 100 MB block a second (100 MB/s). The writer runs free until
+  // dirty + writeback reach 3.25 GB (3.45 s: 3450 MB written, 200 MB written back), then
+  // writes only what writeback frees: with W written and k blocks written back it may have
+  // W = 3250 + 100 k MB, so its last 50 MB wait for the 28th block, written back at 1.1 + 28 =
+  // 29.1 s, and are in the cache at 29.15 s. The writer never flushes itself.
+  // Without throttling (the paper's writer) it runs to dirty_ratio (4 GB) and then flushes a
+  // chunk's worth itself before each chunk.
+  for (const bool throttling : {true, false}) {
+    CacheSettings settings = CacheSettings::kernel();
+    settings.dirty_throttling = throttling;
+    settings.dirty_ratio = 0.4;
+    settings.dirty_background_ratio = 0.1;
+    Simulator sim;
+    FairShare share(sim);
+    Host host(sim, share, small_host(settings));
+    std::int64_t peak = 0;
+    host.set_memory_observer([&peak](double, const MemoryState& m) { peak = std::max(peak, m.dirty + m.writeback); });
+    const FileRef file = host.add_file("out", 6000 * MB, host.add_disk("d", 100e6, 100e6));
+    double written = 0;
+    sim.spawn(write_then_record(sim, host, file, written));
+    sim.run();
+    INFO("throttling " << throttling << ": done at " << written << " s, peak dirty + writeback " << peak);
+    if (throttling) {
+      CHECK(written == Catch::Detail::Approx(29.15));
+      CHECK(peak <= 3250 * MB);
+      CHECK(peak >= 3150 * MB);
+      CHECK(host.forced_flush_bytes() == 0);
+    } else {
+      CHECK(peak > 3900 * MB);
+      CHECK(host.forced_flush_bytes() > 0);
+    }
+    CHECK(host.memory().dirty == 0);
+  }
+}
+
+TEST_CASE("several throttled writers share what writeback frees", "[host][throttling]") {
+  // Two writers of 3 GB each on the host above: together they dirty 2000 MB/s of the one
+  // memory channel (1000 MB/s shared, so 500 MB/s each) until the setpoint (3.25 GB), then
+  // share the 100 MB/s writeback frees, 50 MB each per block written back. The last bytes
+  // wait for about the 28th block (29.1 s) as for one writer of 6 GB (give or take the pieces
+  // in flight when the setpoint is reached): throttling paces the writers together at the
+  // disk's speed. And fairly: at the setpoint one of them may hold a whole chunk in flight
+  // while the other gets a sliver, a head start of at most one chunk (1 s of writeback); from
+  // then on each gets half of every block, so they end within 1 s of each other (the first
+  // one woken would otherwise take every block whole, 2 s ahead).
+  CacheSettings settings = CacheSettings::kernel();
+  settings.dirty_ratio = 0.4;
+  settings.dirty_background_ratio = 0.1;
+  Simulator sim;
+  FairShare share(sim);
+  Host host(sim, share, small_host(settings));
+  const DiskRef disk = host.add_disk("d", 100e6, 100e6);
+  const FileRef a = host.add_file("a", 3000 * MB, disk);
+  const FileRef b = host.add_file("b", 3000 * MB, disk);
+  double done_a = 0, done_b = 0;
+  sim.spawn(write_then_record(sim, host, a, done_a));
+  sim.spawn(write_then_record(sim, host, b, done_b));
+  sim.run();
+  INFO("a done at " << done_a << " s, b at " << done_b << " s");
+  CHECK(std::max(done_a, done_b) == Catch::Detail::Approx(29.15).margin(0.15));
+  CHECK(std::abs(done_a - done_b) <= 1.0);
+  CHECK(host.forced_flush_bytes() == 0);
+}
+
+TEST_CASE("the first touch of fresh memory slows reads into new buffers, not reads paced by the disk", "[host][fresh-memory]") {
+  // Copies run at 1000 MB/s and the first touch of fresh memory at 1000 MB/s: a reader fills
+  // a new buffer at 1 / (1 / 1000 + 1 / 1000) = 500 MB/s. A 1 GB file on a 100 MB/s disk is
+  // read in 10 s, as without the cost (readahead overlaps it); read again from the cache into
+  // a new buffer, it takes 2 s instead of 1 s. From a 2000 MB/s disk the reader, not the
+  // disk, sets the pace: 2 s instead of 0.5 s.
+  for (const double first_touch : {0.0, 1000e6}) {
+    for (const double disk_bw : {100e6, 2000e6}) {
+      HostSpec spec = small_host(CacheSettings::kernel());
+      spec.memory_bandwidth.first_touch = first_touch;
+      Simulator sim;
+      FairShare share(sim);
+      Host host(sim, share, spec);
+      const FileRef file = host.add_file("in", 1000 * MB, host.add_disk("d", disk_bw, disk_bw));
+      std::vector<IoResult> reads;
+      auto twice = [](Host& h, FileRef f, std::vector<IoResult>& out) -> Task<void> {
+        for (int i = 0; i < 2; ++i) {
+          out.push_back(co_await h.read_file(f, 100 * MB));
+          h.release_memory(out.back().bytes);
+        }
+      };
+      sim.spawn(twice(host, file, reads));
+      sim.run();
+      REQUIRE(reads.size() == 2);
+      INFO("first touch " << first_touch << ", disk " << disk_bw);
+      const double from_disk = first_touch > 0 ? std::max(10.0 * 100e6 / disk_bw, 2.0) : 10.0 * 100e6 / disk_bw;
+      CHECK(reads[0].end - reads[0].start == Catch::Detail::Approx(from_disk));
+      CHECK(reads[1].cache_bytes == 1000 * MB);
+      CHECK(reads[1].end - reads[1].start == Catch::Detail::Approx(first_touch > 0 ? 2.0 : 1.0));
+    }
+  }
 }

@@ -124,7 +124,10 @@ int main(int argc, char** argv) {
   std::string data_dir = std::string(PCSIM_SOURCE_DIR) + "/validation/paper";
   std::string scenarios_dir = std::string(PCSIM_SOURCE_DIR) + "/scenarios/paper";
   validate->add_option("--json", json_path, "also write the results as JSON to this file");
-  validate->add_option("--profile", profile, "model profile, overriding the scenarios'")->check(CLI::IsMember({"paper", "linux"}));
+  std::string validate_profile = "linux";
+  validate->add_option("--profile", validate_profile, "model profile (the paper scenarios' own profile is paper)")
+      ->check(CLI::IsMember({"paper", "linux"}))
+      ->capture_default_str();
   validate->add_option("--set", sets, "override a key of every scenario: KEY=VALUE (repeatable)");
   std::vector<std::string> switches;
   validate->add_option("--switch", switches, "force a page-cache switch on every host: NAME=true|false (ablations)");
@@ -155,7 +158,7 @@ int main(int argc, char** argv) {
         if (value != "true" && value != "false") throw pagecache::ConfigError("--switch " + name + ": use true or false");
         forced.emplace_back(name, value == "true");
       }
-      const auto report = pagecache::validate::run({data_dir, scenarios_dir, profile, parse_sets(sets), forced});
+      const auto report = pagecache::validate::run({data_dir, scenarios_dir, validate_profile, parse_sets(sets), forced});
       fmt::print("{}", report.text());
       if (!json_path.empty()) {
         std::ofstream out(json_path);

@@ -207,6 +207,7 @@ CaseResult concurrent(const Options& o, const std::string& name, const std::stri
 
 Report run(const Options& o) {
   Report report;
+  report.profile = o.profile.empty() ? "(the scenarios' own)" : o.profile;
   report.cases.push_back(exp1(o, 20, 28.0));
   report.cases.push_back(exp1(o, 100, 155.0));
   report.cases.push_back(concurrent(o, "exp2_local", "exp2.toml", "exp2_real_phase_times.csv", "exp2_wrench_cache_phase_times.csv"));
@@ -215,7 +216,7 @@ Report run(const Options& o) {
 }
 
 std::string Report::text() const {
-  std::string out;
+  std::string out = fmt::format("pcsim validate, profile {}: the paper's experiments against the real runs\n", profile);
   for (const CaseResult& c : cases) {
     out += fmt::format("\n{}: mean error {:.1f} % (WRENCH-cache {:.1f} %)", c.name, c.mean_error_pct, c.wrench_mean_error_pct);
     if (c.read_mean_error_pct >= 0) {
@@ -233,8 +234,8 @@ std::string Report::json() const {
   std::string out = "[\n";
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const CaseResult& c = cases[i];
-    out += fmt::format("  {{\"case\": \"{}\", \"mean_error_pct\": {:.4f}, \"wrench_cache_mean_error_pct\": {:.4f}", c.name,
-                       c.mean_error_pct, c.wrench_mean_error_pct);
+    out += fmt::format("  {{\"case\": \"{}\", \"profile\": \"{}\", \"mean_error_pct\": {:.4f}, \"wrench_cache_mean_error_pct\": {:.4f}",
+                       c.name, profile, c.mean_error_pct, c.wrench_mean_error_pct);
     if (c.read_mean_error_pct >= 0) {
       out += fmt::format(
           ", \"read_mean_error_pct\": {:.4f}, \"write_mean_error_pct\": {:.4f}, \"wrench_cache_read_mean_error_pct\": {:.4f}, "

@@ -33,6 +33,7 @@ struct CaseResult {
 };
 
 struct Report {
+  std::string profile;
   std::vector<CaseResult> cases;
   std::string text() const;
   std::string json() const;

@@ -362,6 +362,24 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
   read_platform(r, s, file);
   if (s.hosts.empty()) r.fail_table("no host: add a [[hosts]] table, or a platform file");
 
+  // [start.memory_in_use]: host name -> memory in use when this run starts (what a measured
+  // run began with, e.g. tmpfs contents), replacing the platform's figure for that host.
+  if (const toml::table* start = r.optional_table("start")) {
+    TomlReader st(*start, "start", file);
+    if (const toml::table* in_use = st.optional_table("memory_in_use")) {
+      TomlReader m(*in_use, "start.memory_in_use", file);
+      for (const auto& [key, node] : *in_use) {
+        const std::string name(key.str());
+        const auto h = std::find_if(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == name; });
+        if (h == s.hosts.end()) m.fail(name, fmt::format("no host named '{}'", name));
+        h->memory_in_use = *m.optional_size(name);
+        if (h->memory_in_use >= h->memory) m.fail(name, "must be less than the host's memory");
+      }
+      m.finish();
+    }
+    st.finish();
+  }
+
   const auto files = r.tables("files");
   for (std::size_t i = 0; i < files.size(); ++i) {
     TomlReader f(*files[i], r.child_path("files", i), file);

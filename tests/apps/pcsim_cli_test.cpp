@@ -138,6 +138,28 @@ TEST_CASE("pcsim rejects a file larger than its disk", "[cli][errors]") {
   expect_rejected("too_big", text, {"too_big.toml", "file 'in' (20 GB) does not fit on disk 'd' (10 GB)"});
 }
 
+TEST_CASE("pcsim rejects a start state for an unknown host or larger than the memory", "[cli][errors]") {
+  expect_rejected("start_host", std::string(kPlatform) + kWorkload + "[start.memory_in_use]\nmars = \"1 GB\"\n",
+                  {"start_host.toml:", "key 'start.memory_in_use.mars'", "no host named 'mars'"});
+  expect_rejected("start_size", std::string(kPlatform) + kWorkload + "[start.memory_in_use]\nh = \"9 GB\"\n",
+                  {"start_size.toml:", "key 'start.memory_in_use.h'", "less than the host's memory"});
+  expect_rejected("start_key", std::string(kPlatform) + kWorkload + "[start]\ncolour = 1\n", {"start_key.toml:", "unknown key 'start.colour'"});
+}
+
+TEST_CASE("a scenario's start state replaces the platform's memory in use, and a first-touch bandwidth is read", "[cli][show]") {
+  // The host of kPlatform has no memory in use and free first touch; the scenario says 2 GB
+  // were in use when the run started and a first touch of 4 GB/s: show resolves both.
+  const fs::path dir = scratch("start");
+  std::string text = std::string(kPlatform) + kWorkload + "[start.memory_in_use]\nh = \"2 GB\"\n";
+  const std::string write_bw = "memory_write_bw = \"1 GB/s\"";
+  text.replace(text.find(write_bw), write_bw.size(), write_bw + "\nmemory_first_touch_bw = \"4 GB/s\"");
+  std::ofstream(dir / "start.toml") << text;
+  const Outcome o = pcsim(fmt::format("show '{}'", (dir / "start.toml").string()));
+  INFO(o.output);
+  REQUIRE(o.status == 0);
+  CHECK_THAT(o.output, Catch::Contains("memory_in_use = \"2 GB\"") && Catch::Contains("memory_first_touch_bw = \"4 GB/s\""));
+}
+
 TEST_CASE("pcsim rejects a workflow with a dependency cycle", "[cli][errors]") {
   const std::string text = std::string(kPlatform) + R"(
 [[files]]

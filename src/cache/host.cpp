@@ -41,6 +41,7 @@ struct Host::Impl {
 
 Host::Host(Simulator& sim, FairShare& share, HostSpec spec) : impl_(std::make_unique<Impl>(sim, share, std::move(spec))) {
   impl_->cache.allocate_anonymous(impl_->spec.memory_in_use);
+  impl_->io.machine_at_rest();
   impl_->flusher.start();
 }
 

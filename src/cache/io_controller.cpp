@@ -34,10 +34,13 @@ Task<std::int64_t> IoController::write_back(std::int64_t amount, FileId excluded
 
 IoController::IoController(Simulator& sim, PageCache& cache, const Memory& memory, FileTable& files, Flusher& flusher)
     : sim_(&sim), cache_(&cache), memory_(&memory), files_(&files), flusher_(&flusher) {
+  machine_at_rest();
   cache_->set_progress_hook([this] {
     if (progress_ && !progress_->triggered()) progress_->trigger();
   });
 }
+
+void IoController::machine_at_rest() { dirty_limit_.reset(cache_->dirty_limits().thresh); }
 
 Task<void> IoController::wait_for_progress() {
   if (!progress_ || progress_->triggered()) progress_.emplace(*sim_);
@@ -57,15 +60,25 @@ Task<void> IoController::make_room(std::int64_t required, FileId spared, const s
   }
 }
 
+Task<std::int64_t> IoController::room_for_read(FileId file, std::int64_t bytes, std::int64_t anonymous, std::string what) {
+  const FileInfo& info = (*files_)[file];
+  const FileId spared = cache_->settings().reclaim_may_take_file_being_read ? kNoFile : file;
+  for (;;) {
+    const std::int64_t uncached = std::clamp<std::int64_t>(info.size - cache_->cached(file), 0, bytes);
+    co_await make_room(anonymous + uncached, spared, what);
+    // While make_room waited, others may have evicted some of this file's data: then more of
+    // the chunk comes from the device, and needs room too.
+    const std::int64_t now_uncached = std::clamp<std::int64_t>(info.size - cache_->cached(file), 0, bytes);
+    if (anonymous + now_uncached <= cache_->free()) co_return now_uncached;
+  }
+}
+
 Task<IoTally> IoController::read_chunk(FileId file, std::int64_t chunk) {
   const FileInfo& info = (*files_)[file];
   if (info.is_remote()) co_return co_await read_chunk_remote(file, chunk);
-  const std::int64_t disk_read = std::clamp<std::int64_t>(info.size - cache_->cached(file), 0, chunk);
+  // The application's copy + the new cache copy of what is not cached.
+  const std::int64_t disk_read = co_await room_for_read(file, chunk, chunk, fmt::format("reading '{}'", info.name));
   const std::int64_t cache_read = chunk - disk_read;
-  const std::int64_t required = chunk + disk_read;  // the application's copy + the new cache copy
-
-  const FileId spared = cache_->settings().reclaim_may_take_file_being_read ? kNoFile : file;
-  co_await make_room(required, spared, fmt::format("reading '{}'", info.name));
   cache_->add_read(file, disk_read, sim_->now());
   cache_->reaccess(file, cache_read, sim_->now());
   cache_->allocate_anonymous(chunk);
@@ -82,11 +95,8 @@ Task<IoTally> IoController::read_chunk_remote(FileId file, std::int64_t chunk) {
   // A client read (NFS): what this host's cache lacks comes from the server, over the link,
   // and is kept in this host's cache (clean); the rest is a hit in this host's cache.
   const FileInfo& info = (*files_)[file];
-  const std::int64_t remote_read = std::clamp<std::int64_t>(info.size - cache_->cached(file), 0, chunk);
+  const std::int64_t remote_read = co_await room_for_read(file, chunk, chunk, fmt::format("reading '{}'", info.name));
   const std::int64_t cache_read = chunk - remote_read;
-  const std::int64_t required = chunk + remote_read;
-  const FileId spared = cache_->settings().reclaim_may_take_file_being_read ? kNoFile : file;
-  co_await make_room(required, spared, fmt::format("reading '{}'", info.name));
   cache_->add_read(file, remote_read, sim_->now());
   cache_->reaccess(file, cache_read, sim_->now());
   cache_->allocate_anonymous(chunk);
@@ -102,10 +112,8 @@ Task<IoTally> IoController::read_chunk_remote(FileId file, std::int64_t chunk) {
 
 Task<void> IoController::serve_read(FileId file, std::int64_t bytes, const Link& link, FlowSpec client_copy) {
   const FileInfo& info = (*files_)[file];
-  const std::int64_t disk_read = std::clamp<std::int64_t>(info.size - cache_->cached(file), 0, bytes);
+  const std::int64_t disk_read = co_await room_for_read(file, bytes, 0, fmt::format("serving '{}'", info.name));
   const std::int64_t cache_read = bytes - disk_read;
-  const FileId spared = cache_->settings().reclaim_may_take_file_being_read ? kNoFile : file;
-  co_await make_room(disk_read, spared, fmt::format("serving '{}'", info.name));
   cache_->add_read(file, disk_read, sim_->now());
   cache_->reaccess(file, cache_read, sim_->now());
   // Each part is one flow through the source device, the link and the client's memory: the
@@ -157,39 +165,60 @@ Task<void> IoController::write_to_cache(FileId file, std::int64_t bytes) {
 }
 
 Task<IoTally> IoController::write_chunk_throttled(FileId file, std::int64_t chunk) {
-  // balance_dirty_pages: the writer never writes back itself. Under the setpoint it dirties
-  // pages at memory speed; at the setpoint it sleeps until the flusher's writeback frees
-  // quota (each writeback that ends wakes it). The kernel paces writers smoothly, a pause
-  // every few pages; here a writer moves at least a granule at a time (the kernel's smallest
-  // writeback chunk, MIN_WRITEBACK_PAGES), so that blocks do not shrink without end as
-  // writers share what writeback frees.
+  // balance_dirty_pages (mm/page-writeback.c): the writer never writes back itself.
+  // - Dirty + writeback under the setpoint (halfway between the freerun ceiling and the
+  //   domain's limit, see DirtyLimit): it dirties pages at memory speed. (The kernel lets it
+  //   run free under the freerun ceiling only, and paces it by its rate limit above; while
+  //   that rate limit is adapted to the device, which it is in a steady state, the two meet
+  //   at the setpoint.)
+  // - Above the setpoint: its rate is the device's write bandwidth shared by the throttled
+  //   writers, times the kernel's position ratio 1 + ((setpoint - dirty) / (limit -
+  //   setpoint))^3 (pos_ratio_polynom), which is 1 at the setpoint and 0 at the limit: the
+  //   writers together dirty data as fast as writeback cleans it when dirty sits at the
+  //   setpoint, slower above it. It pauses up to 200 ms at a time (MAX_PAUSE) and writes a
+  //   granule (the kernel's smallest writeback chunk, MIN_WRITEBACK_PAGES) once its pauses
+  //   have earned it.
   constexpr std::int64_t kGranule = 4 * 1024 * 1024;
+  constexpr double kMaxPause = 0.2;
+  const double device_bw = (*files_)[file].disk->write_bandwidth();
   std::int64_t remaining = chunk;
   bool throttled = false;
+  double credit = 0.0;  // bytes this writer's pauses have earned
   while (remaining > 0) {
     // Copies in flight count: their pages are being dirtied.
     const std::int64_t in_use = cache_->dirty_and_writeback() + cache_->reserved();
     const PageCache::DirtyLimits limits = cache_->dirty_limits();
-    const std::int64_t quota = limits.setpoint - in_use;
+    if (in_use > limits.freerun) dirty_limit_.update(sim_->now(), limits.thresh, in_use, throttled_writers_ > 0);
+    const std::int64_t limit = dirty_limit_.hard_limit(limits.thresh);
+    const std::int64_t setpoint = (limits.freerun + limit) / 2;
     const std::int64_t piece = std::min(remaining, kGranule);
-    // Under the background threshold nothing would write back for the writer to wait for:
-    // it goes on (a setpoint within a granule of it only happens on tiny memories).
-    if (quota < piece && in_use > limits.background) {
+    std::int64_t want = 0;
+    // Under the background threshold nothing would write back to pace the writer by: it goes
+    // on (a setpoint within a granule of it only happens on tiny memories).
+    if (in_use + piece <= setpoint || in_use <= limits.background) {
+      want = std::min(remaining, std::max(setpoint - in_use, piece));
+      if (throttled) {
+        --throttled_writers_;
+        throttled = false;
+      }
+    } else {
       if (!throttled) ++throttled_writers_;
       throttled = true;
       flusher_->notify_dirty();
-      co_await wait_for_progress();
-      continue;
+      if (credit < static_cast<double>(piece)) {
+        const double x = static_cast<double>(setpoint - in_use) / static_cast<double>(std::max<std::int64_t>(limit - setpoint, 1));
+        const double pos_ratio = std::clamp(1.0 + x * x * x, 0.0, 2.0);
+        const double rate = device_bw * pos_ratio / static_cast<double>(throttled_writers_);
+        const double pause = rate > 0.0 ? std::min(kMaxPause, (static_cast<double>(piece) - credit) / rate) : kMaxPause;
+        co_await sim_->sleep(pause);
+        credit += rate * pause;
+        continue;
+      }
+      want = piece;
     }
-    std::int64_t want = std::min(remaining, std::max(quota, piece));
-    if (throttled) {
-      // The kernel paces every throttled writer of a device at the same rate: what writeback
-      // freed is shared with the writers still waiting, not taken by the first one woken.
-      want = std::min(want, std::max(quota / throttled_writers_, piece));
-      --throttled_writers_;
-      throttled = false;
-    }
-    cache_->evict(want - cache_->free(), file);
+    // Reclaim knows pages, not files: the file's own older clean pages may go too (with
+    // protect_files_being_written, only once no other clean data is left).
+    cache_->evict(want - cache_->free(), kNoFile);
     const std::int64_t to_cache = std::min(want, cache_->free());
     if (to_cache < std::min(want, kGranule)) {
       // Out of memory with nothing clean to reclaim: dirty data must be written first, as
@@ -204,9 +233,11 @@ Task<IoTally> IoController::write_chunk_throttled(FileId file, std::int64_t chun
       }
       continue;
     }
+    if (throttled) credit -= static_cast<double>(to_cache);
     co_await write_to_cache(file, to_cache);
     remaining -= to_cache;
   }
+  if (throttled) --throttled_writers_;
   co_return IoTally{.bytes = chunk, .cache_bytes = chunk, .disk_bytes = 0};
 }
 

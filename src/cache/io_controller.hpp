@@ -8,6 +8,7 @@
 // that the memory a chunk needs is taken from `free` at once and concurrent readers cannot
 // count on it too.
 
+#include "cache/dirty_limit.hpp"
 #include "cache/file_table.hpp"
 #include "cache/flusher.hpp"
 #include "cache/page_cache.hpp"
@@ -67,6 +68,10 @@ class IoController {
   /// (writethrough: to disk, then cached clean; writeback: into the cache, dirty).
   Task<void> serve_write(FileId file, std::int64_t bytes, const Link& link);
 
+  /// The machine as it starts, before any run (memory in use set, files cached): the dirty
+  /// throttling limit is the dirty threshold of that state (DirtyLimit::reset).
+  void machine_at_rest();
+
   /// Bytes written to devices to make room or to respect the dirty ratio (not counting the
   /// periodic flusher's).
   std::int64_t flushed_bytes() const noexcept { return flushed_; }
@@ -85,6 +90,10 @@ class IoController {
   /// enough while other transfers still hold memory (writebacks, copies in flight), waits for
   /// them and tries again. Throws SimulationError when nothing can ever free enough.
   Task<void> make_room(std::int64_t required, FileId spared, const std::string& what);
+  /// Makes room to read `bytes` of `file` (the part not cached is new cache data) plus
+  /// `anonymous` bytes of application memory, and returns how many bytes are not cached: the
+  /// part to read from the device, as the cache is once there is room for it.
+  Task<std::int64_t> room_for_read(FileId file, std::int64_t bytes, std::int64_t anonymous, std::string what);
   /// Waits until memory held by transfers in flight may have been released.
   Task<void> wait_for_progress();
 
@@ -95,6 +104,7 @@ class IoController {
   Flusher* flusher_;
   std::int64_t flushed_ = 0;
   std::int64_t throttled_writers_ = 0;  // writers waiting for dirty quota
+  DirtyLimit dirty_limit_;
   std::optional<Event> progress_;
 };
 

@@ -57,12 +57,11 @@ std::int64_t PageCache::dirty_and_writeback() const noexcept { return dirty() + 
 PageCache::DirtyLimits PageCache::dirty_limits() const noexcept {
   const double base = static_cast<double>(std::max<std::int64_t>(dirtyable(), 0));
   DirtyLimits l;
-  l.limit = static_cast<std::int64_t>(settings_.dirty_ratio * base);
+  l.thresh = static_cast<std::int64_t>(settings_.dirty_ratio * base);
   l.background = settings_.dirty_background_ratio < settings_.dirty_ratio
                      ? static_cast<std::int64_t>(settings_.dirty_background_ratio * base)
-                     : l.limit / 2;
-  const std::int64_t freerun = (l.background + l.limit) / 2;
-  l.setpoint = (freerun + l.limit) / 2;
+                     : l.thresh / 2;
+  l.freerun = (l.background + l.thresh) / 2;
   return l;
 }
 

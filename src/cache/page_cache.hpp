@@ -63,15 +63,14 @@ class PageCache {
   /// flight (kernel) or free + cached - dirty (paper; dirty including writeback), per
   /// settings().dirtyable_memory.
   std::int64_t dirtyable() const noexcept;
-  /// The dirty thresholds now, in bytes (mm/page-writeback.c, domain_dirty_limits and
-  /// balance_dirty_pages): `background` = dirty_background_ratio x dirtyable (half of `limit`
-  /// if that ratio is not below dirty_ratio, as the kernel clamps it), `limit` = dirty_ratio x
-  /// dirtyable, and `setpoint`, where a throttled writer's pace equals writeback's: halfway
-  /// between the freerun ceiling (background + limit) / 2 and the limit.
+  /// The dirty thresholds now, in bytes (mm/page-writeback.c, domain_dirty_limits):
+  /// `background` = dirty_background_ratio x dirtyable (half of `thresh` if that ratio is not
+  /// below dirty_ratio, as the kernel clamps it), `thresh` = dirty_ratio x dirtyable, and the
+  /// freerun ceiling (background + thresh) / 2, under which writers are never throttled.
   struct DirtyLimits {
     std::int64_t background = 0;
-    std::int64_t limit = 0;
-    std::int64_t setpoint = 0;
+    std::int64_t thresh = 0;
+    std::int64_t freerun = 0;
   };
   DirtyLimits dirty_limits() const noexcept;
   /// Memory a read may count on freeing by eviction before it must flush: clean inactive data

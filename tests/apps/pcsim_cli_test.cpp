@@ -45,6 +45,16 @@ std::string slurp(const fs::path& path) {
   return s.str();
 }
 
+// The number under `key` in the entry of `case_name` of pcsim validate's JSON.
+double json_field(const std::string& json, const std::string& case_name, const std::string& key) {
+  const auto at = json.find("\"case\": \"" + case_name + "\"");
+  REQUIRE(at != std::string::npos);
+  const auto k = json.find("\"" + key + "\": ", at);
+  REQUIRE(k != std::string::npos);
+  REQUIRE(k < json.find('}', at));
+  return std::stod(json.substr(k + key.size() + 4));
+}
+
 // A fresh scratch folder per test.
 fs::path scratch(const std::string& name) {
   const fs::path dir = fs::temp_directory_path() / fmt::format("pcsim-cli-test-{}-{}", ::getpid(), name);
@@ -322,14 +332,7 @@ TEST_CASE("pcsim validate reproduces the dataset's WRENCH-cache baselines and wr
   INFO(o.output);
   REQUIRE(o.status == 0);
   const std::string json = slurp(dir / "v.json");
-  auto field = [&](const std::string& case_name, const std::string& key) {
-    const auto at = json.find("\"case\": \"" + case_name + "\"");
-    REQUIRE(at != std::string::npos);
-    const auto k = json.find("\"" + key + "\": ", at);
-    REQUIRE(k != std::string::npos);
-    REQUIRE(k < json.find('}', at));
-    return std::stod(json.substr(k + key.size() + 4));
-  };
+  auto field = [&](const std::string& case_name, const std::string& key) { return json_field(json, case_name, key); };
   CHECK(field("exp1_20gb", "wrench_cache_mean_error_pct") == Catch::Detail::Approx(30.1).margin(0.05));
   CHECK(field("exp1_100gb", "wrench_cache_mean_error_pct") == Catch::Detail::Approx(33.0).margin(0.05));
   CHECK(field("exp2_local", "wrench_cache_read_mean_error_pct") == Catch::Detail::Approx(38.6).margin(0.05));
@@ -352,14 +355,7 @@ TEST_CASE("pcsim validate: the linux profile is closer to the real runs than WRE
   REQUIRE(o.status == 0);
   CHECK(o.output.find("profile linux") != std::string::npos);
   const std::string json = slurp(dir / "v.json");
-  auto field = [&](const std::string& case_name, const std::string& key) {
-    const auto at = json.find("\"case\": \"" + case_name + "\"");
-    REQUIRE(at != std::string::npos);
-    const auto k = json.find("\"" + key + "\": ", at);
-    REQUIRE(k != std::string::npos);
-    REQUIRE(k < json.find('}', at));
-    return std::stod(json.substr(k + key.size() + 4));
-  };
+  auto field = [&](const std::string& case_name, const std::string& key) { return json_field(json, case_name, key); };
   for (const char* c : {"exp1_20gb", "exp1_100gb", "exp2_local", "exp3_nfs"}) {
     INFO(c);
     CHECK(field(c, "mean_error_pct") < field(c, "wrench_cache_mean_error_pct"));

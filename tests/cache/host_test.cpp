@@ -27,6 +27,15 @@ HostSpec small_host(CacheSettings cache = CacheSettings::paper()) {
                   .cache = cache};
 }
 
+// The kernel's behaviour with ratios 0.4 and 0.1: on the 10 GB host with no application
+// memory, background threshold 1 GB, freerun ceiling 2.5 GB, setpoint 3.25 GB, limit 4 GB.
+CacheSettings kernel_04_01() {
+  CacheSettings settings = CacheSettings::kernel();
+  settings.dirty_ratio = 0.4;
+  settings.dirty_background_ratio = 0.1;
+  return settings;
+}
+
 Task<void> write_then_record(Simulator& sim, Host& host, FileRef file, double& done) {
   co_await host.write_file(file, 100 * MB);
   done = sim.now();
@@ -182,10 +191,8 @@ TEST_CASE("background writeback starts above dirty_background_ratio, not at expi
   // 100 MB/s until 1 GB or less is left: about 1 GB, so by 12.5 s dirty + writeback <= 1 GB
   // plus one block. Without it, all 2 GB stay dirty until they expire (30 s).
   for (const bool background : {true, false}) {
-    CacheSettings settings = CacheSettings::kernel();
+    CacheSettings settings = kernel_04_01();
     settings.background_writeback = background;
-    settings.dirty_background_ratio = 0.1;
-    settings.dirty_ratio = 0.4;
     Simulator sim;
     FairShare share(sim);
     Host host(sim, share, small_host(settings));
@@ -311,10 +318,8 @@ TEST_CASE("dirty throttling holds writers at the kernel's setpoint and paces the
   // writer) it runs to dirty_ratio (4 GB) and then flushes a chunk's worth itself before
   // each chunk.
   for (const bool throttling : {true, false}) {
-    CacheSettings settings = CacheSettings::kernel();
+    CacheSettings settings = kernel_04_01();
     settings.dirty_throttling = throttling;
-    settings.dirty_ratio = 0.4;
-    settings.dirty_background_ratio = 0.1;
     Simulator sim;
     FairShare share(sim);
     Host host(sim, share, small_host(settings));
@@ -345,9 +350,7 @@ TEST_CASE("several throttled writers share the disk's pace", "[host][throttling]
   // disk's 100 MB/s times the position ratio. They end as one writer of 6 GB would (between
   // 27.6 and 29.1 s, see above), and together: the kernel gives every throttled writer of a
   // device the same rate, so neither is more than a few pauses (0.5 s) behind the other.
-  CacheSettings settings = CacheSettings::kernel();
-  settings.dirty_ratio = 0.4;
-  settings.dirty_background_ratio = 0.1;
+  const CacheSettings settings = kernel_04_01();
   Simulator sim;
   FairShare share(sim);
   Host host(sim, share, small_host(settings));
@@ -378,9 +381,7 @@ TEST_CASE("the throttling limit follows a shrinking memory down slowly", "[host]
   // down toward the 1.625 GB setpoint, slowly: the position ratio is flat near it (0.9 at
   // 175 MB above, so the writer goes at 90 MB/s against writeback's 100): between 40 and
   // 45 s it is within 225 MB above the setpoint.
-  CacheSettings settings = CacheSettings::kernel();
-  settings.dirty_ratio = 0.4;
-  settings.dirty_background_ratio = 0.1;
+  const CacheSettings settings = kernel_04_01();
   Simulator sim;
   FairShare share(sim);
   Host host(sim, share, small_host(settings));

@@ -13,18 +13,37 @@ LruList::~LruList() {
 
 void LruList::link_state(Block& block) {
   // The block's place in its state sub-list: right after the nearest block before it in the
-  // LRU list that has the same state. Usually a neighbour; at worst the blocks of other states
-  // in between are walked.
+  // LRU list that has the same state, or right before the nearest one after it. Both ways are
+  // walked in turn, so the cost is the distance to the nearer of the two (usually a
+  // neighbour), not to the list's end: a block whose state has no other block before it
+  // (the one block taken for writeback) is placed at once.
   StateOrder& list = by_state_[index(block.state)];
-  auto it = blocks_.iterator_to(block);
-  while (it != blocks_.begin()) {
-    --it;
-    if (it->state == block.state) {
-      list.insert(std::next(list.iterator_to(*it)), block);
+  if (list.empty()) {
+    list.push_back(block);
+    return;
+  }
+  auto back = blocks_.iterator_to(block);
+  auto ahead = std::next(back);
+  for (;;) {
+    if (back == blocks_.begin()) {
+      list.push_front(block);  // nothing of this state before it: it goes first
       return;
     }
+    --back;
+    if (back->state == block.state) {
+      list.insert(std::next(list.iterator_to(*back)), block);
+      return;
+    }
+    if (ahead == blocks_.end()) {
+      list.push_back(block);  // nothing of this state after it: it goes last
+      return;
+    }
+    if (ahead->state == block.state) {
+      list.insert(list.iterator_to(*ahead), block);
+      return;
+    }
+    ++ahead;
   }
-  list.push_front(block);
 }
 
 void LruList::push_back(Block& block) {

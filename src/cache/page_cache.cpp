@@ -344,15 +344,19 @@ PageCache::Flushed PageCache::flush_expired_block(double cutoff) {
 
 void PageCache::end_writeback(const Flushed& taken) {
   if (taken.bytes == 0) return;
-  // The blocks of one write carry its token; splits pass it on. They are found among their
-  // file's blocks: O(blocks of the file).
-  FileEntry& entry = file_entry(taken.file);
-  for (FileOrder* flist : {&entry.inactive, &entry.active}) {
-    for (Block& block : *flist) {
-      if (block.writeback_batch != taken.token) continue;
-      block.writeback_batch = 0;
-      PC_ASSERT(block.state == BlockState::Writeback);
-      set_state(block, BlockState::Clean);
+  // The blocks of one write (of one file; a flush may write several) carry its token; splits
+  // pass it on. They are found among the
+  // blocks in writeback, O(blocks in writeback): a few writes in flight, however many blocks
+  // the cache holds.
+  for (LruList* list : {&inactive_, &active_}) {
+    Block* block = list->front(BlockState::Writeback);
+    while (block != nullptr) {
+      Block* next = list->next(*block, BlockState::Writeback);
+      if (block->writeback_batch == taken.token && block->file == taken.file) {
+        block->writeback_batch = 0;
+        set_state(*block, BlockState::Clean);
+      }
+      block = next;
     }
   }
   settle();

@@ -18,6 +18,15 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// Bytes for a reader: decimal units, one decimal ("235.6 GB"); exact figures are in the files.
+std::string readable(std::int64_t bytes) {
+  static constexpr std::pair<const char*, double> kUnits[] = {{"TB", 1e12}, {"GB", 1e9}, {"MB", 1e6}, {"kB", 1e3}};
+  for (const auto& [name, factor] : kUnits) {
+    if (static_cast<double>(bytes) >= factor) return fmt::format("{:.1f} {}", static_cast<double>(bytes) / factor, name);
+  }
+  return fmt::format("{} B", bytes);
+}
+
 std::string json_string(const std::string& s) {
   std::string out = "\"";
   for (char c : s) {
@@ -150,9 +159,8 @@ std::string readable_summary(const Scenario& scenario, const RunResult& r) {
   out += fmt::format(
       "\nmakespan {:.2f} s; read {} from disk and {} from cache; written back {} (forced) + {} (flusher); "
       "evicted {}; peak dirty {}\n",
-      s.makespan, units::format_size(s.disk_read_bytes), units::format_size(s.cache_read_bytes),
-      units::format_size(s.forced_flush_bytes), units::format_size(s.periodic_flush_bytes), units::format_size(s.evicted_bytes),
-      units::format_size(s.peak_dirty_bytes));
+      s.makespan, readable(s.disk_read_bytes), readable(s.cache_read_bytes), readable(s.forced_flush_bytes),
+      readable(s.periodic_flush_bytes), readable(s.evicted_bytes), readable(s.peak_dirty_bytes));
   out += fmt::format("simulated {} events in {:.3f} s of wall time ({:.2f} M events/s)\n", s.events, s.wall_seconds,
                      s.events_per_second / 1e6);
   return out;

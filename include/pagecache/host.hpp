@@ -102,6 +102,8 @@ class Host {
   std::int64_t periodic_flush_bytes() const noexcept;
   /// Bytes of clean cached data evicted to make room.
   std::int64_t evicted_bytes() const noexcept;
+  /// Chunks read and written by applications on this host (read_file, write_file) so far.
+  std::uint64_t chunk_operations() const noexcept;
 
   /// Calls `observer(now, memory())` after every change of the host's memory.
   void set_memory_observer(std::function<void(double, const MemoryState&)> observer);

@@ -57,6 +57,7 @@ struct RunSummary {
   std::int64_t evicted_bytes = 0;
   std::int64_t peak_dirty_bytes = 0;
   std::uint64_t events = 0;
+  std::uint64_t chunk_operations = 0;  ///< chunks read and written by the applications
   double wall_seconds = 0.0;  ///< the simulator's own run time
   double events_per_second = 0.0;
 };

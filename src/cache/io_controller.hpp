@@ -75,6 +75,8 @@ class IoController {
   /// Bytes written to devices to make room or to respect the dirty ratio (not counting the
   /// periodic flusher's).
   std::int64_t flushed_bytes() const noexcept { return flushed_; }
+  /// Chunks read and written by applications on this host so far.
+  std::uint64_t chunk_operations() const noexcept { return chunks_; }
 
  private:
   /// Flushes up to `amount` dirty bytes (skipping `excluded`) and waits for their writes.
@@ -103,6 +105,7 @@ class IoController {
   FileTable* files_;
   Flusher* flusher_;
   std::int64_t flushed_ = 0;
+  std::uint64_t chunks_ = 0;
   std::int64_t throttled_writers_ = 0;  // writers waiting for dirty quota
   DirtyLimit dirty_limit_;
   std::optional<Event> progress_;

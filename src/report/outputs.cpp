@@ -101,13 +101,14 @@ std::string summary_json(const Scenario& scenario, const RunResult& r) {
       "  \"evicted_bytes\": {},\n"
       "  \"peak_dirty_bytes\": {},\n"
       "  \"events\": {},\n"
+      "  \"chunk_operations\": {},\n"
       "  \"wall_time_s\": {:.6f},\n"
       "  \"events_per_second\": {:.0f}\n"
       "}}\n",
       json_string(kVersion), json_string(scenario.source), json_string(to_string(scenario.profile)), s.makespan, s.end_time,
       totals(s.read), totals(s.compute), totals(s.write), s.disk_read_bytes, s.cache_read_bytes, s.forced_flush_bytes,
       s.periodic_flush_bytes, s.forced_flush_bytes + s.periodic_flush_bytes, s.evicted_bytes, s.peak_dirty_bytes, s.events,
-      s.wall_seconds, s.events_per_second);
+      s.chunk_operations, s.wall_seconds, s.events_per_second);
 }
 
 void write_outputs(const std::string& dir, const Scenario& scenario, const RunResult& result) {

@@ -100,6 +100,7 @@ class Runner {
       s.forced_flush_bytes += host->forced_flush_bytes();
       s.periodic_flush_bytes += host->periodic_flush_bytes();
       s.evicted_bytes += host->evicted_bytes();
+      s.chunk_operations += host->chunk_operations();
     }
     s.events = sim_.events_processed();
     s.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

@@ -310,11 +310,12 @@ TEST_CASE("dirty throttling holds writers at the kernel's setpoint and paces the
   // freerun ceiling at 2.5 GB and the setpoint at (2.5 + 4) / 2 = 3.25 GB. 6 GB are written
   // in 100 MB chunks at 1000 MB/s. Background writeback starts when dirty data passes 1 GB
   // (1.1 s) and writes one 100 MB block a second (100 MB/s). The writer runs free until
-  // dirty + writeback reach 3.25 GB (3.45 s: 3450 MB written, 200 MB written back); then it
-  // is paced at the disk's 100 MB/s times the position ratio, 1 at the setpoint, below 1
-  // above it: dirty + writeback stays within one block (100 MB) above the setpoint, and the
-  // writer ends when 6000 - 3250 MB, give or take that block, are written back: between
-  // 1.1 + 26.5 and 1.1 + 28 s. It never flushes itself. Without throttling (the paper's
+  // dirty + writeback are within a chunk of 3.25 GB (3.35 s: 3350 MB written, 200 MB written
+  // back); then it is paced, a chunk at a time, at the disk's 100 MB/s times the position
+  // ratio (1 at the setpoint, above 1 below it, below 1 above it): dirty + writeback stays
+  // within a chunk (100 MB) of the setpoint, and the writer ends when 6000 - 3250 MB, give or
+  // take a chunk, are written back, plus at most one chunk's pacing (1 s): between 1.1 + 26.5
+  // and 1.1 + 28.5 + 1 s. It never flushes itself. Without throttling (the paper's
   // writer) it runs to dirty_ratio (4 GB) and then flushes a chunk's worth itself before
   // each chunk.
   for (const bool throttling : {true, false}) {
@@ -332,9 +333,9 @@ TEST_CASE("dirty throttling holds writers at the kernel's setpoint and paces the
     INFO("throttling " << throttling << ": done at " << written << " s, peak dirty + writeback " << peak);
     if (throttling) {
       CHECK(written >= 27.6);
-      CHECK(written <= 29.1);
+      CHECK(written <= 30.6);
       CHECK(peak <= 3350 * MB);
-      CHECK(peak >= 3250 * MB);
+      CHECK(peak >= 3150 * MB);
       CHECK(host.forced_flush_bytes() == 0);
     } else {
       CHECK(peak > 3900 * MB);
@@ -348,8 +349,9 @@ TEST_CASE("several throttled writers share the disk's pace", "[host][throttling]
   // Two writers of 3 GB each on the host above: together they dirty 1000 MB/s (the one memory
   // channel, 500 MB/s each) until the setpoint (3.25 GB), then each is paced at half the
   // disk's 100 MB/s times the position ratio. They end as one writer of 6 GB would (between
-  // 27.6 and 29.1 s, see above), and together: the kernel gives every throttled writer of a
-  // device the same rate, so neither is more than a few pauses (0.5 s) behind the other.
+  // 27.6 and 30.6 s, see above), and together: the kernel gives every throttled writer of a
+  // device the same rate, so neither is more than a chunk's pacing at half the disk (2 s)
+  // behind the other.
   const CacheSettings settings = kernel_04_01();
   Simulator sim;
   FairShare share(sim);
@@ -363,8 +365,8 @@ TEST_CASE("several throttled writers share the disk's pace", "[host][throttling]
   sim.run();
   INFO("a done at " << done_a << " s, b at " << done_b << " s");
   CHECK(std::max(done_a, done_b) >= 27.6);
-  CHECK(std::max(done_a, done_b) <= 29.1);
-  CHECK(std::abs(done_a - done_b) <= 0.5);
+  CHECK(std::max(done_a, done_b) <= 30.6);
+  CHECK(std::abs(done_a - done_b) <= 2.0);
   CHECK(host.forced_flush_bytes() == 0);
 }
 

@@ -1,0 +1,168 @@
+// pcsim_scaling: how pcsim's cost grows with the number of concurrent applications.
+//
+// N pipelines of 3 tasks (read a file, compute, write the next file) in 100 MB chunks run on
+// one host scaled to them: per pipeline one core, 2.5 GB of memory, 500 MB/s of disk, so
+// that every pipeline sees the same machine whatever N. Its files (1 GB each, four per
+// pipeline, read and written once) do not all fit in the page cache beside the buffers: the
+// run evicts, writes back under the dirty limits and reads from disk and cache. For each N it
+// reports the simulated makespan, events processed, chunk operations, wall time of the
+// simulation (the run, not the set-up), chunk operations per second, nanoseconds per chunk
+// operation and the peak resident set size of the process (getrusage), as a table and as one
+// JSON line per N.
+//
+//   pcsim_scaling                       # N = 10, 100, 1000, 10^4, 10^5, each in a fresh process
+//   pcsim_scaling --max 1000            # stop at N = 1000
+//   pcsim_scaling --pipelines 5000      # one N, in this process: its JSON line only
+//   pcsim_scaling --profile paper       # the paper's model instead of the linux profile
+//
+// Each N runs in a process of its own so that its peak RSS is its own.
+
+#include <pagecache/error.hpp>
+#include <pagecache/run.hpp>
+#include <pagecache/scenario.hpp>
+
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <spawn.h>
+#include <string>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <vector>
+
+extern char** environ;
+
+namespace {
+
+std::string scenario_text(long pipelines, const std::string& profile) {
+  const double n = static_cast<double>(pipelines);
+  return fmt::format(R"(title = "scaling: {} pipelines"
+profile = "{}"
+memory_sample_interval = "60 s"
+
+[[hosts]]
+name = "node"
+cores = {}
+memory = {}
+memory_read_bw = "6860 MB/s"
+memory_write_bw = "2764 MB/s"
+memory_aggregate_read_bw = {}
+memory_aggregate_write_bw = {}
+memory_first_touch_bw = "6.1 GB/s"
+
+[hosts.page_cache]
+dirty_ratio = 0.4
+dirty_background_ratio = 0.1
+
+[[hosts.disks]]
+name = "disk"
+read_bw = {}
+write_bw = {}
+
+[pipelines]
+count = {}
+file_size = "1 GB"
+tasks = 3
+cpu_time = "1 s"
+chunk_size = "100 MB"
+)",
+                     pipelines, profile, pipelines, static_cast<long long>(n * 2.5e9), n * 10e9, n * 5e9, n * 500e6, n * 500e6,
+                     pipelines);
+}
+
+long peak_rss_kb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss;  // kilobytes on Linux
+}
+
+// One N in this process: its JSON line on stdout.
+int run_one(long pipelines, const std::string& profile) {
+  const pagecache::Scenario scenario =
+      pagecache::parse_scenario(scenario_text(pipelines, profile), fmt::format("<scaling {}>", pipelines), {}, profile);
+  pagecache::RunOptions options;
+  options.cache_contents = false;
+  const pagecache::RunResult result = pagecache::run_scenario(scenario, options);
+  const pagecache::RunSummary& s = result.summary;
+  const double ops = static_cast<double>(s.chunk_operations);
+  fmt::print(
+      "{{\"pipelines\": {}, \"profile\": \"{}\", \"makespan_s\": {:.3f}, \"events\": {}, \"chunk_operations\": {}, "
+      "\"wall_s\": {:.4f}, \"chunk_ops_per_s\": {:.0f}, \"ns_per_chunk_op\": {:.1f}, \"peak_rss_kb\": {}}}\n",
+      pipelines, profile, s.makespan, s.events, s.chunk_operations, s.wall_seconds, ops / s.wall_seconds, s.wall_seconds / ops * 1e9,
+      peak_rss_kb());
+  return 0;
+}
+
+// Runs `self --pipelines N --profile P` and returns its output line.
+std::string run_child(const char* self, long pipelines, const std::string& profile) {
+  int out[2];
+  if (pipe(out) != 0) throw std::runtime_error("pipe failed");
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, out[1], STDOUT_FILENO);
+  posix_spawn_file_actions_addclose(&actions, out[0]);
+  const std::string n = std::to_string(pipelines);
+  std::vector<char*> argv = {const_cast<char*>(self), const_cast<char*>("--pipelines"), const_cast<char*>(n.c_str()),
+                             const_cast<char*>("--profile"), const_cast<char*>(profile.c_str()), nullptr};
+  pid_t pid = 0;
+  const int spawned = posix_spawn(&pid, self, &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  close(out[1]);
+  if (spawned != 0) throw std::runtime_error(fmt::format("cannot run {}: {}", self, std::strerror(spawned)));
+  std::string line;
+  char buffer[4096];
+  for (ssize_t got; (got = read(out[0], buffer, sizeof buffer)) > 0;) line.append(buffer, static_cast<std::size_t>(got));
+  close(out[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw std::runtime_error(fmt::format("N = {}: the run failed", pipelines));
+  return line;
+}
+
+double field(const std::string& line, const std::string& key) {
+  const auto at = line.find("\"" + key + "\": ");
+  if (at == std::string::npos) throw std::runtime_error("no " + key + " in: " + line);
+  return std::strtod(line.c_str() + at + key.size() + 4, nullptr);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  long one = 0;
+  long max = 100000;
+  std::string profile = "linux";
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if ((arg == "--pipelines" || arg == "--max" || arg == "--profile") && i + 1 < argc) {
+      const std::string value = argv[++i];
+      if (arg == "--profile") profile = value;
+      else (arg == "--max" ? max : one) = std::atol(value.c_str());
+    } else {
+      fmt::print(stderr, "usage: {} [--pipelines N | --max N] [--profile linux|paper]\n", argv[0]);
+      return 2;
+    }
+  }
+  try {
+    if (one > 0) return run_one(one, profile);
+    std::vector<std::string> lines;
+    fmt::print("{:>9} {:>12} {:>12} {:>12} {:>9} {:>14} {:>12} {:>12}\n", "pipelines", "makespan_s", "events", "chunk_ops", "wall_s",
+               "chunk_ops/s", "ns/chunk_op", "peak_RSS_MB");
+    for (long n = 10; n <= max; n *= 10) {
+      const std::string line = run_child("/proc/self/exe", n, profile);
+      lines.push_back(line);
+      fmt::print("{:>9} {:>12.1f} {:>12.0f} {:>12.0f} {:>9.3f} {:>14.0f} {:>12.1f} {:>12.1f}\n", n, field(line, "makespan_s"),
+                 field(line, "events"), field(line, "chunk_operations"), field(line, "wall_s"), field(line, "chunk_ops_per_s"),
+                 field(line, "ns_per_chunk_op"), field(line, "peak_rss_kb") / 1024.0);
+      std::fflush(stdout);
+    }
+    fmt::print("\n");
+    for (const std::string& line : lines) fmt::print("{}", line);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "pcsim_scaling: {}\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -12,6 +12,7 @@
 // turn symmetric transfer into a tail call (GCC at -O0, sanitizer builds).
 
 #include <coroutine>
+#include <cstddef>
 #include <exception>
 #include <type_traits>
 #include <utility>
@@ -24,8 +25,15 @@ class Task;
 
 namespace detail {
 
+/// Coroutine frame memory (src/engine/frame_pool.cpp): recycled per size, per thread.
+void* allocate_frame(std::size_t size);
+void free_frame(void* frame, std::size_t size) noexcept;
+
 class TaskPromiseBase {
  public:
+  static void* operator new(std::size_t size) { return allocate_frame(size); }
+  static void operator delete(void* frame, std::size_t size) noexcept { free_frame(frame, size); }
+
   // Where the task stands relative to the co_await that started it. While the awaiter's
   // await_suspend is still on the stack, a completing task must return to it (Inline ->
   // CompletedInline) instead of resuming the awaiter a second time.

@@ -7,20 +7,18 @@ QueuedEvent* EventQueue::push(double time, EventCallback callback, void* context
   node->time = time;
   node->callback = callback;
   node->context = context;
-  node->handle = heap_.push({time, next_sequence_++, node});
+  heap_.push({time, next_sequence_++, node});
   return node;
 }
 
 void EventQueue::erase(QueuedEvent* node) noexcept {
-  heap_.erase(node->handle);
+  heap_.erase(node->heap_index);
   nodes_.give_back(node);
 }
 
 void EventQueue::update(QueuedEvent* node, double time) {
-  const bool runs_later = time >= node->time;  // the new sequence number is always larger
   node->time = time;
-  if (runs_later) heap_.decrease(node->handle, {time, next_sequence_++, node});
-  else heap_.increase(node->handle, {time, next_sequence_++, node});
+  heap_.replace(node->heap_index, {time, next_sequence_++, node});
 }
 
 EventQueue::Fired EventQueue::pop() noexcept {
@@ -32,11 +30,8 @@ EventQueue::Fired EventQueue::pop() noexcept {
 }
 
 void EventQueue::clear() noexcept {
-  while (!heap_.empty()) {
-    QueuedEvent* node = heap_.top().event;
-    heap_.pop();
-    nodes_.give_back(node);
-  }
+  for (const QueueEntry& entry : heap_) nodes_.give_back(entry.event);
+  heap_.clear();
 }
 
 }  // namespace pagecache::detail

@@ -41,6 +41,9 @@ struct SimulatorCore {
 namespace {
 
 struct ProcessPromise {
+  static void* operator new(std::size_t size) { return detail::allocate_frame(size); }
+  static void operator delete(void* frame, std::size_t size) noexcept { detail::free_frame(frame, size); }
+
   ProcessPromise(detail::SimulatorCore& impl, Task<void>&) noexcept : impl_(&impl) {
     next_ = impl.processes;
     if (next_ != nullptr) next_->prev_ = this;

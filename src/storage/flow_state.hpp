@@ -11,7 +11,7 @@
 
 #include <pagecache/fair_share.hpp>
 
-#include <boost/heap/d_ary_heap.hpp>
+#include "engine/indexed_heap.hpp"
 
 #include <array>
 #include <cstdint>
@@ -20,7 +20,7 @@ namespace pagecache::detail {
 
 struct FlowState;
 
-// A flow's place in one of processor sharing's heaps. The key is copied into the heap node
+// A flow's place in one of processor sharing's heaps. The key is copied into the heap's array
 // so that comparisons do not chase the pointer to the flow (cache misses dominate with many
 // flows); the sequence number breaks ties in start order.
 struct KeyedFlow {
@@ -29,26 +29,24 @@ struct KeyedFlow {
   FlowState* flow;
 };
 
-// Boost heaps are max-heaps: each comparator says which entry goes *after* the other.
 struct SmallestKeyFirst {
-  bool operator()(const KeyedFlow& a, const KeyedFlow& b) const noexcept {
-    if (a.key != b.key) return a.key > b.key;
-    return a.sequence > b.sequence;
-  }
-};
-struct LargestKeyFirst {
   bool operator()(const KeyedFlow& a, const KeyedFlow& b) const noexcept {
     if (a.key != b.key) return a.key < b.key;
     return a.sequence < b.sequence;
   }
 };
+struct LargestKeyFirst {
+  bool operator()(const KeyedFlow& a, const KeyedFlow& b) const noexcept {
+    if (a.key != b.key) return a.key > b.key;
+    return a.sequence > b.sequence;
+  }
+};
 
-template <class Order>
-using FlowHeap = boost::heap::d_ary_heap<KeyedFlow, boost::heap::arity<4>, boost::heap::mutable_<true>,
-                                         boost::heap::compare<Order>>;
-using FinishHeap = FlowHeap<SmallestKeyFirst>;
-using LowestThresholdFirst = FlowHeap<SmallestKeyFirst>;
-using HighestThresholdFirst = FlowHeap<LargestKeyFirst>;
+// Each heap tells the flow where its entry is, in a field of its own.
+template <std::uint32_t FlowState::*Field>
+struct PlaceFlow {
+  void operator()(const KeyedFlow& entry, std::uint32_t index) const noexcept { entry.flow->*Field = index; }
+};
 
 enum class FlowMode : std::uint8_t { Sharing, Bounded, Explicit };
 
@@ -71,9 +69,9 @@ struct FlowState {
   double updated = 0.0;
   double virtual_finish = 0.0;  // Sharing: resource virtual time at which it is done
 
-  FinishHeap::handle_type finish_handle;
-  LowestThresholdFirst::handle_type sharing_threshold_handle;
-  HighestThresholdFirst::handle_type bounded_threshold_handle;
+  std::uint32_t finish_index = 0;             // in the sharing flows' heap by virtual finish
+  std::uint32_t sharing_threshold_index = 0;  // in the sharing flows' heap by threshold
+  std::uint32_t bounded_threshold_index = 0;  // in the bounded flows' heap by threshold
   EventHandle completion;  // Bounded/Explicit
 
   // Who waits for it.
@@ -86,5 +84,9 @@ struct FlowState {
   double cost() const noexcept { return usages[0].cost; }  // for single-resource flows
   double remaining_at(double now) const noexcept { return remaining - rate * (now - updated); }
 };
+
+using FinishHeap = IndexedHeap<KeyedFlow, SmallestKeyFirst, PlaceFlow<&FlowState::finish_index>>;
+using LowestThresholdFirst = IndexedHeap<KeyedFlow, SmallestKeyFirst, PlaceFlow<&FlowState::sharing_threshold_index>>;
+using HighestThresholdFirst = IndexedHeap<KeyedFlow, LargestKeyFirst, PlaceFlow<&FlowState::bounded_threshold_index>>;
 
 }  // namespace pagecache::detail

@@ -30,17 +30,16 @@ void ProcessorSharing::advance() noexcept {
 void ProcessorSharing::insert_sharing(FlowState* flow, double remaining) {
   flow->mode = FlowMode::Sharing;
   flow->virtual_finish = virtual_time_ + std::max(remaining, 0.0) / flow->weight;
-  flow->finish_handle = sharing_.push({flow->virtual_finish, flow->sequence, flow});
+  sharing_.push({flow->virtual_finish, flow->sequence, flow});
   // An unbounded flow can never be capped: it need not be found by threshold.
-  if (std::isfinite(flow->threshold)) flow->sharing_threshold_handle = sharing_threshold_.push({flow->threshold, flow->sequence, flow});
+  if (std::isfinite(flow->threshold)) sharing_threshold_.push({flow->threshold, flow->sequence, flow});
   sharing_weighted_cost_ += flow->cost() * flow->weight;
 }
 
 double ProcessorSharing::erase_sharing(FlowState* flow) {
   const double remaining = std::max(0.0, (flow->virtual_finish - virtual_time_) * flow->weight);
-  if (sharing_.top().flow == flow) sharing_.pop();  // the usual case: cheaper than erase
-  else sharing_.erase(flow->finish_handle);
-  if (std::isfinite(flow->threshold)) sharing_threshold_.erase(flow->sharing_threshold_handle);
+  sharing_.erase(flow->finish_index);
+  if (std::isfinite(flow->threshold)) sharing_threshold_.erase(flow->sharing_threshold_index);
   if (sharing_.empty()) {
     // Renormalise: keeps V small, and the sum free of accumulated rounding.
     virtual_time_ = 0.0;
@@ -56,13 +55,13 @@ void ProcessorSharing::insert_bounded(FlowState* flow, double remaining) {
   flow->remaining = std::max(remaining, 0.0);
   flow->rate = flow->bound;
   flow->updated = sim_->now();
-  flow->bounded_threshold_handle = bounded_.push({flow->threshold, flow->sequence, flow});
+  bounded_.push({flow->threshold, flow->sequence, flow});
   bounded_usage_ += flow->cost() * flow->bound;
   flow->completion = sim_->schedule_at(sim_->now() + flow->remaining / flow->rate, flow_due_, flow);
 }
 
 double ProcessorSharing::erase_bounded(FlowState* flow) {
-  bounded_.erase(flow->bounded_threshold_handle);
+  bounded_.erase(flow->bounded_threshold_index);
   bounded_usage_ = bounded_.empty() ? 0.0 : bounded_usage_ - flow->cost() * flow->bound;
   sim_->cancel(flow->completion);
   return std::max(0.0, flow->remaining_at(sim_->now()));

@@ -1,0 +1,72 @@
+// Coroutine frames: every Task and process frame comes from here (TaskPromiseBase's operator
+// new). A simulation creates and destroys a frame for every chunk it reads or writes, many
+// levels deep; recycling them through per-size free lists instead of malloc took a fifth of
+// the instructions of the scaling harness away, and reuses frames that are still in cache.
+//
+// One pool per thread, no locking. Sizes are rounded up to 64 bytes; frames above 4 KiB go to
+// the global allocator. The free lists keep what they hold until the thread ends.
+
+#include <pagecache/task.hpp>
+
+#include <array>
+#include <cstddef>
+#include <new>
+
+namespace pagecache::detail {
+
+namespace {
+
+constexpr std::size_t kGranule = 64;
+constexpr std::size_t kLargest = 4096;
+
+struct FreeFrame {
+  FreeFrame* next;
+};
+
+class FramePool {
+ public:
+  ~FramePool() {
+    for (FreeFrame*& head : free_) {
+      while (head != nullptr) ::operator delete(std::exchange(head, head->next));
+    }
+    alive_ = false;
+  }
+  static bool alive() noexcept { return alive_; }
+
+  void* allocate(std::size_t size) {
+    const std::size_t slot = (size - 1) / kGranule;
+    if (FreeFrame* frame = free_[slot]) {
+      free_[slot] = frame->next;
+      return frame;
+    }
+    return ::operator new((slot + 1) * kGranule);
+  }
+  void release(void* frame, std::size_t size) noexcept {
+    const std::size_t slot = (size - 1) / kGranule;
+    free_[slot] = new (frame) FreeFrame{free_[slot]};
+  }
+
+ private:
+  std::array<FreeFrame*, kLargest / kGranule> free_{};
+  static thread_local bool alive_;
+};
+
+thread_local bool FramePool::alive_ = true;
+thread_local FramePool pool;
+
+}  // namespace
+
+void* allocate_frame(std::size_t size) {
+  if (size == 0 || size > kLargest || !FramePool::alive()) return ::operator new(size);
+  return pool.allocate(size);
+}
+
+void free_frame(void* frame, std::size_t size) noexcept {
+  if (size == 0 || size > kLargest || !FramePool::alive()) {
+    ::operator delete(frame);
+    return;
+  }
+  pool.release(frame, size);
+}
+
+}  // namespace pagecache::detail

@@ -102,6 +102,8 @@ class Host {
   std::int64_t periodic_flush_bytes() const noexcept;
   /// Bytes of clean cached data evicted to make room.
   std::int64_t evicted_bytes() const noexcept;
+  /// The most dirty data the page cache has held at once so far.
+  std::int64_t peak_dirty_bytes() const noexcept;
   /// Chunks read and written by applications on this host (read_file, write_file) so far.
   std::uint64_t chunk_operations() const noexcept;
 

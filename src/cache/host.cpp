@@ -115,6 +115,7 @@ std::int64_t Host::forced_flush_bytes() const noexcept { return impl_->io.flushe
 std::int64_t Host::periodic_flush_bytes() const noexcept { return impl_->flusher.flushed_bytes(); }
 std::int64_t Host::evicted_bytes() const noexcept { return impl_->cache.evicted_bytes(); }
 std::uint64_t Host::chunk_operations() const noexcept { return impl_->io.chunk_operations(); }
+std::int64_t Host::peak_dirty_bytes() const noexcept { return impl_->cache.peak_dirty(); }
 
 void Host::set_memory_observer(std::function<void(double, const MemoryState&)> observer) {
   if (!observer) {

@@ -47,25 +47,26 @@ Task<void> IoController::wait_for_progress() {
   co_await progress_->wait();
 }
 
-Task<void> IoController::make_room(std::int64_t required, FileId spared, const std::string& what) {
+Task<void> IoController::make_room(std::int64_t required, FileId spared, FileId subject, const char* verb) {
   for (;;) {
     co_await write_back(required - cache_->free() - cache_->evictable(), spared);
     cache_->evict(required - cache_->free(), spared);
     if (required <= cache_->free()) co_return;
     if (cache_->writeback() == 0 && cache_->reserved() == 0) {
-      throw SimulationError(fmt::format("t = {:.6f} s: {} needs {} bytes of memory, only {} can be freed", sim_->now(), what,
+      throw SimulationError(fmt::format("t = {:.6f} s: {} '{}' needs {} bytes of memory, only {} can be freed", sim_->now(), verb,
+                                        (*files_)[subject].name,
                                         required, cache_->free()));
     }
     co_await wait_for_progress();
   }
 }
 
-Task<std::int64_t> IoController::room_for_read(FileId file, std::int64_t bytes, std::int64_t anonymous, std::string what) {
+Task<std::int64_t> IoController::room_for_read(FileId file, std::int64_t bytes, std::int64_t anonymous, const char* verb) {
   const FileInfo& info = (*files_)[file];
   const FileId spared = cache_->settings().reclaim_may_take_file_being_read ? kNoFile : file;
   for (;;) {
     const std::int64_t uncached = std::clamp<std::int64_t>(info.size - cache_->cached(file), 0, bytes);
-    co_await make_room(anonymous + uncached, spared, what);
+    co_await make_room(anonymous + uncached, spared, file, verb);
     // While make_room waited, others may have evicted some of this file's data: then more of
     // the chunk comes from the device, and needs room too.
     const std::int64_t now_uncached = std::clamp<std::int64_t>(info.size - cache_->cached(file), 0, bytes);
@@ -77,7 +78,7 @@ Task<IoTally> IoController::read_chunk(FileId file, std::int64_t chunk) {
   const FileInfo& info = (*files_)[file];
   if (info.is_remote()) co_return co_await read_chunk_remote(file, chunk);
   // The application's copy + the new cache copy of what is not cached.
-  const std::int64_t disk_read = co_await room_for_read(file, chunk, chunk, fmt::format("reading '{}'", info.name));
+  const std::int64_t disk_read = co_await room_for_read(file, chunk, chunk, "reading");
   const std::int64_t cache_read = chunk - disk_read;
   cache_->add_read(file, disk_read, sim_->now());
   cache_->reaccess(file, cache_read, sim_->now());
@@ -95,7 +96,7 @@ Task<IoTally> IoController::read_chunk_remote(FileId file, std::int64_t chunk) {
   // A client read (NFS): what this host's cache lacks comes from the server, over the link,
   // and is kept in this host's cache (clean); the rest is a hit in this host's cache.
   const FileInfo& info = (*files_)[file];
-  const std::int64_t remote_read = co_await room_for_read(file, chunk, chunk, fmt::format("reading '{}'", info.name));
+  const std::int64_t remote_read = co_await room_for_read(file, chunk, chunk, "reading");
   const std::int64_t cache_read = chunk - remote_read;
   cache_->add_read(file, remote_read, sim_->now());
   cache_->reaccess(file, cache_read, sim_->now());
@@ -112,7 +113,7 @@ Task<IoTally> IoController::read_chunk_remote(FileId file, std::int64_t chunk) {
 
 Task<void> IoController::serve_read(FileId file, std::int64_t bytes, const Link& link, FlowSpec client_copy) {
   const FileInfo& info = (*files_)[file];
-  const std::int64_t disk_read = co_await room_for_read(file, bytes, 0, fmt::format("serving '{}'", info.name));
+  const std::int64_t disk_read = co_await room_for_read(file, bytes, 0, "serving");
   const std::int64_t cache_read = bytes - disk_read;
   cache_->add_read(file, disk_read, sim_->now());
   cache_->reaccess(file, cache_read, sim_->now());
@@ -297,7 +298,7 @@ Task<IoTally> IoController::read_file(FileId file, std::int64_t chunk_size, bool
       continue;
     }
     // O_DIRECT: only the application's buffer takes memory; the data comes from the disk.
-    co_await make_room(chunk, kNoFile, fmt::format("reading '{}'", info.name));
+    co_await make_room(chunk, kNoFile, file, "reading");
     cache_->allocate_anonymous(chunk);
     co_await info.disk->read(chunk, memory_->fresh_copy_rate());
     total += IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};

@@ -90,12 +90,13 @@ class IoController {
   Task<IoTally> read_chunk_remote(FileId file, std::int64_t chunk);
   /// Makes room for `required` bytes (flush, then evict), sparing `spared`; if that is not
   /// enough while other transfers still hold memory (writebacks, copies in flight), waits for
-  /// them and tries again. Throws SimulationError when nothing can ever free enough.
-  Task<void> make_room(std::int64_t required, FileId spared, const std::string& what);
+  /// them and tries again. Throws SimulationError when nothing can ever free enough, naming
+  /// what `verb` (e.g. "reading") was being done to `subject`.
+  Task<void> make_room(std::int64_t required, FileId spared, FileId subject, const char* verb);
   /// Makes room to read `bytes` of `file` (the part not cached is new cache data) plus
   /// `anonymous` bytes of application memory, and returns how many bytes are not cached: the
   /// part to read from the device, as the cache is once there is room for it.
-  Task<std::int64_t> room_for_read(FileId file, std::int64_t bytes, std::int64_t anonymous, std::string what);
+  Task<std::int64_t> room_for_read(FileId file, std::int64_t bytes, std::int64_t anonymous, const char* verb);
   /// Waits until memory held by transfers in flight may have been released.
   Task<void> wait_for_progress();
 

@@ -194,7 +194,10 @@ void PageCache::add_read(FileId file, std::int64_t bytes, double now) {
   add_new(file, bytes, BlockState::Clean, now, settings_.two_touch_activation);
 }
 
-void PageCache::add_dirty(FileId file, std::int64_t bytes, double now) { add_new(file, bytes, BlockState::Dirty, now); }
+void PageCache::add_dirty(FileId file, std::int64_t bytes, double now) {
+  add_new(file, bytes, BlockState::Dirty, now);
+  peak_dirty_ = std::max(peak_dirty_, dirty());
+}
 
 void PageCache::reserve(std::int64_t bytes) {
   PC_ASSERT(bytes >= 0);

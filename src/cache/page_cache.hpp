@@ -145,6 +145,8 @@ class PageCache {
   void set_being_written(FileId file, bool writing);
   /// Bytes evicted so far.
   std::int64_t evicted_bytes() const noexcept { return evicted_total_; }
+  /// The most dirty data there has been at once (data becomes dirty only when written).
+  std::int64_t peak_dirty() const noexcept { return peak_dirty_; }
   /// Moves least recently used active data to the inactive list until active <= 2 x inactive.
   void balance();
 
@@ -191,6 +193,7 @@ class PageCache {
   detail::ObjectPool<Block> pool_;
   std::uint64_t next_token_ = 1;
   std::int64_t evicted_total_ = 0;
+  std::int64_t peak_dirty_ = 0;
   std::function<void()> observer_;
   std::function<void()> progress_hook_;
   bool checking_ = checking_by_default();

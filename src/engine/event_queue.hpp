@@ -1,7 +1,10 @@
 #pragma once
-// EventQueue: the simulator's agenda, an indexed 4-ary heap of pooled event nodes ordered by
-// (time, sequence). Nodes come from a pool and the heap is one array, so scheduling does not
-// allocate once both have grown to the peak number of pending events.
+// EventQueue: the simulator's agenda, events ordered by (time, sequence). Events for later
+// times are pooled nodes in an indexed 4-ary heap (one array; they can be cancelled and
+// moved). Wake-ups for the current time, half of all events (every flow that ends, every
+// event triggered wakes its process at now()), cannot be cancelled and come out in the order
+// they were made: they wait in a ring buffer instead, taken before any heap event of a later
+// sequence number. Nothing allocates once both have grown to their peaks.
 
 #include <pagecache/simulator.hpp>
 
@@ -57,17 +60,30 @@ class EventQueue {
   EventQueue& operator=(const EventQueue&) = delete;
 
   QueuedEvent* push(double time, EventCallback callback, void* context);
+  /// A wake-up at `now`, the current time (never cancelled).
+  void push_now(double now, EventCallback callback, void* context);
   void erase(QueuedEvent* node) noexcept;
   void update(QueuedEvent* node, double time);
   /// Removes the earliest event and returns it; its node is recycled before the callback runs.
   Fired pop() noexcept;
-  bool empty() const noexcept { return heap_.empty(); }
-  std::size_t size() const noexcept { return heap_.size(); }
-  double top_time() const noexcept { return heap_.top().time; }
+  bool empty() const noexcept { return heap_.empty() && ring_count_ == 0; }
+  std::size_t size() const noexcept { return heap_.size() + ring_count_; }
+  double top_time() const noexcept { return ring_count_ > 0 ? ring_[ring_head_].time : heap_.top().time; }
   void clear() noexcept;
 
  private:
+  struct Wake {
+    double time;
+    std::uint64_t sequence;
+    EventCallback callback;
+    void* context;
+  };
+  bool ring_first() const noexcept;
+
   EventHeap heap_;
+  std::vector<Wake> ring_;  // capacity a power of two
+  std::size_t ring_head_ = 0;
+  std::size_t ring_count_ = 0;
   std::uint64_t next_sequence_ = 0;
   ObjectPool<QueuedEvent> nodes_;
 };

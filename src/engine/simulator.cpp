@@ -159,7 +159,7 @@ void Simulator::reschedule(const EventHandle& event, double time) {
 double Simulator::due(const EventHandle& event) const noexcept { return event.node_->time; }
 
 void Simulator::wake(std::coroutine_handle<> coroutine) {
-  impl_->queue.push(now_, &resume_coroutine, coroutine.address());
+  impl_->queue.push_now(now_, &resume_coroutine, coroutine.address());
 }
 
 SleepAwaiter::~SleepAwaiter() {

@@ -61,6 +61,18 @@ Task<void> IoController::make_room(std::int64_t required, FileId spared, FileId 
   }
 }
 
+std::int64_t IoController::room_for_read_at_once(FileId file, std::int64_t bytes, std::int64_t anonymous) {
+  // make_room's first pass when it needs no writeback: evict, and done if that was enough.
+  const FileInfo& info = (*files_)[file];
+  const FileId spared = cache_->settings().reclaim_may_take_file_being_read ? kNoFile : file;
+  const std::int64_t uncached = std::clamp<std::int64_t>(info.size - cache_->cached(file), 0, bytes);
+  const std::int64_t required = anonymous + uncached;
+  if (required - cache_->free() - cache_->evictable() > 0) return -1;
+  cache_->evict(required - cache_->free(), spared);
+  const std::int64_t now_uncached = std::clamp<std::int64_t>(info.size - cache_->cached(file), 0, bytes);
+  return anonymous + now_uncached <= cache_->free() ? now_uncached : -1;
+}
+
 Task<std::int64_t> IoController::room_for_read(FileId file, std::int64_t bytes, std::int64_t anonymous, const char* verb) {
   const FileInfo& info = (*files_)[file];
   const FileId spared = cache_->settings().reclaim_may_take_file_being_read ? kNoFile : file;
@@ -78,7 +90,8 @@ Task<IoTally> IoController::read_chunk(FileId file, std::int64_t chunk) {
   const FileInfo& info = (*files_)[file];
   if (info.is_remote()) co_return co_await read_chunk_remote(file, chunk);
   // The application's copy + the new cache copy of what is not cached.
-  const std::int64_t disk_read = co_await room_for_read(file, chunk, chunk, "reading");
+  std::int64_t disk_read = room_for_read_at_once(file, chunk, chunk);
+  if (disk_read < 0) disk_read = co_await room_for_read(file, chunk, chunk, "reading");
   const std::int64_t cache_read = chunk - disk_read;
   cache_->add_read(file, disk_read, sim_->now());
   cache_->reaccess(file, cache_read, sim_->now());
@@ -96,7 +109,8 @@ Task<IoTally> IoController::read_chunk_remote(FileId file, std::int64_t chunk) {
   // A client read (NFS): what this host's cache lacks comes from the server, over the link,
   // and is kept in this host's cache (clean); the rest is a hit in this host's cache.
   const FileInfo& info = (*files_)[file];
-  const std::int64_t remote_read = co_await room_for_read(file, chunk, chunk, "reading");
+  std::int64_t remote_read = room_for_read_at_once(file, chunk, chunk);
+  if (remote_read < 0) remote_read = co_await room_for_read(file, chunk, chunk, "reading");
   const std::int64_t cache_read = chunk - remote_read;
   cache_->add_read(file, remote_read, sim_->now());
   cache_->reaccess(file, cache_read, sim_->now());
@@ -113,7 +127,8 @@ Task<IoTally> IoController::read_chunk_remote(FileId file, std::int64_t chunk) {
 
 Task<void> IoController::serve_read(FileId file, std::int64_t bytes, const Link& link, FlowSpec client_copy) {
   const FileInfo& info = (*files_)[file];
-  const std::int64_t disk_read = co_await room_for_read(file, bytes, 0, "serving");
+  std::int64_t disk_read = room_for_read_at_once(file, bytes, 0);
+  if (disk_read < 0) disk_read = co_await room_for_read(file, bytes, 0, "serving");
   const std::int64_t cache_read = bytes - disk_read;
   cache_->add_read(file, disk_read, sim_->now());
   cache_->reaccess(file, cache_read, sim_->now());
@@ -152,7 +167,9 @@ Task<IoTally> IoController::write_chunk(FileId file, std::int64_t chunk) {
     co_await info.remote.server->serve_write(info.remote.server_file, chunk, *info.remote.link);
     co_return IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
   }
-  if (cache_->settings().write_mode == WriteMode::Writethrough) co_return co_await write_chunk_writethrough(file, chunk);
+  const CacheSettings& settings = cache_->settings();
+  if (settings.write_mode == WriteMode::Writethrough) co_return co_await write_chunk_writethrough(file, chunk);
+  if (settings.dirty_throttling && settings.background_writeback) co_return co_await write_chunk_throttled(file, chunk);
   co_return co_await write_chunk_writeback(file, chunk);
 }
 
@@ -235,7 +252,12 @@ Task<IoTally> IoController::write_chunk_throttled(FileId file, std::int64_t chun
       continue;
     }
     if (throttled) credit -= static_cast<double>(to_cache);
-    co_await write_to_cache(file, to_cache);
+    // As write_to_cache, without a coroutine of its own: the pages are taken now and hold the
+    // data (dirty, entry time the end of the copy) once the copy is done.
+    cache_->reserve(to_cache);
+    co_await memory_->write(to_cache);
+    cache_->commit_dirty(file, to_cache, sim_->now());
+    flusher_->notify_dirty();
     remaining -= to_cache;
   }
   if (throttled) --throttled_writers_;

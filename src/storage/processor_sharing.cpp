@@ -69,7 +69,17 @@ double ProcessorSharing::erase_bounded(FlowState* flow) {
 
 void ProcessorSharing::add(FlowState* flow, double remaining) {
   advance();
-  insert_sharing(flow, remaining);
+  // A flow whose bound is below the level it would leave the others joins the bounded group
+  // at once (a memory copy at its per-thread bound, the common case): rebalance would move
+  // it there anyway, after two heap insertions and two removals.
+  const double usage_with_it = bounded_usage_ + flow->cost() * flow->bound;
+  const double level_with_it = sharing_.empty() ? (usage_with_it <= 1.0 ? kUnbounded : -kUnbounded)
+                                                : (1.0 - usage_with_it) / sharing_weighted_cost_;
+  if (std::isfinite(flow->threshold) && level_with_it > 0.0 && flow->threshold < level_with_it * (1.0 - precision::kRelativeRate)) {
+    insert_bounded(flow, remaining);
+  } else {
+    insert_sharing(flow, remaining);
+  }
   rebalance();
   schedule_head();
 }

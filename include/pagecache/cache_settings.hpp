@@ -36,6 +36,11 @@ struct CacheSettings {
   /// the writing); without it, writers flush as in the paper. Off, as the paper: a writer at
   /// dirty_ratio flushes a chunk's worth itself, then writes the chunk.
   bool dirty_throttling = true;
+  /// The periodic flusher writes expired data oldest first, as kupdate-style writeback takes
+  /// expired inodes in the order they were dirtied (fs/fs-writeback.c, b_dirty ordered by
+  /// dirtied_when), in O(1) per block. Off, as the paper's Algorithm 1: expired blocks of the
+  /// inactive list, then of the active list, in LRU order.
+  bool expire_oldest_first = true;
   /// Two-touch activation (mm/swap.c, mark_page_accessed): data read from a device is marked
   /// referenced by that read; cached data read again is activated only if referenced, else it
   /// is just marked. Written data is not referenced: written then read once, it stays
@@ -76,6 +81,7 @@ struct CacheSettings {
     s.dirtyable_memory = false;
     s.background_writeback = false;
     s.dirty_throttling = false;
+    s.expire_oldest_first = false;
     s.two_touch_activation = false;
     s.protect_files_being_written = false;
     s.reclaim_inactive_only = false;

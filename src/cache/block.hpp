@@ -6,7 +6,9 @@
 //    writeback), in the same relative order, so flushing finds dirty data and eviction finds
 //    clean data without walking past the others;
 //  - its file's list for that LRU list, in the same relative order, so that per-file queries
-//    and re-accesses cost O(blocks of the file).
+//    and re-accesses cost O(blocks of the file);
+//  - while dirty, the page cache's list of dirty blocks in the order they became dirty
+//    (their entry times), so that the flusher sees in O(1) whether anything has expired.
 
 #include <boost/intrusive/list.hpp>
 
@@ -34,6 +36,7 @@ struct Block {
   SafeHook lru_hook;
   SafeHook state_hook;
   SafeHook file_hook;
+  SafeHook dirty_hook;
 };
 
 template <SafeHook Block::*Hook>
@@ -43,5 +46,6 @@ using BlockList = boost::intrusive::list<
 using LruOrder = BlockList<&Block::lru_hook>;
 using StateOrder = BlockList<&Block::state_hook>;
 using FileOrder = BlockList<&Block::file_hook>;
+using DirtyOrder = BlockList<&Block::dirty_hook>;
 
 }  // namespace pagecache::cache

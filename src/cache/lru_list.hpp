@@ -22,6 +22,7 @@ class LruList {
   std::int64_t bytes() const noexcept { return bytes_; }
   std::int64_t bytes(BlockState state) const noexcept { return state_bytes_[index(state)]; }
   std::size_t size() const noexcept { return blocks_.size(); }
+  std::size_t blocks_in(BlockState state) const noexcept { return by_state_[index(state)].size(); }
   bool empty() const noexcept { return blocks_.empty(); }
 
   /// Appends at the most-recently-used end.

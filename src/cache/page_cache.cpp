@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <limits>
 #include <cstdlib>
 #include <string_view>
 
@@ -138,10 +139,14 @@ void PageCache::unlink(Block& block) {
 
 void PageCache::destroy(Block& block) {
   unlink(block);
+  if (block.dirty_hook.is_linked()) dirty_by_age_.erase(dirty_by_age_.iterator_to(block));
   pool_.give_back(&block);
 }
 
 void PageCache::set_state(Block& block, BlockState state) {
+  // Data becomes dirty only as a new block (add_new): its place by age is the newest.
+  PC_ASSERT(state != BlockState::Dirty || block.state == BlockState::Dirty);
+  if (block.state == BlockState::Dirty && state != BlockState::Dirty) dirty_by_age_.erase(dirty_by_age_.iterator_to(block));
   FileEntry& entry = files_[block.file];
   if (block.state == BlockState::Dirty) entry.dirty_bytes -= block.size;
   if (state == BlockState::Dirty) entry.dirty_bytes += block.size;
@@ -163,6 +168,7 @@ Block& PageCache::split_front(Block& block, std::int64_t head_size) {
   list.insert_after(block, tail);
   FileOrder& flist = file_list(files_[block.file], block.list);
   flist.insert(std::next(flist.iterator_to(block)), tail);
+  if (tail.state == BlockState::Dirty) dirty_by_age_.insert(std::next(dirty_by_age_.iterator_to(block)), tail);
   // Per-file byte counters are unchanged: the file holds the same bytes in the same list.
   return block;
 }
@@ -184,6 +190,13 @@ void PageCache::add_new(FileId file, std::int64_t bytes, BlockState state, doubl
   Block& block = new_block(file, bytes, state, now);
   block.referenced = referenced;
   append(block, ListKind::Inactive);
+  if (state == BlockState::Dirty) {
+    // Its place by age: the newest in a simulation, where time only goes forward; callers
+    // that pass earlier times (tests) get it sorted in.
+    auto at = dirty_by_age_.end();
+    while (at != dirty_by_age_.begin() && std::prev(at)->entry_time > now) --at;
+    dirty_by_age_.insert(at, block);
+  }
   settle();
 }
 
@@ -330,16 +343,23 @@ void PageCache::drop_file(FileId file) {
   if (progress_hook_) progress_hook_();
 }
 
+PageCache::Flushed PageCache::take_for_writeback(Block& block) {
+  const Flushed taken{block.file, block.size, next_token_++};
+  block.writeback_batch = taken.token;
+  set_state(block, BlockState::Writeback);
+  settle();
+  return taken;
+}
+
 PageCache::Flushed PageCache::flush_expired_block(double cutoff) {
+  // Nothing expired if the oldest dirty data has not: O(1) for the flusher's usual tick.
+  if (dirty_by_age_.empty() || dirty_by_age_.front().entry_time > cutoff) return {kNoFile, 0};
+  if (settings_.expire_oldest_first) return take_for_writeback(dirty_by_age_.front());
   for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
     LruList& list = list_of(kind);
     for (Block* block = list.front(BlockState::Dirty); block != nullptr; block = list.next(*block, BlockState::Dirty)) {
       if (block->entry_time > cutoff) continue;
-      const Flushed taken{block->file, block->size, next_token_++};
-      block->writeback_batch = taken.token;
-      set_state(*block, BlockState::Writeback);
-      settle();
-      return taken;
+      return take_for_writeback(*block);
     }
   }
   return {kNoFile, 0};
@@ -461,6 +481,16 @@ void PageCache::check_invariants() const {
     PC_ASSERT(dirty_bytes == entry.dirty_bytes);
   }
   PC_ASSERT_MSG(blocks_in_files == inactive_.size() + active_.size(), "a block is missing from its file's list");
+  std::size_t dirty_blocks = 0;
+  double previous = -std::numeric_limits<double>::infinity();
+  for (const Block& b : dirty_by_age_) {
+    PC_ASSERT_MSG(b.state == BlockState::Dirty, "a block on the list by age is not dirty");
+    PC_ASSERT_MSG(b.entry_time >= previous, "dirty blocks out of age order");
+    previous = b.entry_time;
+    ++dirty_blocks;
+  }
+  PC_ASSERT_MSG(dirty_blocks == inactive_.blocks_in(BlockState::Dirty) + active_.blocks_in(BlockState::Dirty),
+                "a dirty block is missing from the list by age");
   PC_ASSERT(pool_.in_use() == inactive_.size() + active_.size());
 }
 

@@ -121,9 +121,9 @@ class PageCache {
   /// evictable) until end_writeback. Appends what was taken, per file, to `out` and returns
   /// the total. The caller writes them to their devices, then calls end_writeback.
   std::int64_t flush(std::int64_t amount, FileId excluded, std::vector<Flushed>& out);
-  /// Takes for writing back the least recently used dirty block whose entry time is <=
-  /// `cutoff` (inactive list first), or returns {kNoFile, 0}: the periodic flusher writes
-  /// expired data one block at a time.
+  /// Takes for writing back a dirty block whose entry time is <= `cutoff`, or returns
+  /// {kNoFile, 0}: the oldest (settings().expire_oldest_first) or the least recently used,
+  /// inactive list first. The periodic flusher writes expired data one block at a time.
   Flushed flush_expired_block(double cutoff);
   /// The write of `taken` is done: its data still in writeback becomes clean (it may have been
   /// split or moved meanwhile).
@@ -168,6 +168,8 @@ class PageCache {
   FileOrder& file_list(FileEntry& entry, ListKind kind) noexcept { return kind == ListKind::Inactive ? entry.inactive : entry.active; }
 
   Block& new_block(FileId file, std::int64_t size, BlockState state, double now);
+  /// Puts one dirty block in writeback under a new token.
+  Flushed take_for_writeback(Block& block);
   /// New data of `file` at the MRU end of the inactive list, taken from free memory.
   void add_new(FileId file, std::int64_t bytes, BlockState state, double now, bool referenced = false);
   void append(Block& block, ListKind kind);
@@ -189,6 +191,7 @@ class PageCache {
   std::int64_t reserved_ = 0;
   LruList inactive_{ListKind::Inactive};
   LruList active_{ListKind::Active};
+  DirtyOrder dirty_by_age_;  // dirty blocks, oldest entry time first
   std::vector<FileEntry> files_;
   detail::ObjectPool<Block> pool_;
   std::uint64_t next_token_ = 1;

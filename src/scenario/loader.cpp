@@ -104,6 +104,7 @@ void apply_override(toml::table& root, const std::string& key, const std::string
 std::vector<std::pair<std::string, bool*>> cache_switches(CacheSettings& s) {
   return {{"background_writeback", &s.background_writeback},
           {"dirty_throttling", &s.dirty_throttling},
+          {"expire_oldest_first", &s.expire_oldest_first},
           {"two_touch_activation", &s.two_touch_activation},
           {"protect_files_being_written", &s.protect_files_being_written},
           {"dirtyable_memory", &s.dirtyable_memory},

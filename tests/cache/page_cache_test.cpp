@@ -170,6 +170,33 @@ TEST_CASE("the periodic flusher takes expired dirty blocks one at a time, inacti
   CHECK(cache.dirty(1) == 100);
 }
 
+TEST_CASE("with expire_oldest_first the periodic flusher takes the oldest expired data first", "[page_cache]") {
+  // Dirty data of ages 0 s (file 0, inactive), 5 s (file 2, read twice: active) and 20 s
+  // (file 1). At cutoff 10 the paper's order takes the inactive list first (file 0, then file
+  // 2); oldest first takes file 0 then file 2 as well, but when the active data is older
+  // (file 3 at -5 s, read twice) it comes first, wherever it sits on the lists. Splitting a
+  // dirty block keeps its pieces in place by age.
+  for (const bool oldest_first : {true, false}) {
+    CacheSettings settings = CacheSettings::kernel();
+    settings.expire_oldest_first = oldest_first;
+    settings.two_touch_activation = false;  // one re-read activates
+    PageCache cache(10000, settings);
+    cache.set_checking(true);
+    cache.add_dirty(0, 100, 0.0);
+    cache.add_dirty(1, 100, 20.0);
+    cache.add_dirty(3, 100, -5.0);
+    cache.reaccess(3, 100, 21.0);  // file 3 now on the active list, still dirty since -5 s
+    const auto first = cache.flush_expired_block(10.0);
+    CHECK(first.file == (oldest_first ? 3u : 0u));
+    const auto second = cache.flush_expired_block(10.0);
+    CHECK(second.file == (oldest_first ? 0u : 3u));
+    CHECK(cache.flush_expired_block(10.0).bytes == 0);  // file 1 is not expired
+    cache.end_writeback(first);
+    cache.end_writeback(second);
+    CHECK(cache.dirty() == 100);
+  }
+}
+
 TEST_CASE("the dirty thresholds' base is free + cached (kernel) or free + clean cached (paper)", "[page_cache]") {
   PageCache paper(1000, CacheSettings::paper());
   PageCache kernel(1000, CacheSettings::kernel());

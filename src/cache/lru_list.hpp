@@ -36,6 +36,7 @@ class LruList {
   void resize(Block& block, std::int64_t new_size);
 
   Block* front() noexcept { return blocks_.empty() ? nullptr : &blocks_.front(); }
+  Block* back() noexcept { return blocks_.empty() ? nullptr : &blocks_.back(); }
   Block* next(Block& block) noexcept;
   /// Least recently used block in `state`, and the next one in that state.
   Block* front(BlockState state) noexcept;

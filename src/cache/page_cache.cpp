@@ -137,6 +137,20 @@ void PageCache::unlink(Block& block) {
   if (block.state == BlockState::Dirty) entry.dirty_bytes -= block.size;
 }
 
+bool PageCache::extend_tail(ListKind kind, FileId file, std::int64_t bytes, bool referenced) {
+  // New clean data of the file at the most recently used end, right behind a clean block of
+  // the same file in the same state: one block, not two. The bytes are in the same place on
+  // the lists either way; a file read chunk by chunk then holds a block per run, not per
+  // chunk, which bounds the number of blocks by the runs of data rather than the chunks.
+  LruList& list = list_of(kind);
+  Block* tail = list.back();
+  if (tail == nullptr || tail->file != file || tail->state != BlockState::Clean || tail->referenced != referenced) return false;
+  list.resize(*tail, tail->size + bytes);
+  FileEntry& entry = files_[file];
+  (kind == ListKind::Inactive ? entry.inactive_bytes : entry.active_bytes) += bytes;
+  return true;
+}
+
 void PageCache::destroy(Block& block) {
   unlink(block);
   if (block.dirty_hook.is_linked()) dirty_by_age_.erase(dirty_by_age_.iterator_to(block));
@@ -186,6 +200,10 @@ void PageCache::add_new(FileId file, std::int64_t bytes, BlockState state, doubl
   if (bytes == 0) return;
   if (bytes > free()) {
     throw SimulationError(fmt::format("cannot cache {} bytes: only {} free", bytes, free()));
+  }
+  if (state == BlockState::Clean && extend_tail(ListKind::Inactive, file, bytes, referenced)) {
+    settle();
+    return;
   }
   Block& block = new_block(file, bytes, state, now);
   block.referenced = referenced;
@@ -267,7 +285,9 @@ void PageCache::reaccess(FileId file, std::int64_t bytes, double now) {
     activate(block);
   }
   PC_ASSERT(left == 0);
-  if (merged_clean > 0) append(new_block(file, merged_clean, BlockState::Clean, now), ListKind::Active);
+  if (merged_clean > 0 && !extend_tail(ListKind::Active, file, merged_clean, false)) {
+    append(new_block(file, merged_clean, BlockState::Clean, now), ListKind::Active);
+  }
   balance();  // after every read, in both profiles
   settle();
 }

@@ -168,6 +168,9 @@ class PageCache {
   FileOrder& file_list(FileEntry& entry, ListKind kind) noexcept { return kind == ListKind::Inactive ? entry.inactive : entry.active; }
 
   Block& new_block(FileId file, std::int64_t size, BlockState state, double now);
+  /// Adds `bytes` to the clean block at the MRU end of `kind` if it is the file's with the
+  /// same referenced mark; false if there is no such block.
+  bool extend_tail(ListKind kind, FileId file, std::int64_t bytes, bool referenced);
   /// Puts one dirty block in writeback under a new token.
   Flushed take_for_writeback(Block& block);
   /// New data of `file` at the MRU end of the inactive list, taken from free memory.

@@ -72,9 +72,19 @@ class Reference {
     if (s_.balance_after_every_change) balance();
   }
 
+  // New clean data right behind a clean block of the same file (same mark) extends it.
+  static void push_new(std::vector<RefBlock>& list, const RefBlock& b) {
+    if (b.state == BlockState::Clean && !list.empty() && list.back().file == b.file && list.back().state == BlockState::Clean &&
+        list.back().referenced == b.referenced) {
+      list.back().size += b.size;
+    } else {
+      list.push_back(b);
+    }
+  }
+
   void add(FileId f, std::int64_t bytes, BlockState st, double now, bool referenced = false) {
     if (bytes == 0) return;
-    inactive.push_back({f, bytes, st, now, 0, referenced});
+    push_new(inactive, {f, bytes, st, now, 0, referenced});
     settle();
   }
 
@@ -158,7 +168,7 @@ class Reference {
       else active.push_back(b);
     }
     REQUIRE(left == 0);
-    if (merged > 0) active.push_back({f, merged, BlockState::Clean, now, 0});
+    if (merged > 0) push_new(active, {f, merged, BlockState::Clean, now, 0});
     balance();
     settle();
   }

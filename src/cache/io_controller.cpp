@@ -86,23 +86,10 @@ Task<std::int64_t> IoController::room_for_read(FileId file, std::int64_t bytes, 
   }
 }
 
-Task<IoTally> IoController::read_chunk(FileId file, std::int64_t chunk) {
-  const FileInfo& info = (*files_)[file];
-  if (info.is_remote()) co_return co_await read_chunk_remote(file, chunk);
-  // The application's copy + the new cache copy of what is not cached.
-  std::int64_t disk_read = room_for_read_at_once(file, chunk, chunk);
-  if (disk_read < 0) disk_read = co_await room_for_read(file, chunk, chunk, "reading");
-  const std::int64_t cache_read = chunk - disk_read;
-  cache_->add_read(file, disk_read, sim_->now());
-  cache_->reaccess(file, cache_read, sim_->now());
+void IoController::take_chunk(FileId file, std::int64_t chunk, std::int64_t uncached) {
+  cache_->add_read(file, uncached, sim_->now());
+  cache_->reaccess(file, chunk - uncached, sim_->now());
   cache_->allocate_anonymous(chunk);
-
-  // The application's buffer is fresh memory: the reader faults in and zeroes each page it
-  // copies into. From the disk that overlaps the device's transfer (readahead), from the
-  // cache it adds to the copy.
-  if (disk_read > 0) co_await info.disk->read(disk_read, memory_->fresh_copy_rate());
-  if (cache_read > 0) co_await memory_->read_into_fresh(cache_read);
-  co_return IoTally{.bytes = chunk, .cache_bytes = cache_read, .disk_bytes = disk_read};
 }
 
 Task<IoTally> IoController::read_chunk_remote(FileId file, std::int64_t chunk) {
@@ -112,9 +99,7 @@ Task<IoTally> IoController::read_chunk_remote(FileId file, std::int64_t chunk) {
   std::int64_t remote_read = room_for_read_at_once(file, chunk, chunk);
   if (remote_read < 0) remote_read = co_await room_for_read(file, chunk, chunk, "reading");
   const std::int64_t cache_read = chunk - remote_read;
-  cache_->add_read(file, remote_read, sim_->now());
-  cache_->reaccess(file, cache_read, sim_->now());
-  cache_->allocate_anonymous(chunk);
+  take_chunk(file, chunk, remote_read);
   if (remote_read > 0) {
     FlowSpec client_copy = memory_->write_spec(remote_read);
     client_copy.bound = std::min(client_copy.bound, memory_->fresh_copy_rate());
@@ -315,8 +300,24 @@ Task<IoTally> IoController::read_file(FileId file, std::int64_t chunk_size, bool
   for (std::int64_t offset = 0; offset < info.size; offset += chunk_size) {
     const std::int64_t chunk = std::min(chunk_size, info.size - offset);
     ++chunks_;
+    if (!direct && !info.is_remote()) {
+      // One chunk (paper Algorithm 2): room for the application's copy and the new cache copy
+      // of what is not cached, then the device and cache reads. Here rather than in a
+      // coroutine of its own: a chunk read is the simulator's most frequent operation, and a
+      // frame fewer per chunk is a cache miss less. The application's buffer is fresh memory:
+      // the reader faults in and zeroes each page it copies into; from the disk that overlaps
+      // the device's transfer (readahead), from the cache it adds to the copy.
+      std::int64_t disk_read = room_for_read_at_once(file, chunk, chunk);
+      if (disk_read < 0) disk_read = co_await room_for_read(file, chunk, chunk, "reading");
+      const std::int64_t cache_read = chunk - disk_read;
+      take_chunk(file, chunk, disk_read);
+      if (disk_read > 0) co_await info.disk->read(disk_read, memory_->fresh_copy_rate());
+      if (cache_read > 0) co_await memory_->read_into_fresh(cache_read);
+      total += IoTally{.bytes = chunk, .cache_bytes = cache_read, .disk_bytes = disk_read};
+      continue;
+    }
     if (!direct) {
-      total += co_await read_chunk(file, chunk);
+      total += co_await read_chunk_remote(file, chunk);
       continue;
     }
     // O_DIRECT: only the application's buffer takes memory; the data comes from the disk.
@@ -333,10 +334,18 @@ Task<IoTally> IoController::write_file(FileId file, std::int64_t bytes, std::int
   const FileInfo& info = (*files_)[file];
   if (direct && info.is_remote()) throw ConfigError(fmt::format("'{}': direct I/O on a remote file is not modelled", info.name));
   IoTally total;
+  const CacheSettings& settings = cache_->settings();
+  // The most frequent case goes to its coroutine directly, a frame fewer per chunk.
+  const bool throttled = !direct && !info.is_remote() && settings.write_mode == WriteMode::Writeback &&
+                         settings.dirty_throttling && settings.background_writeback;
   cache_->set_being_written(file, true);
   for (std::int64_t offset = 0; offset < bytes; offset += chunk_size) {
     const std::int64_t chunk = std::min(chunk_size, bytes - offset);
     ++chunks_;
+    if (throttled) {
+      total += co_await write_chunk_throttled(file, chunk);
+      continue;
+    }
     if (!direct) {
       total += co_await write_chunk(file, chunk);
       continue;

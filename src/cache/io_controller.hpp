@@ -41,13 +41,11 @@ class IoController {
  public:
   IoController(Simulator& sim, PageCache& cache, const Memory& memory, FileTable& files, Flusher& flusher);
 
-  /// Reads the next `chunk` bytes of `file` (Algorithm 2). The chunk's copy stays in
-  /// application memory until released.
-  Task<IoTally> read_chunk(FileId file, std::int64_t chunk);
   /// Writes `chunk` bytes to `file` (Algorithm 3 in writeback mode; disk then cache in
   /// writethrough mode).
   Task<IoTally> write_chunk(FileId file, std::int64_t chunk);
-  /// Reads a whole file in chunks of `chunk_size` bytes; `direct`: bypassing the page cache
+  /// Reads a whole file in chunks of `chunk_size` bytes (Algorithm 2 per chunk; each chunk's
+  /// copy stays in application memory until released); `direct`: bypassing the page cache
   /// (O_DIRECT: from the disk into the application's buffer).
   Task<IoTally> read_file(FileId file, std::int64_t chunk_size, bool direct = false);
   /// Writes `bytes` to `file` in chunks of `chunk_size` bytes; `direct`: straight to the disk.
@@ -88,6 +86,9 @@ class IoController {
   Task<void> write_to_cache(FileId file, std::int64_t bytes);
   Task<IoTally> write_chunk_writethrough(FileId file, std::int64_t chunk);
   Task<IoTally> read_chunk_remote(FileId file, std::int64_t chunk);
+  /// A chunk read's cache bookkeeping, done when it starts: the `uncached` part is new
+  /// cache data, the rest is re-accessed, and the whole chunk's copy is application memory.
+  void take_chunk(FileId file, std::int64_t chunk, std::int64_t uncached);
   /// Makes room for `required` bytes (flush, then evict), sparing `spared`; if that is not
   /// enough while other transfers still hold memory (writebacks, copies in flight), waits for
   /// them and tries again. Throws SimulationError when nothing can ever free enough, naming

@@ -70,7 +70,9 @@ namespace detail {
 struct FlowState;
 }
 
-/// Awaitable flow: `co_await share.transfer(spec)` returns when all the work is through.
+/// Awaitable flow: `co_await share.transfer(spec)` returns when all the work is through. The
+/// flow starts when the awaiter is made, so await it at once (as `co_await` does); it holds
+/// no copy of the spec, which keeps the frames of the coroutines that await flows small.
 /// Destroying it while the flow runs (its process torn down) withdraws the flow.
 class [[nodiscard]] FlowAwaiter {
  public:
@@ -79,14 +81,13 @@ class [[nodiscard]] FlowAwaiter {
   FlowAwaiter& operator=(const FlowAwaiter&) = delete;
   ~FlowAwaiter();
 
-  bool await_ready() const noexcept { return spec_.work == 0.0; }
-  void await_suspend(std::coroutine_handle<> waiting);
+  bool await_ready() const noexcept { return flow_ == nullptr; }
+  void await_suspend(std::coroutine_handle<> waiting) noexcept;
   void await_resume() const noexcept {}
 
  private:
   friend class FairShare;
   FairShare* share_;
-  FlowSpec spec_;
   detail::FlowState* flow_ = nullptr;
 };
 

@@ -291,16 +291,18 @@ void FairShare::Impl::on_head_due(void* context) {
 
 // --- FlowAwaiter ------------------------------------------------------------------------------
 
-FlowAwaiter::FlowAwaiter(FairShare& share, const FlowSpec& spec) : share_(&share), spec_(spec) {}
+FlowAwaiter::FlowAwaiter(FairShare& share, const FlowSpec& spec) : share_(&share) {
+  // No work: nothing to start, the awaiter is ready (a flow may not cross zero resources,
+  // but zero bytes of a valid spec are no transfer at all).
+  if (spec.work == 0.0) return;
+  flow_ = share.start(spec, {}, this);
+}
 
 FlowAwaiter::~FlowAwaiter() {
   if (flow_ != nullptr && share_ != nullptr) share_->withdraw(flow_);
 }
 
-void FlowAwaiter::await_suspend(std::coroutine_handle<> waiting) {
-  if (share_ == nullptr) throw SimulationError("flow on a destroyed FairShare");
-  flow_ = share_->start(spec_, waiting, this);
-}
+void FlowAwaiter::await_suspend(std::coroutine_handle<> waiting) noexcept { flow_->waiting = waiting; }
 
 // --- FairShare --------------------------------------------------------------------------------
 

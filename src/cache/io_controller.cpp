@@ -40,6 +40,11 @@ IoController::IoController(Simulator& sim, PageCache& cache, const Memory& memor
   });
 }
 
+bool IoController::throttles_writers() const noexcept {
+  // Throttled writers wait for the flusher's background writeback; without it, they flush.
+  return cache_->settings().dirty_throttling && cache_->settings().background_writeback;
+}
+
 void IoController::machine_at_rest() { dirty_limit_.reset(cache_->dirty_limits().thresh); }
 
 Task<void> IoController::wait_for_progress() {
@@ -152,9 +157,7 @@ Task<IoTally> IoController::write_chunk(FileId file, std::int64_t chunk) {
     co_await info.remote.server->serve_write(info.remote.server_file, chunk, *info.remote.link);
     co_return IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
   }
-  const CacheSettings& settings = cache_->settings();
-  if (settings.write_mode == WriteMode::Writethrough) co_return co_await write_chunk_writethrough(file, chunk);
-  if (settings.dirty_throttling && settings.background_writeback) co_return co_await write_chunk_throttled(file, chunk);
+  if (cache_->settings().write_mode == WriteMode::Writethrough) co_return co_await write_chunk_writethrough(file, chunk);
   co_return co_await write_chunk_writeback(file, chunk);
 }
 
@@ -250,8 +253,8 @@ Task<IoTally> IoController::write_chunk_throttled(FileId file, std::int64_t chun
 }
 
 Task<IoTally> IoController::write_chunk_writeback(FileId file, std::int64_t chunk) {
+  if (throttles_writers()) co_return co_await write_chunk_throttled(file, chunk);
   const CacheSettings& settings = cache_->settings();
-  if (settings.dirty_throttling && settings.background_writeback) co_return co_await write_chunk_throttled(file, chunk);
   const auto limit = [&] {
     return static_cast<std::int64_t>(std::floor(settings.dirty_ratio * static_cast<double>(cache_->dirtyable())));
   };
@@ -334,10 +337,8 @@ Task<IoTally> IoController::write_file(FileId file, std::int64_t bytes, std::int
   const FileInfo& info = (*files_)[file];
   if (direct && info.is_remote()) throw ConfigError(fmt::format("'{}': direct I/O on a remote file is not modelled", info.name));
   IoTally total;
-  const CacheSettings& settings = cache_->settings();
   // The most frequent case goes to its coroutine directly, a frame fewer per chunk.
-  const bool throttled = !direct && !info.is_remote() && settings.write_mode == WriteMode::Writeback &&
-                         settings.dirty_throttling && settings.background_writeback;
+  const bool throttled = !direct && !info.is_remote() && cache_->settings().write_mode == WriteMode::Writeback && throttles_writers();
   cache_->set_being_written(file, true);
   for (std::int64_t offset = 0; offset < bytes; offset += chunk_size) {
     const std::int64_t chunk = std::min(chunk_size, bytes - offset);

@@ -80,6 +80,8 @@ class IoController {
   /// Flushes up to `amount` dirty bytes (skipping `excluded`) and waits for their writes.
   Task<std::int64_t> write_back(std::int64_t amount, FileId excluded);
   Task<IoTally> write_chunk_writeback(FileId file, std::int64_t chunk);
+  /// Whether writeback-mode writers are paced (dirty throttling) rather than made to flush.
+  bool throttles_writers() const noexcept;
   /// A writeback-mode chunk under dirty throttling (CacheSettings::dirty_throttling).
   Task<IoTally> write_chunk_throttled(FileId file, std::int64_t chunk);
   /// Copies `bytes` into the cache: the memory transfer, then a new dirty block.

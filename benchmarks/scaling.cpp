@@ -6,13 +6,19 @@
 // pipeline, read and written once) do not all fit in the page cache beside the buffers: the
 // run evicts, writes back under the dirty limits and reads from disk and cache. For each N it
 // reports the simulated makespan, events processed, chunk operations, wall time of the
-// simulation (the run, not the set-up; the fastest of several repetitions for small N),
-// chunk operations per second, nanoseconds per chunk operation and the peak resident set size
-// of the process (getrusage), as a table and as one JSON line per N.
+// simulation (the run, not the set-up), chunk operations per second, nanoseconds per chunk
+// operation and the peak resident set size of the process (getrusage), as a table and as one
+// JSON line per N.
+//
+// The machine is shared: another tenant can slow a run by half. Each N is repeated until a
+// time budget is spent (1 s by default, at most 1000 repetitions, at least one): the figures
+// are those of the fastest repetition, the one least disturbed, and the median is printed
+// beside them to show the spread.
 //
 //   pcsim_scaling                       # N = 10, 100, 1000, 10^4, 10^5, each in a fresh process
 //   pcsim_scaling --max 1000            # stop at N = 1000
 //   pcsim_scaling --pipelines 5000      # one N, in this process: its JSON line only
+//   pcsim_scaling --budget 0            # one repetition per N
 //   pcsim_scaling --profile paper       # the paper's model instead of the linux profile
 //
 // Each N runs in a process of its own so that its peak RSS is its own.
@@ -23,6 +29,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -79,34 +86,37 @@ long peak_rss_kb() {
   return usage.ru_maxrss;  // kilobytes on Linux
 }
 
-// One N in this process: its JSON line on stdout. A small N runs in a fraction of a
-// millisecond, too short to time on a shared machine: the run is repeated until 0.2 s have
-// been spent (at most 1000 times), and the fastest repetition is reported.
-int run_one(long pipelines, const std::string& profile) {
+// One N in this process: its JSON line on stdout, from repetitions until `budget` seconds
+// have been spent (at most 1000, at least one).
+int run_one(long pipelines, const std::string& profile, double budget) {
   const pagecache::Scenario scenario =
       pagecache::parse_scenario(scenario_text(pipelines, profile), fmt::format("<scaling {}>", pipelines), {}, profile);
   pagecache::RunOptions options;
   options.cache_contents = false;
   pagecache::RunSummary s;
-  double best = 0.0, spent = 0.0;
-  int repetitions = 0;
-  while (repetitions < 1000 && (repetitions == 0 || spent < 0.2)) {
+  std::vector<double> walls;
+  double spent = 0.0;
+  while (walls.size() < 1000 && (walls.empty() || spent < budget)) {
     const pagecache::RunResult result = pagecache::run_scenario(scenario, options);
-    if (repetitions == 0 || result.summary.wall_seconds < best) best = result.summary.wall_seconds;
+    walls.push_back(result.summary.wall_seconds);
     spent += result.summary.wall_seconds;
     s = result.summary;
-    ++repetitions;
   }
+  std::sort(walls.begin(), walls.end());
+  const double best = walls.front();
+  const double median = walls[walls.size() / 2];
   const double ops = static_cast<double>(s.chunk_operations);
   fmt::print(
       "{{\"pipelines\": {}, \"profile\": \"{}\", \"makespan_s\": {:.3f}, \"events\": {}, \"chunk_operations\": {}, "
-      "\"repetitions\": {}, \"wall_s\": {:.6f}, \"chunk_ops_per_s\": {:.0f}, \"ns_per_chunk_op\": {:.1f}, \"peak_rss_kb\": {}}}\n",
-      pipelines, profile, s.makespan, s.events, s.chunk_operations, repetitions, best, ops / best, best / ops * 1e9, peak_rss_kb());
+      "\"repetitions\": {}, \"wall_s\": {:.6f}, \"chunk_ops_per_s\": {:.0f}, \"ns_per_chunk_op\": {:.1f}, "
+      "\"median_ns_per_chunk_op\": {:.1f}, \"peak_rss_kb\": {}}}\n",
+      pipelines, profile, s.makespan, s.events, s.chunk_operations, walls.size(), best, ops / best, best / ops * 1e9,
+      median / ops * 1e9, peak_rss_kb());
   return 0;
 }
 
-// Runs `self --pipelines N --profile P` and returns its output line.
-std::string run_child(const char* self, long pipelines, const std::string& profile) {
+// Runs `self --pipelines N --profile P --budget B` and returns its output line.
+std::string run_child(const char* self, long pipelines, const std::string& profile, const std::string& budget) {
   int out[2];
   if (pipe(out) != 0) throw std::runtime_error("pipe failed");
   posix_spawn_file_actions_t actions;
@@ -115,7 +125,8 @@ std::string run_child(const char* self, long pipelines, const std::string& profi
   posix_spawn_file_actions_addclose(&actions, out[0]);
   const std::string n = std::to_string(pipelines);
   std::vector<char*> argv = {const_cast<char*>(self), const_cast<char*>("--pipelines"), const_cast<char*>(n.c_str()),
-                             const_cast<char*>("--profile"), const_cast<char*>(profile.c_str()), nullptr};
+                             const_cast<char*>("--profile"), const_cast<char*>(profile.c_str()),
+                             const_cast<char*>("--budget"), const_cast<char*>(budget.c_str()), nullptr};
   pid_t pid = 0;
   const int spawned = posix_spawn(&pid, self, &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
@@ -143,28 +154,47 @@ int main(int argc, char** argv) {
   long one = 0;
   long max = 100000;
   std::string profile = "linux";
+  std::string budget = "1";
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    if ((arg == "--pipelines" || arg == "--max" || arg == "--profile") && i + 1 < argc) {
+    if ((arg == "--pipelines" || arg == "--max" || arg == "--profile" || arg == "--budget") && i + 1 < argc) {
       const std::string value = argv[++i];
-      if (arg == "--profile") profile = value;
-      else (arg == "--max" ? max : one) = std::atol(value.c_str());
+      if (arg == "--profile") {
+        profile = value;
+      } else if (arg == "--budget") {
+        budget = value;
+      } else {
+        char* end = nullptr;
+        const long n = std::strtol(value.c_str(), &end, 10);
+        if (end == value.c_str() || *end != '\0' || n < 1) {
+          fmt::print(stderr, "pcsim_scaling: {} must be a whole number >= 1, got '{}'\n", arg, value);
+          return 2;
+        }
+        (arg == "--max" ? max : one) = n;
+      }
     } else {
-      fmt::print(stderr, "usage: {} [--pipelines N | --max N] [--profile linux|paper]\n", argv[0]);
+      fmt::print(stderr, "usage: {} [--pipelines N | --max N] [--budget SECONDS] [--profile linux|paper]\n", argv[0]);
       return 2;
     }
   }
+  char* end = nullptr;
+  const double budget_s = std::strtod(budget.c_str(), &end);
+  if (end == budget.c_str() || *end != '\0' || !(budget_s >= 0.0)) {
+    fmt::print(stderr, "pcsim_scaling: --budget must be a number of seconds >= 0, got '{}'\n", budget);
+    return 2;
+  }
   try {
-    if (one > 0) return run_one(one, profile);
+    if (one > 0) return run_one(one, profile, budget_s);
     std::vector<std::string> lines;
-    fmt::print("{:>9} {:>12} {:>12} {:>12} {:>10} {:>14} {:>12} {:>12}\n", "pipelines", "makespan_s", "events", "chunk_ops", "wall_s",
-               "chunk_ops/s", "ns/chunk_op", "peak_RSS_MB");
+    fmt::print("{:>9} {:>12} {:>12} {:>12} {:>6} {:>10} {:>14} {:>12} {:>12} {:>12}\n", "pipelines", "makespan_s", "events",
+               "chunk_ops", "reps", "wall_s", "chunk_ops/s", "ns/chunk_op", "median_ns", "peak_RSS_MB");
     for (long n = 10; n <= max; n *= 10) {
-      const std::string line = run_child("/proc/self/exe", n, profile);
+      const std::string line = run_child("/proc/self/exe", n, profile, budget);
       lines.push_back(line);
-      fmt::print("{:>9} {:>12.1f} {:>12.0f} {:>12.0f} {:>10.4f} {:>14.0f} {:>12.1f} {:>12.1f}\n", n, field(line, "makespan_s"),
-                 field(line, "events"), field(line, "chunk_operations"), field(line, "wall_s"), field(line, "chunk_ops_per_s"),
-                 field(line, "ns_per_chunk_op"), field(line, "peak_rss_kb") / 1024.0);
+      fmt::print("{:>9} {:>12.1f} {:>12.0f} {:>12.0f} {:>6.0f} {:>10.4f} {:>14.0f} {:>12.1f} {:>12.1f} {:>12.1f}\n", n,
+                 field(line, "makespan_s"), field(line, "events"), field(line, "chunk_operations"), field(line, "repetitions"),
+                 field(line, "wall_s"), field(line, "chunk_ops_per_s"), field(line, "ns_per_chunk_op"),
+                 field(line, "median_ns_per_chunk_op"), field(line, "peak_rss_kb") / 1024.0);
       std::fflush(stdout);
     }
     fmt::print("\n");

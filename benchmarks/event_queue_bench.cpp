@@ -1,5 +1,6 @@
 // Event queue: cost of scheduling and running one event with n events pending, and of
-// cancelling one. Expected O(log n) per event (pairing heap).
+// cancelling one. Random delays go to the heap, O(log n) per event; equal delays (n processes
+// in step, each waiting the same time) stay in one run of the queue, O(1) per event.
 #include <pagecache/simulator.hpp>
 
 #include <benchmark/benchmark.h>
@@ -42,6 +43,35 @@ void BM_EventQueueScheduleRun(benchmark::State& state) {
   state.SetItemsProcessed(processed);
 }
 BENCHMARK(BM_EventQueueScheduleRun)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::kMillisecond);
+
+struct Repeat {
+  pagecache::Simulator* sim;
+  std::int64_t* remaining;
+};
+
+// Each event schedules its successor one second later.
+void run_and_repeat(void* context) {
+  auto* ctx = static_cast<Repeat*>(context);
+  if (--*ctx->remaining <= 0) return;
+  ctx->sim->schedule_at(ctx->sim->now() + 1.0, &run_and_repeat, context);
+}
+
+void BM_EventQueueEqualDelays(benchmark::State& state) {
+  const auto pending = state.range(0);
+  std::int64_t processed = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    pagecache::Simulator sim;
+    std::int64_t remaining = pending * 20;
+    Repeat ctx{&sim, &remaining};
+    for (std::int64_t i = 0; i < pending; ++i) sim.schedule_at(static_cast<double>(i) / static_cast<double>(pending), &run_and_repeat, &ctx);
+    state.ResumeTiming();
+    sim.run();
+    processed += static_cast<std::int64_t>(sim.events_processed());
+  }
+  state.SetItemsProcessed(processed);
+}
+BENCHMARK(BM_EventQueueEqualDelays)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::kMillisecond);
 
 void noop(void*) {}
 

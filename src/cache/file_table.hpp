@@ -38,7 +38,7 @@ class FileTable {
  public:
   FileId add(std::string name, std::int64_t size, const Disk& disk) {
     if (size < 0) throw ConfigError(fmt::format("file '{}': negative size {} bytes", name, size));
-    files_.push_back({std::move(name), size, &disk});
+    files_.push_back({std::move(name), size, &disk, RemoteFile{}});
     return static_cast<FileId>(files_.size() - 1);
   }
   FileId add_remote(std::string name, std::int64_t size, RemoteFile remote) {

@@ -1,10 +1,15 @@
 #pragma once
 // ObjectPool<T>: recycles objects of one type through a free list, so that hot paths (events,
-// flows) do not allocate once the pool has grown to its peak. Objects are reset to T() when
-// taken. Addresses are stable for the pool's lifetime.
+// flows, blocks) do not allocate once the pool has grown to its peak. Objects are reset to T()
+// when taken. Addresses are stable for the pool's lifetime.
+//
+// Storage comes in chunks of doubling size, each left raw until its objects are first taken:
+// a chunk constructed whole at once wrote (and had the kernel fault in and zero) up to twice
+// the memory the peak needs. Measured on the scaling harness at 10^5 pipelines, those writes
+// were one cache miss in twenty-five and a few hundred megabytes of resident memory.
 
 #include <cstddef>
-#include <memory>
+#include <new>
 #include <vector>
 
 namespace pagecache::detail {
@@ -15,9 +20,15 @@ class ObjectPool {
   ObjectPool() = default;
   ObjectPool(const ObjectPool&) = delete;
   ObjectPool& operator=(const ObjectPool&) = delete;
+  ~ObjectPool() {
+    for (Chunk& chunk : chunks_) {
+      for (std::size_t i = 0; i < chunk.constructed; ++i) chunk.objects[i].~T();
+      ::operator delete(static_cast<void*>(chunk.objects), std::align_val_t{alignof(T)});
+    }
+  }
 
   T* take() {
-    if (free_.empty()) grow();
+    if (free_.empty()) return take_fresh();
     T* object = free_.back();
     free_.pop_back();
     *object = T();
@@ -31,19 +42,34 @@ class ObjectPool {
   std::size_t in_use() const noexcept { return in_use_; }
 
  private:
-  void grow() {
-    auto chunk = std::make_unique<T[]>(next_chunk_);
-    free_.reserve(capacity_ + next_chunk_);
-    for (std::size_t i = next_chunk_; i-- > 0;) free_.push_back(&chunk[i]);
-    capacity_ += next_chunk_;
-    next_chunk_ *= 2;
-    chunks_.push_back(std::move(chunk));
+  struct Chunk {
+    T* objects;
+    std::size_t capacity;
+    std::size_t constructed;
+  };
+
+  // Out of line: only while the pool grows to its peak.
+  [[gnu::noinline]] T* take_fresh() {
+    if (chunks_.empty() || chunks_.back().constructed == chunks_.back().capacity) grow();
+    Chunk& chunk = chunks_.back();
+    T* object = ::new (static_cast<void*>(chunk.objects + chunk.constructed)) T();
+    ++chunk.constructed;
+    ++in_use_;
+    return object;
   }
 
-  std::vector<std::unique_ptr<T[]>> chunks_;
+  void grow() {
+    const std::size_t size = chunks_.empty() ? 64 : chunks_.back().capacity * 2;
+    free_.reserve(capacity_ + size);  // address space only: untouched until used
+    chunks_.reserve(chunks_.size() + 1);
+    auto* objects = static_cast<T*>(::operator new(size * sizeof(T), std::align_val_t{alignof(T)}));
+    chunks_.push_back({objects, size, 0});
+    capacity_ += size;
+  }
+
+  std::vector<Chunk> chunks_;
   std::vector<T*> free_;
   std::size_t capacity_ = 0;
-  std::size_t next_chunk_ = 64;
   std::size_t in_use_ = 0;
 };
 

@@ -58,7 +58,7 @@ void EventQueue::append(std::uint8_t r, QueuedEvent* node, std::uint64_t sequenc
     }
   }
   const std::size_t slot = (run.head + run.count) & run.mask;
-  run.slots[slot] = {node->time, sequence, node};
+  run.slots[slot] = {node->time, sequence, node, node->callback, node->context};
   node->run = r;
   node->heap_index = static_cast<std::uint32_t>(slot);
   if (run.count++ == 0) {
@@ -162,17 +162,18 @@ EventQueue::Fired EventQueue::pop() noexcept {
     --ring_count_;
     return fired;
   }
-  QueuedEvent* node = nullptr;
   if (source == kInHeap) {
-    node = heap_.top().event;
+    QueuedEvent* node = heap_.top().event;
     heap_.pop();
-  } else {
-    node = runs_[source].slots[runs_[source].head].event;
-    --run_live_;
-    take_front(source);
+    const Fired fired{node->time, node->callback, node->context};
+    nodes_.give_back(node);
+    return fired;
   }
-  Fired fired{node->time, node->callback, node->context};
-  nodes_.give_back(node);
+  const RunEntry& entry = runs_[source].slots[runs_[source].head];
+  const Fired fired{entry.time, entry.callback, entry.context};
+  nodes_.give_back(entry.event);
+  --run_live_;
+  take_front(source);
   return fired;
 }
 

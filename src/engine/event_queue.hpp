@@ -91,11 +91,20 @@ class EventQueue {
     void* context;
   };
   // A run: a circular buffer (capacity a power of two) of entries in (time, sequence) order;
-  // event == nullptr marks a cancelled one. The head is never a tombstone. The keys of every
+  // event == nullptr marks a cancelled one. The head is never a tombstone. An entry carries
+  // its callback too, so that running it does not read its node, made long ago and out of
+  // cache with many processes in step (the node is only recycled). The keys of every
   // run's first and last entries are kept side by side (below), so that choosing a run for a
   // push or the earliest run at a pop reads a few cache lines only.
+  struct RunEntry {
+    double time;
+    std::uint64_t sequence;
+    QueuedEvent* event;
+    EventCallback callback;
+    void* context;
+  };
   struct Run {
-    std::vector<QueueEntry> slots;
+    std::vector<RunEntry> slots;
     std::size_t mask = 0;
     std::size_t head = 0;
     std::size_t count = 0;  // slots from the head, tombstones included

@@ -113,16 +113,28 @@ void FairShare::Impl::validate(const FlowSpec& spec) const {
 
 FlowState* FairShare::Impl::start(const FlowSpec& spec, std::coroutine_handle<> waiting, FlowAwaiter* awaiter) {
   validate(spec);
-  FlowState* flow = pool.take();
+  // Every field of the first two lines is set here (see FlowState); usages past usage_count,
+  // slots (set by enlist) and visit (compared with a stamp that only grows) are never read
+  // stale.
+  FlowState* flow = pool.take_as_left();
   flow->owner = this;
   flow->weight = spec.weight;
   flow->bound = spec.bound;
   flow->threshold = spec.bound / spec.weight;
-  flow->usage_count = static_cast<std::uint8_t>(spec.usage_count);
-  std::copy_n(spec.usages.begin(), spec.usage_count, flow->usages.begin());
   flow->sequence = next_sequence++;
+  flow->remaining = 0.0;
+  flow->rate = 0.0;
+  flow->updated = 0.0;
+  flow->virtual_finish = 0.0;
+  flow->completion = EventHandle();
   flow->waiting = waiting;
   flow->awaiter = awaiter;
+  flow->finish_index = 0;
+  flow->sharing_threshold_index = 0;
+  flow->bounded_threshold_index = 0;
+  flow->mode = FlowMode::Explicit;
+  flow->usage_count = static_cast<std::uint8_t>(spec.usage_count);
+  std::copy_n(spec.usages.begin(), spec.usage_count, flow->usages.begin());
   ++active;
 
   ResourceState& first = resource(flow->usages[0].resource);

@@ -170,7 +170,7 @@ Task<void> IoController::write_to_cache(FileId file, std::int64_t bytes) {
   flusher_->notify_dirty();
 }
 
-Task<IoTally> IoController::write_chunk_throttled(FileId file, std::int64_t chunk) {
+Task<IoTally> IoController::write_file_throttled(FileId file, std::int64_t bytes, std::int64_t chunk_size) {
   // balance_dirty_pages (mm/page-writeback.c): the writer never writes back itself.
   // - Dirty + writeback under the setpoint (halfway between the freerun ceiling and the
   //   domain's limit, see DirtyLimit): it dirties pages at memory speed. (The kernel lets it
@@ -190,70 +190,75 @@ Task<IoTally> IoController::write_chunk_throttled(FileId file, std::int64_t chun
   // Memory is handed out in pages; slivers of free memory left by copies in flight are not
   // worth a copy: below this, the writer makes room first.
   constexpr std::int64_t kMinCopy = 4 * 1024 * 1024;
+  //
+  // The whole file is written here, chunk after chunk, rather than a coroutine per chunk: with
+  // many writers each chunk would otherwise create a frame and resume two, all out of cache.
   const double device_bw = (*files_)[file].disk->write_bandwidth();
-  std::int64_t remaining = chunk;
-  bool throttled = false;
-  double credit = 0.0;  // bytes this writer's pauses have earned
-  while (remaining > 0) {
-    // Copies in flight count: their pages are being dirtied.
-    const std::int64_t in_use = cache_->dirty_and_writeback() + cache_->reserved();
-    const PageCache::DirtyLimits limits = cache_->dirty_limits();
-    if (in_use > limits.freerun) dirty_limit_.update(sim_->now(), limits.thresh, in_use, throttled_writers_ > 0);
-    const std::int64_t limit = dirty_limit_.hard_limit(limits.thresh);
-    const std::int64_t setpoint = (limits.freerun + limit) / 2;
-    // Under the background threshold nothing would write back to pace the writer by: it goes
-    // on (a setpoint within a chunk of it only happens on tiny memories).
-    if (in_use + remaining <= setpoint || in_use <= limits.background) {
-      if (throttled) {
-        --throttled_writers_;
-        throttled = false;
+  for (std::int64_t offset = 0; offset < bytes; offset += chunk_size) {
+    std::int64_t remaining = std::min(chunk_size, bytes - offset);
+    bool throttled = false;
+    double credit = 0.0;  // bytes this writer's pauses have earned for this chunk
+    while (remaining > 0) {
+      // Copies in flight count: their pages are being dirtied.
+      const std::int64_t in_use = cache_->dirty_and_writeback() + cache_->reserved();
+      const PageCache::DirtyLimits limits = cache_->dirty_limits();
+      if (in_use > limits.freerun) dirty_limit_.update(sim_->now(), limits.thresh, in_use, throttled_writers_ > 0);
+      const std::int64_t limit = dirty_limit_.hard_limit(limits.thresh);
+      const std::int64_t setpoint = (limits.freerun + limit) / 2;
+      // Under the background threshold nothing would write back to pace the writer by: it goes
+      // on (a setpoint within a chunk of it only happens on tiny memories).
+      if (in_use + remaining <= setpoint || in_use <= limits.background) {
+        if (throttled) {
+          --throttled_writers_;
+          throttled = false;
+        }
+      } else {
+        if (!throttled) ++throttled_writers_;
+        throttled = true;
+        flusher_->notify_dirty();
+        if (credit < static_cast<double>(remaining)) {
+          const double x = static_cast<double>(setpoint - in_use) / static_cast<double>(std::max<std::int64_t>(limit - setpoint, 1));
+          const double pos_ratio = std::clamp(1.0 + x * x * x, 0.0, 2.0);
+          const double rate = device_bw * pos_ratio / static_cast<double>(throttled_writers_);
+          const double pause = rate > 0.0 ? std::min(kMaxPause, (static_cast<double>(remaining) - credit) / rate) : kMaxPause;
+          co_await sim_->sleep(pause);
+          credit += rate * pause;
+          continue;
+        }
       }
-    } else {
-      if (!throttled) ++throttled_writers_;
-      throttled = true;
-      flusher_->notify_dirty();
-      if (credit < static_cast<double>(remaining)) {
-        const double x = static_cast<double>(setpoint - in_use) / static_cast<double>(std::max<std::int64_t>(limit - setpoint, 1));
-        const double pos_ratio = std::clamp(1.0 + x * x * x, 0.0, 2.0);
-        const double rate = device_bw * pos_ratio / static_cast<double>(throttled_writers_);
-        const double pause = rate > 0.0 ? std::min(kMaxPause, (static_cast<double>(remaining) - credit) / rate) : kMaxPause;
-        co_await sim_->sleep(pause);
-        credit += rate * pause;
+      // Reclaim knows pages, not files: the file's own older clean pages may go too (with
+      // protect_files_being_written, only once no other clean data is left).
+      cache_->evict(remaining - cache_->free(), kNoFile);
+      const std::int64_t to_cache = std::min(remaining, cache_->free());
+      if (to_cache < std::min(remaining, kMinCopy)) {
+        // Out of memory with nothing clean to reclaim: dirty data must be written first, as
+        // reclaim does (pageout), or copies and writebacks in flight must land.
+        const std::int64_t flushed = co_await write_back(remaining - cache_->free(), kNoFile);
+        if (flushed == 0) {
+          if (cache_->writeback() == 0 && cache_->reserved() == 0) {
+            throw SimulationError(fmt::format("t = {:.6f} s: writing '{}': no memory can be freed for {} bytes", sim_->now(),
+                                              (*files_)[file].name, remaining));
+          }
+          co_await wait_for_progress();
+        }
         continue;
       }
+      if (throttled) credit -= static_cast<double>(to_cache);
+      // As write_to_cache, without a coroutine of its own: the pages are taken now and hold the
+      // data (dirty, entry time the end of the copy) once the copy is done.
+      cache_->reserve(to_cache);
+      co_await memory_->write(to_cache);
+      cache_->commit_dirty(file, to_cache, sim_->now());
+      flusher_->notify_dirty();
+      remaining -= to_cache;
     }
-    // Reclaim knows pages, not files: the file's own older clean pages may go too (with
-    // protect_files_being_written, only once no other clean data is left).
-    cache_->evict(remaining - cache_->free(), kNoFile);
-    const std::int64_t to_cache = std::min(remaining, cache_->free());
-    if (to_cache < std::min(remaining, kMinCopy)) {
-      // Out of memory with nothing clean to reclaim: dirty data must be written first, as
-      // reclaim does (pageout), or copies and writebacks in flight must land.
-      const std::int64_t flushed = co_await write_back(remaining - cache_->free(), kNoFile);
-      if (flushed == 0) {
-        if (cache_->writeback() == 0 && cache_->reserved() == 0) {
-          throw SimulationError(fmt::format("t = {:.6f} s: writing '{}': no memory can be freed for {} bytes", sim_->now(),
-                                            (*files_)[file].name, remaining));
-        }
-        co_await wait_for_progress();
-      }
-      continue;
-    }
-    if (throttled) credit -= static_cast<double>(to_cache);
-    // As write_to_cache, without a coroutine of its own: the pages are taken now and hold the
-    // data (dirty, entry time the end of the copy) once the copy is done.
-    cache_->reserve(to_cache);
-    co_await memory_->write(to_cache);
-    cache_->commit_dirty(file, to_cache, sim_->now());
-    flusher_->notify_dirty();
-    remaining -= to_cache;
+    if (throttled) --throttled_writers_;
   }
-  if (throttled) --throttled_writers_;
-  co_return IoTally{.bytes = chunk, .cache_bytes = chunk, .disk_bytes = 0};
+  co_return IoTally{.bytes = bytes, .cache_bytes = bytes, .disk_bytes = 0};
 }
 
 Task<IoTally> IoController::write_chunk_writeback(FileId file, std::int64_t chunk) {
-  if (throttles_writers()) co_return co_await write_chunk_throttled(file, chunk);
+  if (throttles_writers()) co_return co_await write_file_throttled(file, chunk, chunk);
   const CacheSettings& settings = cache_->settings();
   const auto limit = [&] {
     return static_cast<std::int64_t>(std::floor(settings.dirty_ratio * static_cast<double>(cache_->dirtyable())));
@@ -337,16 +342,16 @@ Task<IoTally> IoController::write_file(FileId file, std::int64_t bytes, std::int
   const FileInfo& info = (*files_)[file];
   if (direct && info.is_remote()) throw ConfigError(fmt::format("'{}': direct I/O on a remote file is not modelled", info.name));
   IoTally total;
-  // The most frequent case goes to its coroutine directly, a frame fewer per chunk.
-  const bool throttled = !direct && !info.is_remote() && cache_->settings().write_mode == WriteMode::Writeback && throttles_writers();
   cache_->set_being_written(file, true);
+  if (!direct && !info.is_remote() && cache_->settings().write_mode == WriteMode::Writeback && throttles_writers()) {
+    chunks_ += static_cast<std::uint64_t>((bytes + chunk_size - 1) / chunk_size);
+    total = co_await write_file_throttled(file, bytes, chunk_size);
+    cache_->set_being_written(file, false);
+    co_return total;
+  }
   for (std::int64_t offset = 0; offset < bytes; offset += chunk_size) {
     const std::int64_t chunk = std::min(chunk_size, bytes - offset);
     ++chunks_;
-    if (throttled) {
-      total += co_await write_chunk_throttled(file, chunk);
-      continue;
-    }
     if (!direct) {
       total += co_await write_chunk(file, chunk);
       continue;

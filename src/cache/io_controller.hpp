@@ -73,7 +73,7 @@ class IoController {
   /// Bytes written to devices to make room or to respect the dirty ratio (not counting the
   /// periodic flusher's).
   std::int64_t flushed_bytes() const noexcept { return flushed_; }
-  /// Chunks read and written by applications on this host so far.
+  /// Chunks of the reads and writes of applications started on this host so far.
   std::uint64_t chunk_operations() const noexcept { return chunks_; }
 
  private:
@@ -82,8 +82,9 @@ class IoController {
   Task<IoTally> write_chunk_writeback(FileId file, std::int64_t chunk);
   /// Whether writeback-mode writers are paced (dirty throttling) rather than made to flush.
   bool throttles_writers() const noexcept;
-  /// A writeback-mode chunk under dirty throttling (CacheSettings::dirty_throttling).
-  Task<IoTally> write_chunk_throttled(FileId file, std::int64_t chunk);
+  /// `bytes` of a file written in chunks in writeback mode under dirty throttling
+  /// (CacheSettings::dirty_throttling).
+  Task<IoTally> write_file_throttled(FileId file, std::int64_t bytes, std::int64_t chunk_size);
   /// Copies `bytes` into the cache: the memory transfer, then a new dirty block.
   Task<void> write_to_cache(FileId file, std::int64_t bytes);
   Task<IoTally> write_chunk_writethrough(FileId file, std::int64_t chunk);

@@ -65,6 +65,7 @@ void EventQueue::append(std::uint8_t r, QueuedEvent* node, std::uint64_t sequenc
     run_front_time_[r] = node->time;
     run_front_sequence_[r] = sequence;
     runs_used_ = static_cast<std::uint8_t>(runs_used_ | (1u << r));
+    if (earliest_known_ && (earliest_run_ == kInHeap || node->time < run_front_time_[earliest_run_])) earliest_run_ = r;
   }
   run_back_time_[r] = node->time;
   ++run_live_;
@@ -79,6 +80,7 @@ void EventQueue::take_front(std::uint8_t r) noexcept {
 
 // Keeps the head of run r live, and its key and the used bit current.
 void EventQueue::drop_tombstones(std::uint8_t r) noexcept {
+  if (r == earliest_run_) earliest_known_ = false;  // its front may have moved
   Run& run = runs_[r];
   while (run.count > 0 && run.slots[run.head].event == nullptr) {
     run.head = (run.head + 1) & run.mask;
@@ -98,18 +100,33 @@ void EventQueue::push_now(double now, EventCallback callback, void* context) {
   ++ring_count_;
 }
 
+std::uint8_t EventQueue::earliest_run() const noexcept {
+  if (!earliest_known_) {
+    std::uint8_t best = kInHeap;
+    for (unsigned used = runs_used_; used != 0; used &= used - 1) {
+      const auto r = static_cast<std::uint8_t>(__builtin_ctz(used));
+      if (best == kInHeap || run_front_time_[r] < run_front_time_[best] ||
+          (run_front_time_[r] == run_front_time_[best] && run_front_sequence_[r] < run_front_sequence_[best])) {
+        best = r;
+      }
+    }
+    earliest_run_ = best;
+    earliest_known_ = true;
+  }
+  return earliest_run_;
+}
+
 // The source of the earliest event: a run, the heap (kInHeap) or the ring (kRing).
 std::uint8_t EventQueue::first() const noexcept {
   std::uint8_t best = kInHeap;
   double time = 0.0;
   std::uint64_t sequence = 0;
-  if (!heap_.empty()) {
+  bool any = !heap_.empty();
+  if (any) {
     time = heap_.top().time;
     sequence = heap_.top().sequence;
   }
-  bool any = !heap_.empty();
-  for (unsigned used = runs_used_; used != 0; used &= used - 1) {
-    const auto r = static_cast<std::uint8_t>(__builtin_ctz(used));
+  if (const std::uint8_t r = earliest_run(); r != kInHeap) {
     if (!any || run_front_time_[r] < time || (run_front_time_[r] == time && run_front_sequence_[r] < sequence)) {
       best = r;
       time = run_front_time_[r];
@@ -189,6 +206,8 @@ void EventQueue::clear() noexcept {
     run.count = 0;
   }
   runs_used_ = 0;
+  earliest_run_ = kInHeap;
+  earliest_known_ = true;
   run_live_ = 0;
   ring_head_ = 0;
   ring_count_ = 0;

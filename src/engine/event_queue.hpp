@@ -113,6 +113,7 @@ class EventQueue {
   static constexpr std::uint8_t kRing = kInHeap - 1;  // first(): the ring comes first
 
   std::uint8_t first() const noexcept;
+  std::uint8_t earliest_run() const noexcept;
   void place(QueuedEvent* node, std::uint64_t sequence);
   void append(std::uint8_t run, QueuedEvent* node, std::uint64_t sequence);
   void take_front(std::uint8_t run) noexcept;
@@ -125,6 +126,9 @@ class EventQueue {
   std::uint64_t run_front_sequence_[kRuns] = {};
   double run_back_time_[kRuns] = {};
   std::uint8_t runs_used_ = 0;  // bit r: run r has events
+  // The run with the earliest front (kInHeap: none), recomputed only when that front moves.
+  mutable std::uint8_t earliest_run_ = kInHeap;
+  mutable bool earliest_known_ = true;
   std::size_t run_live_ = 0;  // live events in all runs
   std::vector<Wake> ring_;  // capacity a power of two
   std::size_t ring_head_ = 0;

@@ -66,15 +66,14 @@ Task<void> IoController::make_room(std::int64_t required, FileId spared, FileId 
   }
 }
 
-std::int64_t IoController::room_for_read_at_once(FileId file, std::int64_t bytes, std::int64_t anonymous) {
+std::int64_t IoController::room_for_read_at_once(FileId file, std::int64_t file_size, std::int64_t bytes, std::int64_t anonymous) {
   // make_room's first pass when it needs no writeback: evict, and done if that was enough.
-  const FileInfo& info = (*files_)[file];
   const FileId spared = cache_->settings().reclaim_may_take_file_being_read ? kNoFile : file;
-  const std::int64_t uncached = std::clamp<std::int64_t>(info.size - cache_->cached(file), 0, bytes);
+  const std::int64_t uncached = std::clamp<std::int64_t>(file_size - cache_->cached(file), 0, bytes);
   const std::int64_t required = anonymous + uncached;
   if (required - cache_->free() - cache_->evictable() > 0) return -1;
   cache_->evict(required - cache_->free(), spared);
-  const std::int64_t now_uncached = std::clamp<std::int64_t>(info.size - cache_->cached(file), 0, bytes);
+  const std::int64_t now_uncached = std::clamp<std::int64_t>(file_size - cache_->cached(file), 0, bytes);
   return anonymous + now_uncached <= cache_->free() ? now_uncached : -1;
 }
 
@@ -101,7 +100,7 @@ Task<IoTally> IoController::read_chunk_remote(FileId file, std::int64_t chunk) {
   // A client read (NFS): what this host's cache lacks comes from the server, over the link,
   // and is kept in this host's cache (clean); the rest is a hit in this host's cache.
   const FileInfo& info = (*files_)[file];
-  std::int64_t remote_read = room_for_read_at_once(file, chunk, chunk);
+  std::int64_t remote_read = room_for_read_at_once(file, info.size, chunk, chunk);
   if (remote_read < 0) remote_read = co_await room_for_read(file, chunk, chunk, "reading");
   const std::int64_t cache_read = chunk - remote_read;
   take_chunk(file, chunk, remote_read);
@@ -117,7 +116,7 @@ Task<IoTally> IoController::read_chunk_remote(FileId file, std::int64_t chunk) {
 
 Task<void> IoController::serve_read(FileId file, std::int64_t bytes, const Link& link, FlowSpec client_copy) {
   const FileInfo& info = (*files_)[file];
-  std::int64_t disk_read = room_for_read_at_once(file, bytes, 0);
+  std::int64_t disk_read = room_for_read_at_once(file, info.size, bytes, 0);
   if (disk_read < 0) disk_read = co_await room_for_read(file, bytes, 0, "serving");
   const std::int64_t cache_read = bytes - disk_read;
   cache_->add_read(file, disk_read, sim_->now());
@@ -304,22 +303,27 @@ Task<IoTally> IoController::read_file(FileId file, std::int64_t chunk_size, bool
   if (chunk_size <= 0) throw ConfigError(fmt::format("chunk size must be > 0, got {}", chunk_size));
   const FileInfo& info = (*files_)[file];
   if (direct && info.is_remote()) throw ConfigError(fmt::format("'{}': direct I/O on a remote file is not modelled", info.name));
+  // What the loop needs of the file, kept here: with many readers the file's record is out of
+  // cache at every chunk, this frame is not.
+  const std::int64_t size = info.size;
+  const bool local = !info.is_remote();
+  const Disk* const disk = info.disk;
   IoTally total;
-  for (std::int64_t offset = 0; offset < info.size; offset += chunk_size) {
-    const std::int64_t chunk = std::min(chunk_size, info.size - offset);
+  for (std::int64_t offset = 0; offset < size; offset += chunk_size) {
+    const std::int64_t chunk = std::min(chunk_size, size - offset);
     ++chunks_;
-    if (!direct && !info.is_remote()) {
+    if (!direct && local) {
       // One chunk (paper Algorithm 2): room for the application's copy and the new cache copy
       // of what is not cached, then the device and cache reads. Here rather than in a
       // coroutine of its own: a chunk read is the simulator's most frequent operation, and a
       // frame fewer per chunk is a cache miss less. The application's buffer is fresh memory:
       // the reader faults in and zeroes each page it copies into; from the disk that overlaps
       // the device's transfer (readahead), from the cache it adds to the copy.
-      std::int64_t disk_read = room_for_read_at_once(file, chunk, chunk);
+      std::int64_t disk_read = room_for_read_at_once(file, size, chunk, chunk);
       if (disk_read < 0) disk_read = co_await room_for_read(file, chunk, chunk, "reading");
       const std::int64_t cache_read = chunk - disk_read;
       take_chunk(file, chunk, disk_read);
-      if (disk_read > 0) co_await info.disk->read(disk_read, memory_->fresh_copy_rate());
+      if (disk_read > 0) co_await disk->read(disk_read, memory_->fresh_copy_rate());
       if (cache_read > 0) co_await memory_->read_into_fresh(cache_read);
       total += IoTally{.bytes = chunk, .cache_bytes = cache_read, .disk_bytes = disk_read};
       continue;
@@ -331,7 +335,7 @@ Task<IoTally> IoController::read_file(FileId file, std::int64_t chunk_size, bool
     // O_DIRECT: only the application's buffer takes memory; the data comes from the disk.
     co_await make_room(chunk, kNoFile, file, "reading");
     cache_->allocate_anonymous(chunk);
-    co_await info.disk->read(chunk, memory_->fresh_copy_rate());
+    co_await disk->read(chunk, memory_->fresh_copy_rate());
     total += IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
   }
   co_return total;

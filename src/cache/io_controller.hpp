@@ -102,8 +102,9 @@ class IoController {
   /// part to read from the device, as the cache is once there is room for it.
   Task<std::int64_t> room_for_read(FileId file, std::int64_t bytes, std::int64_t anonymous, const char* verb);
   /// room_for_read when eviction alone makes the room: done at once, without a coroutine;
-  /// returns the part not cached, or -1 if room_for_read must run (writeback or waiting).
-  std::int64_t room_for_read_at_once(FileId file, std::int64_t bytes, std::int64_t anonymous);
+  /// returns the part not cached, or -1 if room_for_read must run (writeback or waiting). The
+  /// file's size is the caller's copy (its record may be out of cache).
+  std::int64_t room_for_read_at_once(FileId file, std::int64_t file_size, std::int64_t bytes, std::int64_t anonymous);
   /// Waits until memory held by transfers in flight may have been released.
   Task<void> wait_for_progress();
 

@@ -28,11 +28,9 @@ class ObjectPool {
   }
 
   T* take() {
-    if (free_.empty()) return take_fresh();
-    T* object = free_.back();
-    free_.pop_back();
-    *object = T();
-    ++in_use_;
+    const bool recycled = !free_.empty();
+    T* object = take_as_left();
+    if (recycled) *object = T();
     return object;
   }
   /// As take(), but a recycled object comes as its last user left it (a fresh one as T()): for

@@ -350,18 +350,17 @@ Task<IoTally> IoController::write_file(FileId file, std::int64_t bytes, std::int
   if (!direct && !info.is_remote() && cache_->settings().write_mode == WriteMode::Writeback && throttles_writers()) {
     chunks_ += static_cast<std::uint64_t>((bytes + chunk_size - 1) / chunk_size);
     total = co_await write_file_throttled(file, bytes, chunk_size);
-    cache_->set_being_written(file, false);
-    co_return total;
-  }
-  for (std::int64_t offset = 0; offset < bytes; offset += chunk_size) {
-    const std::int64_t chunk = std::min(chunk_size, bytes - offset);
-    ++chunks_;
-    if (!direct) {
-      total += co_await write_chunk(file, chunk);
-      continue;
+  } else {
+    for (std::int64_t offset = 0; offset < bytes; offset += chunk_size) {
+      const std::int64_t chunk = std::min(chunk_size, bytes - offset);
+      ++chunks_;
+      if (!direct) {
+        total += co_await write_chunk(file, chunk);
+        continue;
+      }
+      co_await info.disk->write(chunk);  // O_DIRECT: straight to the disk
+      total += IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
     }
-    co_await info.disk->write(chunk);  // O_DIRECT: straight to the disk
-    total += IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
   }
   cache_->set_being_written(file, false);
   co_return total;

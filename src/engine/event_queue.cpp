@@ -105,8 +105,7 @@ std::uint8_t EventQueue::earliest_run() const noexcept {
     std::uint8_t best = kInHeap;
     for (unsigned used = runs_used_; used != 0; used &= used - 1) {
       const auto r = static_cast<std::uint8_t>(__builtin_ctz(used));
-      if (best == kInHeap || run_front_time_[r] < run_front_time_[best] ||
-          (run_front_time_[r] == run_front_time_[best] && run_front_sequence_[r] < run_front_sequence_[best])) {
+      if (best == kInHeap || runs_before(run_front_time_[r], run_front_sequence_[r], run_front_time_[best], run_front_sequence_[best])) {
         best = r;
       }
     }
@@ -127,7 +126,7 @@ std::uint8_t EventQueue::first() const noexcept {
     sequence = heap_.top().sequence;
   }
   if (const std::uint8_t r = earliest_run(); r != kInHeap) {
-    if (!any || run_front_time_[r] < time || (run_front_time_[r] == time && run_front_sequence_[r] < sequence)) {
+    if (!any || runs_before(run_front_time_[r], run_front_sequence_[r], time, sequence)) {
       best = r;
       time = run_front_time_[r];
       sequence = run_front_sequence_[r];
@@ -136,7 +135,7 @@ std::uint8_t EventQueue::first() const noexcept {
   }
   if (ring_count_ > 0) {
     const Wake& wake = ring_[ring_head_];
-    if (!any || wake.time < time || (wake.time == time && wake.sequence < sequence)) best = kRing;
+    if (!any || runs_before(wake.time, wake.sequence, time, sequence)) best = kRing;
   }
   return best;
 }

@@ -35,10 +35,14 @@ struct QueueEntry {
   QueuedEvent* event;
 };
 
+// The agenda's order: by time, then by when the event was made.
+constexpr bool runs_before(double time, std::uint64_t sequence, double other_time, std::uint64_t other_sequence) noexcept {
+  return time < other_time || (time == other_time && sequence < other_sequence);
+}
+
 struct RunsFirst {
   bool operator()(const QueueEntry& a, const QueueEntry& b) const noexcept {
-    if (a.time != b.time) return a.time < b.time;
-    return a.sequence < b.sequence;
+    return runs_before(a.time, a.sequence, b.time, b.sequence);
   }
 };
 

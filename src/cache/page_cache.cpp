@@ -123,6 +123,7 @@ Block& PageCache::new_block(FileId file, std::int64_t size, BlockState state, do
 void PageCache::append(Block& block, ListKind kind) {
   FileEntry& entry = file_entry(block.file);
   list_of(kind).push_back(block);
+  on_dirty_linked(block);
   file_list(entry, kind).push_back(block);
   (kind == ListKind::Inactive ? entry.inactive_bytes : entry.active_bytes) += block.size;
   if (block.state == BlockState::Dirty) entry.dirty_bytes += block.size;
@@ -130,6 +131,7 @@ void PageCache::append(Block& block, ListKind kind) {
 
 void PageCache::unlink(Block& block) {
   FileEntry& entry = files_[block.file];
+  on_dirty_unlinked(block);
   list_of(block.list).erase(block);
   FileOrder& flist = file_list(entry, block.list);
   flist.erase(flist.iterator_to(block));
@@ -160,7 +162,10 @@ void PageCache::destroy(Block& block) {
 void PageCache::set_state(Block& block, BlockState state) {
   // Data becomes dirty only as a new block (add_new): its place by age is the newest.
   PC_ASSERT(state != BlockState::Dirty || block.state == BlockState::Dirty);
-  if (block.state == BlockState::Dirty && state != BlockState::Dirty) dirty_by_age_.erase(dirty_by_age_.iterator_to(block));
+  if (block.state == BlockState::Dirty && state != BlockState::Dirty) {
+    dirty_by_age_.erase(dirty_by_age_.iterator_to(block));
+    on_dirty_unlinked(block);
+  }
   FileEntry& entry = files_[block.file];
   if (block.state == BlockState::Dirty) entry.dirty_bytes -= block.size;
   if (state == BlockState::Dirty) entry.dirty_bytes += block.size;
@@ -180,6 +185,7 @@ Block& PageCache::split_front(Block& block, std::int64_t head_size) {
   LruList& list = list_of(block.list);
   list.resize(block, head_size);
   list.insert_after(block, tail);
+  on_dirty_linked(tail);
   FileOrder& flist = file_list(files_[block.file], block.list);
   flist.insert(std::next(flist.iterator_to(block)), tail);
   if (tail.state == BlockState::Dirty) dirty_by_age_.insert(std::next(dirty_by_age_.iterator_to(block)), tail);
@@ -375,31 +381,65 @@ PageCache::Flushed PageCache::flush_expired_block(double cutoff) {
   // Nothing expired if the oldest dirty data has not: O(1) for the flusher's usual tick.
   if (dirty_by_age_.empty() || dirty_by_age_.front().entry_time > cutoff) return {kNoFile, 0};
   if (settings_.expire_oldest_first) return take_for_writeback(dirty_by_age_.front());
-  for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
-    LruList& list = list_of(kind);
-    for (Block* block = list.front(BlockState::Dirty); block != nullptr; block = list.next(*block, BlockState::Dirty)) {
-      if (block->entry_time > cutoff) continue;
-      return take_for_writeback(*block);
-    }
+  // The least recently used expired block, inactive list first; a search under the cutoff of
+  // the previous one resumes where that one stopped.
+  Block* block = nullptr;
+  if (expiry_scan_.after != nullptr && expiry_scan_.cutoff == cutoff) {
+    block = next_dirty(*expiry_scan_.after);
+  } else {
+    expiry_scan_ = {};
+    block = inactive_.front(BlockState::Dirty);
+    if (block == nullptr) block = active_.front(BlockState::Dirty);
+  }
+  for (; block != nullptr; block = next_dirty(*block)) {
+    if (block->entry_time <= cutoff) return take_for_writeback(*block);
+    expiry_scan_ = {block, cutoff};
   }
   return {kNoFile, 0};
 }
 
+Block* PageCache::next_dirty(Block& block) noexcept {
+  Block* next = list_of(block.list).next(block, BlockState::Dirty);
+  if (next == nullptr && block.list == ListKind::Inactive) next = active_.front(BlockState::Dirty);
+  return next;
+}
+
+void PageCache::on_dirty_linked(const Block& block) noexcept {
+  if (expiry_scan_.after != nullptr && block.state == BlockState::Dirty && block.entry_time <= expiry_scan_.cutoff) {
+    expiry_scan_ = {};
+  }
+}
+
+void PageCache::on_dirty_unlinked(const Block& block) noexcept {
+  if (&block == expiry_scan_.after) expiry_scan_ = {};
+}
+
 void PageCache::end_writeback(const Flushed& taken) {
   if (taken.bytes == 0) return;
-  // The blocks of one write (of one file; a flush may write several) carry its token; splits
-  // pass it on. They are found among the
-  // blocks in writeback, O(blocks in writeback): a few writes in flight, however many blocks
-  // the cache holds.
-  for (LruList* list : {&inactive_, &active_}) {
-    Block* block = list->front(BlockState::Writeback);
-    while (block != nullptr) {
-      Block* next = list->next(*block, BlockState::Writeback);
-      if (block->writeback_batch == taken.token && block->file == taken.file) {
-        block->writeback_batch = 0;
-        set_state(*block, BlockState::Clean);
+  // The blocks of one write carry its token (splits pass it on) and all belong to its file.
+  // They are looked for among the file's blocks or among all blocks in writeback, whichever
+  // are fewer: the file's when many writes are in flight at once (many writers flushing), the
+  // blocks in writeback when one file holds many blocks. Both visit the blocks in LRU order,
+  // inactive list first, so the lists end up the same either way.
+  auto end = [&](Block& block) {
+    if (block.state != BlockState::Writeback || block.writeback_batch != taken.token) return;
+    block.writeback_batch = 0;
+    set_state(block, BlockState::Clean);
+  };
+  FileEntry& entry = files_[taken.file];
+  const std::size_t in_writeback = inactive_.blocks_in(BlockState::Writeback) + active_.blocks_in(BlockState::Writeback);
+  if (entry.inactive.size() + entry.active.size() <= in_writeback) {
+    for (FileOrder* flist : {&entry.inactive, &entry.active}) {
+      for (Block& block : *flist) end(block);
+    }
+  } else {
+    for (LruList* list : {&inactive_, &active_}) {
+      Block* block = list->front(BlockState::Writeback);
+      while (block != nullptr) {
+        Block* next = list->next(*block, BlockState::Writeback);
+        end(*block);
+        block = next;
       }
-      block = next;
     }
   }
   settle();
@@ -512,6 +552,21 @@ void PageCache::check_invariants() const {
   PC_ASSERT_MSG(dirty_blocks == inactive_.blocks_in(BlockState::Dirty) + active_.blocks_in(BlockState::Dirty),
                 "a dirty block is missing from the list by age");
   PC_ASSERT(pool_.in_use() == inactive_.size() + active_.size());
+  if (expiry_scan_.after != nullptr) {
+    const Block& after = *expiry_scan_.after;
+    PC_ASSERT_MSG(after.state == BlockState::Dirty && after.lru_hook.is_linked(), "the expiry search stopped at a block no longer dirty");
+    bool reached = false;
+    for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
+      for (const Block& b : list(kind).blocks()) {
+        if (&b == &after) reached = true;
+        if (reached) break;
+        PC_ASSERT_MSG(b.state != BlockState::Dirty || b.entry_time > expiry_scan_.cutoff,
+                      "an expired block lies before where the expiry search resumes");
+      }
+      if (reached) break;
+    }
+    PC_ASSERT_MSG(reached, "the expiry search stopped at a block not in the lists");
+  }
 }
 
 }  // namespace pagecache::cache

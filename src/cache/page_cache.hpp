@@ -187,6 +187,12 @@ class PageCache {
   static bool checking_by_default();
   /// After a mutation: balance if the settings say so, then check if checking.
   void settle();
+  /// The dirty block after `block` in the order flush_expired_block searches: LRU order,
+  /// inactive list then active list.
+  Block* next_dirty(Block& block) noexcept;
+  /// Keeps expiry_scan_ true when a dirty block enters a list or leaves the dirty ones.
+  void on_dirty_linked(const Block& block) noexcept;
+  void on_dirty_unlinked(const Block& block) noexcept;
 
   CacheSettings settings_;
   std::int64_t total_;
@@ -195,6 +201,17 @@ class PageCache {
   LruList inactive_{ListKind::Inactive};
   LruList active_{ListKind::Active};
   DirtyOrder dirty_by_age_;  // dirty blocks, oldest entry time first
+  // Where the last search for expired data stopped: every dirty block before `after` in
+  // next_dirty's order has an entry time later than `cutoff`. The flusher takes expired blocks
+  // one at a time under one cutoff; with many writers they sit behind many dirty blocks not
+  // yet expired, which the next search with that cutoff need not walk again. Cleared when a
+  // dirty block of entry time <= cutoff is linked anywhere, or when `after` leaves the dirty
+  // blocks.
+  struct ExpiryScan {
+    Block* after = nullptr;
+    double cutoff = 0.0;
+  };
+  ExpiryScan expiry_scan_;
   std::vector<FileEntry> files_;
   detail::ObjectPool<Block> pool_;
   std::uint64_t next_token_ = 1;

@@ -170,6 +170,27 @@ TEST_CASE("the periodic flusher takes expired dirty blocks one at a time, inacti
   CHECK(cache.dirty(1) == 100);
 }
 
+TEST_CASE("expired data that appears where the flusher's last search has passed is still taken first", "[page_cache]") {
+  // Under one cutoff each search resumes where the last one stopped. Here the last one
+  // stopped on the active list (behind file 1, not expired, it took file 0); then file 2
+  // becomes dirty at the cutoff itself (as with dirty_expire = 0) on the inactive list, which
+  // the order puts before the active list: it is the next one taken.
+  PageCache cache(10000, CacheSettings::paper());
+  cache.set_checking(true);
+  cache.add_clean(9, 1000, 0.0);  // keeps the lists balanced without moving anything
+  cache.add_dirty(1, 100, 11.0);
+  cache.reaccess(1, 100, 12.0);
+  cache.add_dirty(0, 100, 1.0);
+  cache.reaccess(0, 100, 13.0);
+  REQUIRE(blocks(cache, A) == std::vector<Seen>{{1, 100, D}, {0, 100, D}});
+  const auto first = cache.flush_expired_block(5.0);
+  CHECK(first.file == 0);
+  cache.add_dirty(2, 100, 5.0);
+  const auto second = cache.flush_expired_block(5.0);
+  CHECK(second.file == 2);
+  CHECK(cache.flush_expired_block(5.0).bytes == 0);  // file 1 is not expired
+}
+
 TEST_CASE("with expire_oldest_first the periodic flusher takes the oldest expired data first", "[page_cache]") {
   // Dirty data of ages 0 s (file 0, inactive), 5 s (file 2, read twice: active) and 20 s
   // (file 1). At cutoff 10 the paper's order takes the inactive list first (file 0, then file

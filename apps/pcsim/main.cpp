@@ -87,7 +87,12 @@ int run_command(const std::string& path, const std::vector<std::string>& sets, c
   pagecache::report::write_outputs(out_dir, scenario, result);
   if (!quiet) {
     fmt::print("{}", pagecache::report::readable_summary(scenario, result));
-    fmt::print("outputs: {}/{{timeline.csv, memory.csv, cache.csv, summary.json}}\n", out_dir);
+    if (result.cache_not_recorded.empty()) {
+      fmt::print("outputs: {}/{{timeline.csv, memory.csv, cache.csv, summary.json}}\n", out_dir);
+    } else {
+      fmt::print("outputs: {}/{{timeline.csv, memory.csv, summary.json}}; cache contents {}\n", out_dir,
+                 pagecache::report::cache_contents_note(result));
+    }
   }
   return 0;
 }

@@ -66,12 +66,18 @@ struct RunResult {
   std::vector<PhaseRow> timeline;
   std::vector<MemoryRow> memory;
   std::vector<CacheRow> cache;
+  /// Empty if `cache` holds the cache contents; otherwise why they were not recorded.
+  std::string cache_not_recorded;
   RunSummary summary;
 };
 
 struct RunOptions {
-  /// Record cache contents (every file, after every I/O phase). Large for big workloads.
+  /// Record cache contents (every file, after every I/O phase).
   bool cache_contents = true;
+  /// The cache contents are not recorded (see RunResult::cache_not_recorded) if they would
+  /// take more rows than this. Their rows are files x I/O phases, which grows with the square
+  /// of the number of applications: 1,000 pipelines of four files make 24 million.
+  std::size_t max_cache_rows = 1'000'000;
   /// Called now and then during the run with the simulated time and the events so far.
   std::function<void(double, std::uint64_t)> progress;
 };

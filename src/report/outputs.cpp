@@ -82,6 +82,10 @@ std::string cache_csv(const RunResult& r) {
   return out;
 }
 
+std::string cache_contents_note(const RunResult& r) {
+  return r.cache_not_recorded.empty() ? "cache.csv" : "not recorded: " + r.cache_not_recorded;
+}
+
 std::string summary_json(const Scenario& scenario, const RunResult& r) {
   const RunSummary& s = r.summary;
   auto totals = [](const PhaseTotals& t) { return fmt::format("{{\"seconds\": {:.6f}, \"bytes\": {}}}", t.seconds, t.bytes); };
@@ -102,13 +106,14 @@ std::string summary_json(const Scenario& scenario, const RunResult& r) {
       "  \"peak_dirty_bytes\": {},\n"
       "  \"events\": {},\n"
       "  \"chunk_operations\": {},\n"
+      "  \"cache_contents\": {},\n"
       "  \"wall_time_s\": {:.6f},\n"
       "  \"events_per_second\": {:.0f}\n"
       "}}\n",
       json_string(kVersion), json_string(scenario.source), json_string(to_string(scenario.profile)), s.makespan, s.end_time,
       totals(s.read), totals(s.compute), totals(s.write), s.disk_read_bytes, s.cache_read_bytes, s.forced_flush_bytes,
       s.periodic_flush_bytes, s.forced_flush_bytes + s.periodic_flush_bytes, s.evicted_bytes, s.peak_dirty_bytes, s.events,
-      s.chunk_operations, s.wall_seconds, s.events_per_second);
+      s.chunk_operations, json_string(cache_contents_note(r)), s.wall_seconds, s.events_per_second);
 }
 
 void write_outputs(const std::string& dir, const Scenario& scenario, const RunResult& result) {
@@ -121,7 +126,7 @@ void write_outputs(const std::string& dir, const Scenario& scenario, const RunRe
     fs::create_directories(staging);
     write_file(staging / "timeline.csv", timeline_csv(result));
     write_file(staging / "memory.csv", memory_csv(result));
-    write_file(staging / "cache.csv", cache_csv(result));
+    if (result.cache_not_recorded.empty()) write_file(staging / "cache.csv", cache_csv(result));
     write_file(staging / "summary.json", summary_json(scenario, result));
     fs::remove_all(target);
     fs::rename(staging, target);

@@ -10,13 +10,16 @@
 
 namespace pagecache::report {
 
-/// Writes every output into `dir` (replacing it). Throws Error if a file cannot be written.
+/// Writes every output into `dir` (replacing it); cache.csv only if the cache contents were
+/// recorded. Throws Error if a file cannot be written.
 void write_outputs(const std::string& dir, const Scenario& scenario, const RunResult& result);
 
 std::string timeline_csv(const RunResult& result);
 std::string memory_csv(const RunResult& result);
 std::string cache_csv(const RunResult& result);
 std::string summary_json(const Scenario& scenario, const RunResult& result);
+/// Where the cache contents are ("cache.csv") or why they were not recorded.
+std::string cache_contents_note(const RunResult& result);
 
 /// A small table per application and the totals, for a terminal.
 std::string readable_summary(const Scenario& scenario, const RunResult& result);

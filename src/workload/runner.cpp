@@ -57,6 +57,7 @@ class Runner {
     for (const AppSpec& app : scenario_.apps) tasks += app.tasks.size();
     for (const WorkflowSpec& w : scenario_.workflows) tasks += w.tasks.size();
     result_.timeline.reserve(3 * tasks);
+    plan_cache_contents(tasks);
     const auto wall_start = std::chrono::steady_clock::now();
     for (const AppSpec& app : scenario_.apps) {
       ++running_;
@@ -158,8 +159,21 @@ class Runner {
     }
   }
 
+  // A row per file after each of the two I/O phases of every task.
+  void plan_cache_contents(std::size_t tasks) {
+    const std::size_t phases = 2 * tasks;
+    const std::size_t rows = phases * file_order_.size();
+    if (!options_.cache_contents) {
+      result_.cache_not_recorded = "switched off";
+    } else if (rows > options_.max_cache_rows) {
+      result_.cache_not_recorded = fmt::format("{} rows ({} I/O phases x {} files) would exceed the limit of {}", rows,
+                                               phases, file_order_.size(), options_.max_cache_rows);
+    }
+    record_cache_ = result_.cache_not_recorded.empty();
+  }
+
   void record_cache(const std::string& app, const TaskSpec& task, const char* phase) {
-    if (!options_.cache_contents) return;
+    if (!record_cache_) return;
     for (const std::string& name : file_order_) {
       const PlacedFile& f = files_.at(name);
       result_.cache.push_back({app, task.name, phase, name, f.host->cached(f.ref)});
@@ -237,6 +251,7 @@ class Runner {
   std::unordered_map<std::string, PlacedFile> files_;  // looked up per I/O phase: hashed
   std::map<std::pair<std::string, std::string>, FileRef> remote_files_;
   std::vector<std::string> file_order_;
+  bool record_cache_ = false;
   std::vector<std::unique_ptr<workload::CoreSlots>> slots_;
   std::deque<std::map<std::string, std::unique_ptr<Event>>> workflow_done_;
   int running_ = 0;

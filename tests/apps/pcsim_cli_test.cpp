@@ -315,6 +315,48 @@ TEST_CASE("pcsim run without a scenario runs the embedded default and prints a s
   CHECK(pcsim("help").status == 0);
 }
 
+TEST_CASE("cache contents too large to record are left out, and the outputs say so", "[cli]") {
+  // A row per file after each I/O phase: 210 pipelines of 3 tasks and 4 files make 1,260
+  // phases x 840 files = 1,058,400 rows, over the 1,000,000 recorded at most.
+  const fs::path dir = scratch("cache_rows");
+  std::ofstream(dir / "many.toml") << R"(profile = "linux"
+[[hosts]]
+name = "node"
+cores = 210
+memory = "525 GB"
+memory_read_bw = "6860 MB/s"
+memory_write_bw = "2764 MB/s"
+[[hosts.disks]]
+name = "disk"
+read_bw = "105 GB/s"
+write_bw = "105 GB/s"
+[pipelines]
+count = 210
+file_size = "1 GB"
+tasks = 3
+cpu_time = "1 s"
+chunk_size = "100 MB"
+)";
+  const Outcome o = pcsim(fmt::format("run '{}' --out '{}'", (dir / "many.toml").string(), (dir / "out").string()));
+  INFO(o.output);
+  REQUIRE(o.status == 0);
+  CHECK_THAT(o.output, Catch::Contains("cache contents not recorded: 1058400 rows (1260 I/O phases x 840 files) would exceed "
+                                       "the limit of 1000000"));
+  CHECK_FALSE(fs::exists(dir / "out" / "cache.csv"));
+  for (const char* file : {"timeline.csv", "memory.csv", "summary.json"}) CHECK(fs::exists(dir / "out" / file));
+  CHECK_THAT(slurp(dir / "out" / "summary.json"), Catch::Contains("\"cache_contents\": \"not recorded: 1058400 rows"));
+  // Switched off, they are not written either: no header-only cache.csv to mistake for an
+  // empty cache.
+  const Outcome off = pcsim(fmt::format("run '{}' --no-cache-contents --quiet --out '{}'", (dir / "many.toml").string(),
+                                        (dir / "off").string()));
+  REQUIRE(off.status == 0);
+  CHECK_FALSE(fs::exists(dir / "off" / "cache.csv"));
+  CHECK_THAT(slurp(dir / "off" / "summary.json"), Catch::Contains("\"cache_contents\": \"not recorded: switched off\""));
+  const Outcome small = pcsim(fmt::format("run --quiet --out '{}'", (dir / "default").string()));
+  REQUIRE(small.status == 0);
+  CHECK_THAT(slurp(dir / "default" / "summary.json"), Catch::Contains("\"cache_contents\": \"cache.csv\""));
+}
+
 TEST_CASE("the complete scenario example of the README runs", "[cli][docs]") {
   const std::string readme = slurp(fs::path(PCSIM_SOURCE_DIR) / "README.md");
   const std::string start = "```toml\ntitle = \"two pipelines and a workflow\"";

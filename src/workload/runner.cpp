@@ -66,11 +66,12 @@ class Runner {
     for (const WorkflowSpec& w : scenario_.workflows) {
       slots_.push_back(std::make_unique<workload::CoreSlots>(sim_, core_count(w.host)));
       workload::CoreSlots& slots = *slots_.back();
-      auto& done = workflow_done_.emplace_back();
-      for (const TaskSpec& t : w.tasks) done[t.name] = std::make_unique<Event>(sim_);
-      for (const TaskSpec& t : w.tasks) {
+      std::deque<Event>& done = workflow_done_.emplace_back();
+      for (std::size_t i = 0; i < w.tasks.size(); ++i) done.emplace_back(sim_);
+      std::vector<std::vector<Event*>> prerequisites = prerequisites_of(w, done);
+      for (std::size_t i = 0; i < w.tasks.size(); ++i) {
         ++running_;
-        sim_.spawn(run_workflow_task(w, t, slots, done));
+        sim_.spawn(run_workflow_task(w, w.tasks[i], slots, std::move(prerequisites[i]), done[i]));
       }
     }
     if (scenario_.memory_sample_interval > 0.0) sim_.spawn(sample_memory());
@@ -219,18 +220,43 @@ class Runner {
     finish_one();
   }
 
-  Task<void> run_workflow_task(const WorkflowSpec& w, const TaskSpec& task, workload::CoreSlots& slots,
-                               std::map<std::string, std::unique_ptr<Event>>& done) {
-    for (const std::string& before : task.after) co_await done.at(before)->wait();
-    for (const TaskSpec& other : w.tasks) {
-      for (const std::string& input : task.reads) {
-        if (std::find(other.writes.begin(), other.writes.end(), input) != other.writes.end()) co_await done.at(other.name)->wait();
+  // What each task of `w` waits for before it starts (`done` holds the ends of its tasks, in
+  // workflow order): the tasks named in `after`, then the writers of its inputs in workflow
+  // order, a writer once per input it writes (a second wait finds the event triggered and does
+  // not suspend). The order is part of the simulation: waiters woken at the same time resume in
+  // the order they queued. A map of the workflow's outputs, built once, finds the writers;
+  // scanning every task for every input made a workflow quadratic in its tasks.
+  static std::vector<std::vector<Event*>> prerequisites_of(const WorkflowSpec& w, std::deque<Event>& done) {
+    std::unordered_map<std::string, std::size_t> task_index;
+    std::unordered_map<std::string, std::vector<std::size_t>> writers;  // one per file in a loaded scenario
+    for (std::size_t i = 0; i < w.tasks.size(); ++i) {
+      task_index.emplace(w.tasks[i].name, i);
+      for (const std::string& file : w.tasks[i].writes) {
+        std::vector<std::size_t>& of_file = writers[file];
+        if (of_file.empty() || of_file.back() != i) of_file.push_back(i);  // a file listed twice is one output
       }
     }
+    std::vector<std::vector<Event*>> waits(w.tasks.size());
+    for (std::size_t i = 0; i < w.tasks.size(); ++i) {
+      const TaskSpec& task = w.tasks[i];
+      for (const std::string& before : task.after) waits[i].push_back(&done[task_index.at(before)]);
+      std::vector<std::size_t> producers;
+      for (const std::string& input : task.reads) {
+        if (auto it = writers.find(input); it != writers.end()) producers.insert(producers.end(), it->second.begin(), it->second.end());
+      }
+      std::sort(producers.begin(), producers.end());  // workflow order
+      for (std::size_t p : producers) waits[i].push_back(&done[p]);
+    }
+    return waits;
+  }
+
+  Task<void> run_workflow_task(const WorkflowSpec& w, const TaskSpec& task, workload::CoreSlots& slots,
+                               std::vector<Event*> prerequisites, Event& done) {
+    for (Event* prerequisite : prerequisites) co_await prerequisite->wait();
     co_await slots.acquire();
     co_await run_task(w.name, task, *hosts_.at(w.host));
     slots.release();
-    done.at(task.name)->trigger();
+    done.trigger();
     finish_one();
   }
 
@@ -253,7 +279,7 @@ class Runner {
   std::vector<std::string> file_order_;
   bool record_cache_ = false;
   std::vector<std::unique_ptr<workload::CoreSlots>> slots_;
-  std::deque<std::map<std::string, std::unique_ptr<Event>>> workflow_done_;
+  std::deque<std::deque<Event>> workflow_done_;  // per workflow, its tasks' ends in workflow order
   int running_ = 0;
   RunResult result_;
 };

@@ -16,6 +16,7 @@
 #include <sys/wait.h>
 
 namespace fs = std::filesystem;
+using pagecache::testing::CsvRow;
 using pagecache::testing::read_csv;
 using pagecache::testing::validation_file;
 
@@ -224,6 +225,43 @@ TEST_CASE("pcsim's outputs for two small scenarios match their golden files", "[
       CHECK(slurp(out / file) == slurp(source / name / file));
     }
   }
+}
+
+TEST_CASE("a workflow task listed before the task writing its input waits for that task", "[cli][workflow]") {
+  // Two cores, so only the file x orders the tasks. make reads 100 MB from disk at 100 MB/s
+  // (0-1 s), computes 1 s, and writes x to the cache at 1 GB/s (2-2.1 s). use, listed first,
+  // starts when make has ended: it reads x from the cache (2.1-2.2 s), not from disk at 0 s.
+  std::string text = std::string(kPlatform) + R"(
+[[files]]
+name = "in"
+size = "100 MB"
+[[files]]
+name = "x"
+size = "100 MB"
+[workflow]
+chunk_size = "100 MB"
+[[workflow.tasks]]
+name = "use"
+read = "x"
+compute = "1 s"
+[[workflow.tasks]]
+name = "make"
+read = "in"
+compute = "1 s"
+write = "x"
+)";
+  text.replace(text.find("name = \"h\""), 10, "name = \"h\"\ncores = 2");
+  const fs::path dir = scratch("workflow-input");
+  std::ofstream(dir / "workflow.toml") << text;
+  const Outcome o = pcsim(fmt::format("run '{}' --out '{}' --quiet", (dir / "workflow.toml").string(), (dir / "out").string()));
+  INFO(o.output);
+  REQUIRE(o.status == 0);
+  std::map<std::pair<std::string, std::string>, CsvRow> phase;
+  for (const auto& row : read_csv((dir / "out" / "timeline.csv").string())) phase[{row.at("task"), row.at("phase")}] = row;
+  REQUIRE(phase.size() == 6);
+  CHECK(phase.at({"make", "write"}).at("end_s") == "2.100000");
+  CHECK(phase.at({"use", "read"}).at("start_s") == "2.100000");
+  CHECK(phase.at({"use", "read"}).at("cache_bytes") == "100000000");
 }
 
 TEST_CASE("two runs of the same scenario give byte-identical outputs", "[cli][determinism]") {

@@ -88,9 +88,9 @@ int run_command(const std::string& path, const std::vector<std::string>& sets, c
   if (!quiet) {
     fmt::print("{}", pagecache::report::readable_summary(scenario, result));
     if (result.cache_not_recorded.empty()) {
-      fmt::print("outputs: {}/{{timeline.csv, memory.csv, cache.csv, summary.json}}\n", out_dir);
+      fmt::print("outputs: {}/{{timeline.csv, memory.csv, cache.csv, summary.json, timing.json}}\n", out_dir);
     } else {
-      fmt::print("outputs: {}/{{timeline.csv, memory.csv, summary.json}}; cache contents {}\n", out_dir,
+      fmt::print("outputs: {}/{{timeline.csv, memory.csv, summary.json, timing.json}}; cache contents {}\n", out_dir,
                  pagecache::report::cache_contents_note(result));
     }
   }

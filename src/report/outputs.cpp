@@ -106,14 +106,18 @@ std::string summary_json(const Scenario& scenario, const RunResult& r) {
       "  \"peak_dirty_bytes\": {},\n"
       "  \"events\": {},\n"
       "  \"chunk_operations\": {},\n"
-      "  \"cache_contents\": {},\n"
-      "  \"wall_time_s\": {:.6f},\n"
-      "  \"events_per_second\": {:.0f}\n"
+      "  \"cache_contents\": {}\n"
       "}}\n",
       json_string(kVersion), json_string(scenario.source), json_string(to_string(scenario.profile)), s.makespan, s.end_time,
       totals(s.read), totals(s.compute), totals(s.write), s.disk_read_bytes, s.cache_read_bytes, s.forced_flush_bytes,
       s.periodic_flush_bytes, s.forced_flush_bytes + s.periodic_flush_bytes, s.evicted_bytes, s.peak_dirty_bytes, s.events,
-      s.chunk_operations, json_string(cache_contents_note(r)), s.wall_seconds, s.events_per_second);
+      s.chunk_operations, json_string(cache_contents_note(r)));
+}
+
+std::string timing_json(const RunResult& r) {
+  const RunSummary& s = r.summary;
+  return fmt::format("{{\n  \"wall_time_s\": {:.6f},\n  \"events\": {},\n  \"events_per_second\": {:.0f}\n}}\n", s.wall_seconds,
+                     s.events, s.events_per_second);
 }
 
 void write_outputs(const std::string& dir, const Scenario& scenario, const RunResult& result) {
@@ -128,6 +132,7 @@ void write_outputs(const std::string& dir, const Scenario& scenario, const RunRe
     write_file(staging / "memory.csv", memory_csv(result));
     if (result.cache_not_recorded.empty()) write_file(staging / "cache.csv", cache_csv(result));
     write_file(staging / "summary.json", summary_json(scenario, result));
+    write_file(staging / "timing.json", timing_json(result));
     fs::remove_all(target);
     fs::rename(staging, target);
   } catch (const fs::filesystem_error& e) {

@@ -1,7 +1,7 @@
 #pragma once
-// Writing a run's outputs: timeline.csv, memory.csv, cache.csv and summary.json in one folder,
-// written to a temporary sibling folder first and renamed into place, so that a failed run
-// never leaves a half-written result. Also the readable summary printed to stdout.
+// Writing a run's outputs: timeline.csv, memory.csv, cache.csv, summary.json and timing.json in
+// one folder, written to a temporary sibling folder first and renamed into place, so that a
+// failed run never leaves a half-written result. Also the readable summary printed to stdout.
 
 #include <pagecache/run.hpp>
 #include <pagecache/scenario.hpp>
@@ -17,7 +17,11 @@ void write_outputs(const std::string& dir, const Scenario& scenario, const RunRe
 std::string timeline_csv(const RunResult& result);
 std::string memory_csv(const RunResult& result);
 std::string cache_csv(const RunResult& result);
+/// The run's results: the same for the same scenario, byte for byte.
 std::string summary_json(const Scenario& scenario, const RunResult& result);
+/// The simulator's own speed (wall time, events per second): the one output that varies from
+/// run to run, kept out of summary.json so that the others are byte-identical.
+std::string timing_json(const RunResult& result);
 /// Where the cache contents are ("cache.csv") or why they were not recorded.
 std::string cache_contents_note(const RunResult& result);
 

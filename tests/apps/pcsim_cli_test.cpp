@@ -271,7 +271,7 @@ TEST_CASE("two runs of the same scenario give byte-identical outputs", "[cli][de
     const Outcome o = pcsim(fmt::format("run '{}' --set pipelines.count=12 --out '{}' --quiet", scenario, (dir / run).string()));
     REQUIRE(o.status == 0);
   }
-  for (const char* file : {"timeline.csv", "memory.csv", "cache.csv"}) {
+  for (const char* file : {"timeline.csv", "memory.csv", "cache.csv", "summary.json"}) {
     INFO(file);
     const std::string first = slurp(dir / "one" / file);
     CHECK(first.size() > 100);
@@ -348,7 +348,8 @@ TEST_CASE("pcsim run without a scenario runs the embedded default and prints a s
   const auto at = summary.find("\"makespan_s\": ");
   REQUIRE(at != std::string::npos);
   CHECK(std::stod(summary.substr(at + 14)) == Catch::Detail::Approx(1049.36).epsilon(0.05));
-  for (const char* file : {"timeline.csv", "memory.csv", "cache.csv", "summary.json"}) CHECK(fs::exists(dir / "out" / file));
+  for (const char* file : {"timeline.csv", "memory.csv", "cache.csv", "summary.json", "timing.json"}) CHECK(fs::exists(dir / "out" / file));
+  CHECK_THAT(slurp(dir / "out" / "timing.json"), Catch::Contains("\"wall_time_s\": ") && Catch::Contains("\"events_per_second\": "));
   CHECK(pcsim("--version").output.find("pcsim ") == 0);
   CHECK(pcsim("help").status == 0);
 }

@@ -8,7 +8,15 @@
 //  - its file's list for that LRU list, in the same relative order, so that per-file queries
 //    and re-accesses cost O(blocks of the file);
 //  - while dirty, the page cache's list of dirty blocks in the order they became dirty
-//    (their entry times), so that the flusher sees in O(1) whether anything has expired.
+//    (their entry times), so that the flusher sees in O(1) whether anything has expired;
+//    while clean, with protect_files_being_written, the sub-list of its file's list holding
+//    the file's clean blocks, in the same relative order, so that eviction sparing the files
+//    being written finds a file's least recently used clean block at once. (One hook for
+//    both: a block is never dirty and clean at once, and a Block fits in 112 bytes.)
+// Its `order` places it in its LRU list: a block appended gets a key above every other's in
+// that list, and the tail of a split (inserted right after its head, the only insertion not
+// at the end) takes its head's. Keys therefore never decrease along a list, and blocks with
+// equal keys are the pieces of one appended block: contiguous, of one file.
 
 #include <boost/intrusive/list.hpp>
 
@@ -25,18 +33,19 @@ using SafeHook = boost::intrusive::list_member_hook<boost::intrusive::link_mode<
 
 struct Block {
   FileId file = 0;
-  std::int64_t size = 0;
-  double last_access = 0.0;
-  double entry_time = 0.0;  // when the data became dirty; expiry is measured from it
   BlockState state = BlockState::Clean;
   ListKind list = ListKind::Inactive;
-  bool referenced = false;          // touched once while inactive (two-touch activation)
+  bool referenced = false;  // touched once while inactive (two-touch activation)
+  std::int64_t size = 0;
+  double last_access = 0.0;
+  double entry_time = 0.0;            // when the data became dirty; expiry is measured from it
   std::uint64_t writeback_batch = 0;  // the flush that is writing it (state Writeback)
+  std::uint64_t order = 0;            // its place in its LRU list (see above)
 
   SafeHook lru_hook;
   SafeHook state_hook;
   SafeHook file_hook;
-  SafeHook dirty_hook;
+  SafeHook dirty_or_clean_hook;
 };
 
 template <SafeHook Block::*Hook>
@@ -46,6 +55,9 @@ using BlockList = boost::intrusive::list<
 using LruOrder = BlockList<&Block::lru_hook>;
 using StateOrder = BlockList<&Block::state_hook>;
 using FileOrder = BlockList<&Block::file_hook>;
-using DirtyOrder = BlockList<&Block::dirty_hook>;
+// Only its front is asked for: no size counter, which keeps a file's entry small.
+using FileCleanOrder = boost::intrusive::list<Block, boost::intrusive::member_hook<Block, SafeHook, &Block::dirty_or_clean_hook>,
+                                              boost::intrusive::constant_time_size<false>>;
+using DirtyOrder = BlockList<&Block::dirty_or_clean_hook>;
 
 }  // namespace pagecache::cache

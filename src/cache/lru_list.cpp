@@ -49,6 +49,7 @@ void LruList::link_state(Block& block) {
 void LruList::push_back(Block& block) {
   PC_ASSERT(block.size > 0);
   block.list = kind_;
+  block.order = ++last_order_;
   blocks_.push_back(block);
   by_state_[index(block.state)].push_back(block);
   bytes_ += block.size;
@@ -58,6 +59,7 @@ void LruList::push_back(Block& block) {
 void LruList::insert_after(Block& position, Block& block) {
   PC_ASSERT(block.size > 0 && position.list == kind_);
   block.list = kind_;
+  block.order = position.order;
   blocks_.insert(std::next(blocks_.iterator_to(position)), block);
   if (block.state == position.state) {
     StateOrder& list = by_state_[index(block.state)];
@@ -115,8 +117,16 @@ void LruList::check() const {
   std::int64_t total = 0;
   std::array<std::int64_t, 3> per_state{};
   std::array<std::size_t, 3> counts{};
+  const Block* previous = nullptr;
   for (const Block& b : blocks_) {
     PC_ASSERT(b.size > 0 && b.list == kind_);
+    // Order keys never decrease along the list; equal keys are pieces of one file's block.
+    PC_ASSERT_MSG(b.order > 0 && b.order <= last_order_, "order key never given");
+    if (previous != nullptr) {
+      PC_ASSERT_MSG(b.order >= previous->order, "order keys out of LRU order");
+      PC_ASSERT_MSG(b.order != previous->order || b.file == previous->file, "two files' blocks share an order key");
+    }
+    previous = &b;
     total += b.size;
     per_state[index(b.state)] += b.size;
     ++counts[index(b.state)];

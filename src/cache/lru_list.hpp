@@ -25,9 +25,10 @@ class LruList {
   std::size_t blocks_in(BlockState state) const noexcept { return by_state_[index(state)].size(); }
   bool empty() const noexcept { return blocks_.empty(); }
 
-  /// Appends at the most-recently-used end.
+  /// Appends at the most-recently-used end, with an order key above every other's here.
   void push_back(Block& block);
-  /// Inserts `block` right after `position` (a block of this list): used when splitting.
+  /// Inserts `block` right after `position` (a block of this list), with its order key: used
+  /// when splitting.
   void insert_after(Block& position, Block& block);
   void erase(Block& block);
   /// Changes a block's state, keeping the state sub-lists in LRU order.
@@ -56,6 +57,7 @@ class LruList {
   std::array<StateOrder, 3> by_state_;
   std::int64_t bytes_ = 0;
   std::array<std::int64_t, 3> state_bytes_{};
+  std::uint64_t last_order_ = 0;  // the order key of the last block appended
 };
 
 }  // namespace pagecache::cache

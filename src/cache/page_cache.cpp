@@ -127,11 +127,13 @@ void PageCache::append(Block& block, ListKind kind) {
   file_list(entry, kind).push_back(block);
   (kind == ListKind::Inactive ? entry.inactive_bytes : entry.active_bytes) += block.size;
   if (block.state == BlockState::Dirty) entry.dirty_bytes += block.size;
+  if (block.state == BlockState::Clean) on_clean_linked(block);
 }
 
 void PageCache::unlink(Block& block) {
   FileEntry& entry = files_[block.file];
   on_dirty_unlinked(block);
+  if (block.state == BlockState::Clean) on_clean_unlinked(block);
   list_of(block.list).erase(block);
   FileOrder& flist = file_list(entry, block.list);
   flist.erase(flist.iterator_to(block));
@@ -155,7 +157,7 @@ bool PageCache::extend_tail(ListKind kind, FileId file, std::int64_t bytes, bool
 
 void PageCache::destroy(Block& block) {
   unlink(block);
-  if (block.dirty_hook.is_linked()) dirty_by_age_.erase(dirty_by_age_.iterator_to(block));
+  if (block.state == BlockState::Dirty) dirty_by_age_.erase(dirty_by_age_.iterator_to(block));
   pool_.give_back(&block);
 }
 
@@ -169,7 +171,52 @@ void PageCache::set_state(Block& block, BlockState state) {
   FileEntry& entry = files_[block.file];
   if (block.state == BlockState::Dirty) entry.dirty_bytes -= block.size;
   if (state == BlockState::Dirty) entry.dirty_bytes += block.size;
+  const bool was_clean = block.state == BlockState::Clean;
+  if (was_clean && state != BlockState::Clean) on_clean_unlinked(block);
   list_of(block.list).set_state(block, state);
+  if (!was_clean && state == BlockState::Clean) on_clean_linked(block);
+}
+
+void PageCache::link_clean(Block& block) {
+  FileEntry& entry = files_[block.file];
+  FileCleanOrder& clean = file_clean_list(entry, block.list);
+  // Its place in the file's clean list, as LruList::link_state finds one in a state sub-list:
+  // after the nearest clean block of the file before it, or before the nearest one after it,
+  // whichever is nearer. A block appended, or the file's only clean one, is placed at once.
+  const FileOrder& flist = file_list(entry, block.list);
+  if (clean.empty() || &flist.back() == &block) {
+    clean.push_back(block);
+  } else {
+    auto back = flist.iterator_to(block);
+    auto ahead = std::next(back);
+    for (;;) {
+      if (back == flist.begin()) {
+        clean.push_front(block);
+        break;
+      }
+      --back;
+      if (back->state == BlockState::Clean) {
+        clean.insert(std::next(clean.iterator_to(*back)), block);
+        break;
+      }
+      if (ahead == flist.end()) {
+        clean.push_back(block);
+        break;
+      }
+      if (ahead->state == BlockState::Clean) {
+        clean.insert(clean.iterator_to(*ahead), block);
+        break;
+      }
+      ++ahead;
+    }
+  }
+  // A higher key waits until the file comes to the top of reclaimable_ (see there).
+  if (&clean.front() == &block && entry.writers == 0) reclaimable(block.list).lower(block.file, block.order);
+}
+
+void PageCache::unlink_clean(Block& block) {
+  FileCleanOrder& clean = file_clean_list(files_[block.file], block.list);
+  clean.erase(clean.iterator_to(block));
 }
 
 Block& PageCache::split_front(Block& block, std::int64_t head_size) {
@@ -189,6 +236,10 @@ Block& PageCache::split_front(Block& block, std::int64_t head_size) {
   FileOrder& flist = file_list(files_[block.file], block.list);
   flist.insert(std::next(flist.iterator_to(block)), tail);
   if (tail.state == BlockState::Dirty) dirty_by_age_.insert(std::next(dirty_by_age_.iterator_to(block)), tail);
+  if (tail.state == BlockState::Clean && settings_.protect_files_being_written) {
+    FileCleanOrder& clean = file_clean_list(files_[block.file], block.list);
+    clean.insert(std::next(clean.iterator_to(block)), tail);
+  }
   // Per-file byte counters are unchanged: the file holds the same bytes in the same list.
   return block;
 }
@@ -461,6 +512,19 @@ std::int64_t PageCache::evict(std::int64_t amount, FileId excluded) {
     };
     for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
       if (kind == ListKind::Active && settings_.reclaim_inactive_only) break;
+      if (spare_written) {
+        // The same victims in the same order as the walk below, without walking past the
+        // clean blocks of the files being written.
+        bool set_aside = false;
+        while (evicted < amount) {
+          Block* victim = next_unwritten_clean(kind, excluded, set_aside);
+          if (victim == nullptr) break;
+          take(*victim);
+        }
+        // Only other files' blocks were taken: the excluded file's first clean block is the same.
+        if (set_aside) reclaimable(kind).lower(excluded, file_clean_list(files_[excluded], kind).front().order);
+        continue;
+      }
       LruList& list = list_of(kind);
       Block* block = list.front(BlockState::Clean);
       while (block != nullptr && evicted < amount) {
@@ -487,10 +551,46 @@ std::int64_t PageCache::evict(std::int64_t amount, FileId excluded) {
   return evicted;
 }
 
+Block* PageCache::next_unwritten_clean(ListKind kind, FileId excluded, bool& set_aside) {
+  // The least recently used clean block, unless spared; if it is, the first clean block of
+  // the top file of reclaimable_, once the top's key is that block's.
+  Block* front = list_of(kind).front(BlockState::Clean);
+  if (front == nullptr) return nullptr;
+  if (front->file != excluded && files_[front->file].writers == 0) return front;
+  FileHeap& files = reclaimable(kind);
+  while (!files.empty()) {
+    const FileHeap::Entry top = files.top();
+    FileEntry& entry = files_[top.file];
+    FileCleanOrder& clean = file_clean_list(entry, kind);
+    if (clean.empty() || entry.writers > 0) {
+      files.pop();
+    } else if (clean.front().order != top.key) {
+      files.raise_top(clean.front().order);
+    } else if (top.file == excluded) {
+      files.pop();
+      set_aside = true;
+    } else {
+      return &clean.front();
+    }
+  }
+  return nullptr;
+}
+
 void PageCache::set_being_written(FileId file, bool writing) {
   FileEntry& entry = file_entry(file);
+  const bool was_written = entry.writers > 0;
   entry.writers += writing ? 1 : -1;
   PC_ASSERT(entry.writers >= 0);
+  if (!settings_.protect_files_being_written || was_written == (entry.writers > 0)) return;
+  // Its last write ended: the file is among those eviction may take from while sparing the
+  // files being written. (Its first write started: it leaves them when it comes to the top.)
+  if (!writing) {
+    for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
+      const FileCleanOrder& clean = file_clean_list(entry, kind);
+      if (!clean.empty()) reclaimable(kind).lower(file, clean.front().order);
+    }
+  }
+  if (checking_) check_invariants();
 }
 
 void PageCache::balance() {
@@ -524,6 +624,24 @@ void PageCache::check_invariants() const {
     std::int64_t dirty_bytes = 0;
     for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
       const FileOrder& flist = kind == ListKind::Inactive ? entry.inactive : entry.active;
+      // Its clean list holds its clean blocks in the list, in order; and its place in
+      // reclaimable_.
+      const FileCleanOrder& clean = kind == ListKind::Inactive ? entry.clean_inactive : entry.clean_active;
+      auto clean_it = clean.begin();
+      if (settings_.protect_files_being_written) {
+        for (const Block& b : flist) {
+          if (b.state != BlockState::Clean) continue;
+          PC_ASSERT_MSG(clean_it != clean.end() && &*clean_it == &b, fmt::format("file {}: clean list out of order", f));
+          ++clean_it;
+        }
+      }
+      PC_ASSERT_MSG(clean_it == clean.end(), fmt::format("file {}: a block on its clean list in error", f));
+      if (!clean.empty() && entry.writers == 0) {
+        const FileHeap& files = reclaimable_[static_cast<std::size_t>(kind)];
+        const auto file = static_cast<FileId>(f);
+        PC_ASSERT_MSG(files.contains(file) && files.key(file) <= clean.front().order,
+                      fmt::format("file {} missing from the reclaimable files, or its key too high", f));
+      }
       // The file's list follows the LRU list's order.
       const LruList& lru = list(kind);
       auto lru_it = lru.blocks().begin();
@@ -541,6 +659,10 @@ void PageCache::check_invariants() const {
     PC_ASSERT(dirty_bytes == entry.dirty_bytes);
   }
   PC_ASSERT_MSG(blocks_in_files == inactive_.size() + active_.size(), "a block is missing from its file's list");
+  for (const FileHeap& files : reclaimable_) {
+    files.check();
+    PC_ASSERT(settings_.protect_files_being_written || files.empty());
+  }
   std::size_t dirty_blocks = 0;
   double previous = -std::numeric_limits<double>::infinity();
   for (const Block& b : dirty_by_age_) {

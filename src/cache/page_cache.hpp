@@ -10,15 +10,19 @@
 // Invariants (checked by check_invariants(), and after every operation when
 // set_checking(true)): total = free + anonymous + cached, free >= 0, 0 <= dirty <= cached,
 // cached = inactive + active, every list's byte counter equals its block sum, every block is
-// in exactly one LRU list and in its file's list for that LRU list.
+// in exactly one LRU list and in its file's list for that LRU list; with
+// protect_files_being_written, every clean block is in its file's clean list for that LRU
+// list, and every file not being written that has clean data there is in reclaimable_.
 
 #include "cache/block.hpp"
+#include "cache/file_heap.hpp"
 #include "cache/lru_list.hpp"
 #include "engine/object_pool.hpp"
 
 #include <pagecache/cache_settings.hpp>
 #include <pagecache/memory_state.hpp>
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -161,11 +165,19 @@ class PageCache {
     std::int64_t active_bytes = 0;
     std::int64_t dirty_bytes = 0;
     int writers = 0;  // writes in progress
+    // With protect_files_being_written: the file's clean blocks in each LRU list, in LRU
+    // order (sub-lists of `inactive` and `active`).
+    FileCleanOrder clean_inactive;
+    FileCleanOrder clean_active;
   };
 
   FileEntry& file_entry(FileId file);
   LruList& list_of(ListKind kind) noexcept { return kind == ListKind::Inactive ? inactive_ : active_; }
   FileOrder& file_list(FileEntry& entry, ListKind kind) noexcept { return kind == ListKind::Inactive ? entry.inactive : entry.active; }
+  FileCleanOrder& file_clean_list(FileEntry& entry, ListKind kind) noexcept {
+    return kind == ListKind::Inactive ? entry.clean_inactive : entry.clean_active;
+  }
+  FileHeap& reclaimable(ListKind kind) noexcept { return reclaimable_[static_cast<std::size_t>(kind)]; }
 
   Block& new_block(FileId file, std::int64_t size, BlockState state, double now);
   /// Adds `bytes` to the clean block at the MRU end of `kind` if it is the file's with the
@@ -193,6 +205,21 @@ class PageCache {
   /// Keeps expiry_scan_ true when a dirty block enters a list or leaves the dirty ones.
   void on_dirty_linked(const Block& block) noexcept;
   void on_dirty_unlinked(const Block& block) noexcept;
+  /// Keep the files' clean lists, and reclaimable_, up to date (with
+  /// protect_files_being_written): a clean block was linked in its other lists, or a linked
+  /// block became clean; a clean block is about to leave its lists or its state.
+  void on_clean_linked(Block& block) {
+    if (settings_.protect_files_being_written) link_clean(block);
+  }
+  void on_clean_unlinked(Block& block) {
+    if (settings_.protect_files_being_written) unlink_clean(block);
+  }
+  void link_clean(Block& block);
+  void unlink_clean(Block& block);
+  /// With protect_files_being_written: the least recently used clean block of `kind` whose
+  /// file is neither `excluded` nor being written, or nullptr. If `excluded` comes to the top
+  /// of reclaimable_ it is taken out and `set_aside` set: the caller puts it back.
+  Block* next_unwritten_clean(ListKind kind, FileId excluded, bool& set_aside);
 
   CacheSettings settings_;
   std::int64_t total_;
@@ -213,6 +240,16 @@ class PageCache {
   };
   ExpiryScan expiry_scan_;
   std::vector<FileEntry> files_;
+  // Per LRU list, with protect_files_being_written: where an eviction that spares the files
+  // being written finds its next victim without walking past their clean blocks. Every file
+  // not being written that has clean data in the list is in it, under a key no higher than
+  // the order key of its first clean block there. Keys are lowered at once (a clean block
+  // comes first in the file's clean list, or the file's last write ends) and raised, or the
+  // file dropped (it has no clean data left there, or is being written), only when the file
+  // comes to the top: so when the top's key is its first clean block's, that block is the
+  // least recently used clean block of any file not being written. Two files' first clean
+  // blocks never share an order key (equal keys are pieces of one file's block).
+  std::array<FileHeap, 2> reclaimable_;  // by ListKind
   detail::ObjectPool<Block> pool_;
   std::uint64_t next_token_ = 1;
   std::int64_t evicted_total_ = 0;

@@ -1,7 +1,8 @@
 // Randomised check of PageCache against a deliberately simple reference model: two plain
 // vectors of blocks, every operation written as the obvious loop. 10^5+ random operations
 // (reads, writes, flushes with writebacks left in flight and ended out of order, expiry
-// flushes, often several under one cutoff as the flusher's tick makes them, evictions, re-accesses, application memory, reservations of copies in flight)
+// flushes, often several under one cutoff as the flusher's tick makes them, evictions, re-accesses, application memory, reservations of copies in flight,
+// writes of files starting and ending, which eviction spares with protect_files_being_written)
 // run on both, and after every step the lists (block by block, in order), the per-file
 // cached and dirty bytes and the memory totals must agree exactly, with every invariant
 // checked by PageCache itself.
@@ -22,6 +23,8 @@ using namespace pagecache::cache;
 
 namespace {
 
+constexpr int kFiles = 6;
+
 struct RefBlock {
   FileId file;
   std::int64_t size;
@@ -38,6 +41,7 @@ class Reference {
   std::vector<RefBlock> inactive, active;
   std::int64_t anonymous = 0, reserved = 0;
   std::uint64_t next_token = 1;
+  std::vector<int> writers = std::vector<int>(kFiles, 0);  // writes in progress, per file
 
   static std::int64_t sum(const std::vector<RefBlock>& list) {
     std::int64_t n = 0;
@@ -232,44 +236,51 @@ class Reference {
     settle();
   }
 
+  // Two passes with protect_files_being_written: the first spares the files being written
+  // too, the second (if the first freed too little) only `excluded`.
   std::int64_t evict(std::int64_t amount, FileId excluded) {
     std::int64_t evicted = 0;
-    for (auto* list : {&inactive, &active}) {
-      if (list == &active && s_.reclaim_inactive_only) break;
-      for (std::size_t i = 0; i < list->size() && evicted < amount;) {
-        RefBlock& b = (*list)[i];
-        if (b.state != BlockState::Clean || b.file == excluded) {
-          ++i;
-          continue;
-        }
-        if (b.size > amount - evicted) {
-          b.size -= amount - evicted;
-          evicted = amount;
-        } else {
-          evicted += b.size;
-          list->erase(list->begin() + static_cast<std::ptrdiff_t>(i));
-        }
-      }
-    }
-    if (s_.reclaim_inactive_only) {
-      // Aging: the oldest active block goes to the inactive tail, and is reclaimed if clean.
-      while (evicted < amount && !active.empty()) {
-        RefBlock b = active.front();
-        active.erase(active.begin());
-        b.referenced = false;
-        if (b.state == BlockState::Clean && b.file != excluded) {
+    auto pass = [&](bool spare_written) {
+      auto spared = [&](const RefBlock& b) { return b.file == excluded || (spare_written && writers[b.file] > 0); };
+      for (auto* list : {&inactive, &active}) {
+        if (list == &active && s_.reclaim_inactive_only) break;
+        for (std::size_t i = 0; i < list->size() && evicted < amount;) {
+          RefBlock& b = (*list)[i];
+          if (b.state != BlockState::Clean || spared(b)) {
+            ++i;
+            continue;
+          }
           if (b.size > amount - evicted) {
             b.size -= amount - evicted;
             evicted = amount;
-            inactive.push_back(b);
           } else {
             evicted += b.size;
+            list->erase(list->begin() + static_cast<std::ptrdiff_t>(i));
           }
-        } else {
-          inactive.push_back(b);
         }
       }
-    }
+      if (s_.reclaim_inactive_only) {
+        // Aging: the oldest active block goes to the inactive tail, and is reclaimed if clean.
+        while (evicted < amount && !active.empty()) {
+          RefBlock b = active.front();
+          active.erase(active.begin());
+          b.referenced = false;
+          if (b.state == BlockState::Clean && !spared(b)) {
+            if (b.size > amount - evicted) {
+              b.size -= amount - evicted;
+              evicted = amount;
+              inactive.push_back(b);
+            } else {
+              evicted += b.size;
+            }
+          } else {
+            inactive.push_back(b);
+          }
+        }
+      }
+    };
+    pass(s_.protect_files_being_written);
+    if (evicted < amount && s_.protect_files_being_written) pass(false);
     settle();
     return evicted;
   }
@@ -278,8 +289,6 @@ class Reference {
   std::int64_t total_;
   CacheSettings s_;
 };
-
-constexpr int kFiles = 6;
 
 void compare(const PageCache& cache, const Reference& ref, std::uint64_t step) {
   INFO("step " << step);
@@ -321,7 +330,7 @@ void run_random(const CacheSettings& settings, std::uint64_t seed, int steps) {
   for (int step = 0; step < steps; ++step) {
     now += static_cast<double>(pick(0, 3));
     const auto file = static_cast<FileId>(pick(0, kFiles - 1));
-    const auto op = pick(0, 12);
+    const auto op = pick(0, 13);
     switch (op) {
       case 0:
       case 1: {  // new data read or written
@@ -429,6 +438,12 @@ void run_random(const CacheSettings& settings, std::uint64_t seed, int steps) {
         ref.add(file, bytes, BlockState::Clean, now, settings.two_touch_activation);
         break;
       }
+      case 13: {  // a write of the file starts, or one ends (at most three at once per file)
+        const bool start = ref.writers[file] == 0 || (ref.writers[file] < 3 && pick(0, 1));
+        cache.set_being_written(file, start);
+        ref.writers[file] += start ? 1 : -1;
+        break;
+      }
       default:
         break;
     }
@@ -449,4 +464,13 @@ TEST_CASE("PageCache agrees with the reference model over random operations (ker
   CacheSettings settings = CacheSettings::kernel();
   settings.expire_oldest_first = false;
   for (std::uint64_t seed : {4u, 5u, 6u}) run_random(settings, seed, 20000);
+}
+
+TEST_CASE("PageCache agrees with the reference model over random operations (kernel settings, reclaiming active data too)",
+          "[page_cache][random]") {
+  // Eviction sparing the files being written also searches the active list.
+  CacheSettings settings = CacheSettings::kernel();
+  settings.expire_oldest_first = false;
+  settings.reclaim_inactive_only = false;
+  for (std::uint64_t seed : {7u, 8u, 9u}) run_random(settings, seed, 20000);
 }

@@ -22,6 +22,10 @@ class IndexedHeap {
  public:
   using Index = std::uint32_t;
 
+  IndexedHeap() = default;
+  /// For a `Place` that needs state of its own (where it records the indices).
+  explicit IndexedHeap(Place place) : place_(place) {}
+
   bool empty() const noexcept { return entries_.empty(); }
   std::size_t size() const noexcept { return entries_.size(); }
   const Entry& top() const noexcept { return entries_.front(); }
@@ -50,6 +54,13 @@ class IndexedHeap {
     restore(index);
   }
   void clear() noexcept { entries_.clear(); }
+  /// True if no entry would come out before its parent: for invariant checks.
+  bool ordered() const noexcept {
+    for (Index i = 1; i < entries_.size(); ++i) {
+      if (before_(entries_[i], entries_[(i - 1) / kArity])) return false;
+    }
+    return true;
+  }
 
  private:
   static constexpr Index kArity = 4;

@@ -1,5 +1,6 @@
 #include "cache/lru_list.hpp"
 
+#include "cache/sub_list.hpp"
 #include "engine/check.hpp"
 
 #include <fmt/format.h>
@@ -12,38 +13,10 @@ LruList::~LruList() {
 }
 
 void LruList::link_state(Block& block) {
-  // The block's place in its state sub-list: right after the nearest block before it in the
-  // LRU list that has the same state, or right before the nearest one after it. Both ways are
-  // walked in turn, so the cost is the distance to the nearer of the two (usually a
-  // neighbour), not to the list's end: a block whose state has no other block before it
-  // (the one block taken for writeback) is placed at once.
-  StateOrder& list = by_state_[index(block.state)];
-  if (list.empty()) {
-    list.push_back(block);
-    return;
-  }
-  auto back = blocks_.iterator_to(block);
-  auto ahead = std::next(back);
-  for (;;) {
-    if (back == blocks_.begin()) {
-      list.push_front(block);  // nothing of this state before it: it goes first
-      return;
-    }
-    --back;
-    if (back->state == block.state) {
-      list.insert(std::next(list.iterator_to(*back)), block);
-      return;
-    }
-    if (ahead == blocks_.end()) {
-      list.push_back(block);  // nothing of this state after it: it goes last
-      return;
-    }
-    if (ahead->state == block.state) {
-      list.insert(list.iterator_to(*ahead), block);
-      return;
-    }
-    ++ahead;
-  }
+  // With no other block of its state before it (the one block taken for writeback) it is
+  // placed at once.
+  const BlockState state = block.state;
+  link_in_order(blocks_, by_state_[index(state)], block, [state](const Block& b) { return b.state == state; });
 }
 
 void LruList::push_back(Block& block) {

@@ -1,5 +1,6 @@
 #include "cache/page_cache.hpp"
 
+#include "cache/sub_list.hpp"
 #include "engine/check.hpp"
 
 #include <fmt/format.h>
@@ -180,36 +181,7 @@ void PageCache::set_state(Block& block, BlockState state) {
 void PageCache::link_clean(Block& block) {
   FileEntry& entry = files_[block.file];
   FileCleanOrder& clean = file_clean_list(entry, block.list);
-  // Its place in the file's clean list, as LruList::link_state finds one in a state sub-list:
-  // after the nearest clean block of the file before it, or before the nearest one after it,
-  // whichever is nearer. A block appended, or the file's only clean one, is placed at once.
-  const FileOrder& flist = file_list(entry, block.list);
-  if (clean.empty() || &flist.back() == &block) {
-    clean.push_back(block);
-  } else {
-    auto back = flist.iterator_to(block);
-    auto ahead = std::next(back);
-    for (;;) {
-      if (back == flist.begin()) {
-        clean.push_front(block);
-        break;
-      }
-      --back;
-      if (back->state == BlockState::Clean) {
-        clean.insert(std::next(clean.iterator_to(*back)), block);
-        break;
-      }
-      if (ahead == flist.end()) {
-        clean.push_back(block);
-        break;
-      }
-      if (ahead->state == BlockState::Clean) {
-        clean.insert(clean.iterator_to(*ahead), block);
-        break;
-      }
-      ++ahead;
-    }
-  }
+  link_in_order(file_list(entry, block.list), clean, block, [](const Block& b) { return b.state == BlockState::Clean; });
   // A higher key waits until the file comes to the top of reclaimable_ (see there).
   if (&clean.front() == &block && entry.writers == 0) reclaimable(block.list).lower(block.file, block.order);
 }

@@ -1,5 +1,5 @@
-// Fair share: N processes keep N flows running on one disk; each, when its flow finishes,
-// starts another. The figure is the wall time per flow start+finish; with processor sharing
+// Fair share: N processes keep N flows running on one disk (or a disk and a link); each, when
+// its flow finishes, starts another. The figure is the wall time per flow start+finish; with processor sharing
 // it should grow like log N, not N.
 #include <pagecache/devices.hpp>
 #include <pagecache/fair_share.hpp>
@@ -77,5 +77,29 @@ void BM_MemoryConcurrentFlows(benchmark::State& state) {
       &copier);
 }
 BENCHMARK(BM_MemoryConcurrentFlows)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Flows that cross two resources (a read from a server's disk over a network link, as with
+// NFS) are solved by progressive filling over their component, whose flows form classes of
+// interchangeable flows: the cost per flow should not grow with N either.
+struct ServerPath {
+  explicit ServerPath(pagecache::FairShare& share) : disk(share, "disk", 500e6, 400e6), link(share, "link", 300e6, 0.0) {}
+  pagecache::Disk disk;
+  pagecache::Link link;
+};
+
+pagecache::Task<void> remote_reader(const ServerPath& path, std::int64_t flows, std::int64_t seed) {
+  std::uint64_t x = static_cast<std::uint64_t>(seed) * 2654435761u + 5;
+  for (std::int64_t i = 0; i < flows; ++i) {
+    x = x * 6364136223846793005ull + 1442695040888963407ull;
+    const auto bytes = static_cast<double>(1'000'000 + (x >> 33) % 99'000'000);
+    co_await path.link.send_through(pagecache::FlowSpec{.work = bytes}.through(path.disk.read_usage()));
+  }
+}
+
+void BM_CoupledConcurrentFlows(benchmark::State& state) {
+  run_concurrent_flows(
+      state, [](pagecache::FairShare& share) { return std::make_unique<ServerPath>(share); }, &remote_reader);
+}
+BENCHMARK(BM_CoupledConcurrentFlows)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace

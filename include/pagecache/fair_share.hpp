@@ -20,7 +20,10 @@
 // all cross it alone, starting or finishing a flow costs O(log n) (virtual-time processor
 // sharing: the flows' progress is a shared virtual clock, and only the next completion is in
 // the event queue). Flows that cross several resources are solved by progressive filling over
-// their connected component, O(flows in it) per change.
+// their connected component, in classes of interchangeable flows (same resources, costs,
+// bound and weight: max-min gives them one rate): O(classes in it) per change, plus O(log n)
+// for the flow's place in its class. N applications on one NFS client make a few classes;
+// N clients of one server make N.
 
 #include <pagecache/simulator.hpp>
 

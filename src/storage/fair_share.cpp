@@ -2,6 +2,7 @@
 
 #include "engine/check.hpp"
 #include "engine/object_pool.hpp"
+#include "storage/flow_class.hpp"
 #include "storage/flow_state.hpp"
 #include "storage/max_min.hpp"
 #include "storage/precision.hpp"
@@ -11,10 +12,13 @@
 
 #include <cmath>
 #include <deque>
+#include <unordered_map>
 #include <vector>
 
 namespace pagecache {
 
+using detail::FlowClass;
+using detail::FlowClassKey;
 using detail::FlowMode;
 using detail::FlowState;
 
@@ -41,9 +45,9 @@ struct FairShare::Impl {
 
   // One resource and how the rates of the flows crossing it are found. While no multi-resource
   // flow crosses it (`coupled == 0`) its flows are held by `sharing` alone, in O(log n) per
-  // change; otherwise they are Explicit, listed in `flows`, and solved with the rest of their
-  // component. (Listing every flow, needed or not, was a cache miss per flow end at 10^5
-  // flows: removing one moves another.)
+  // change; otherwise they are Explicit, members of the classes listed in `classes`, and
+  // solved with the rest of their component. (Listing every flow, needed or not, was a cache
+  // miss per flow end at 10^5 flows: removing one moves another.)
   struct ResourceState {
     ResourceState(Impl* owner_, std::uint32_t index_, std::string name_, Simulator& sim,
                   EventCallback flow_due, EventCallback head_due)
@@ -52,25 +56,26 @@ struct FairShare::Impl {
     Impl* owner;
     std::uint32_t index;
     std::string name;
-    std::vector<FlowState*> flows;  // the Explicit flows crossing it (none while not coupled)
-    std::size_t coupled = 0;        // how many of them cross other resources too
+    std::vector<FlowClass*> classes;  // the classes of Explicit flows crossing it (none while not coupled)
+    std::size_t coupled = 0;          // how many flows crossing it cross other resources too
     detail::ProcessorSharing sharing;
     std::uint64_t visit = 0;
     std::uint32_t local = 0;  // index within the component being solved
   };
 
-
   Simulator& sim;
   std::deque<ResourceState> resources;  // deque: stable addresses
   detail::ObjectPool<FlowState> pool;
+  std::unordered_map<FlowClassKey, std::unique_ptr<FlowClass>, detail::FlowClassKeyHash> classes;
   std::uint64_t next_sequence = 0;
   std::uint64_t visit_stamp = 0;
   std::size_t active = 0;
 
   // Scratch space, kept to avoid allocating per event.
   std::vector<FlowState*> finished;
+  std::vector<FlowState*> class_finished;
   std::vector<ResourceState*> component_resources;
-  std::vector<FlowState*> component_flows;
+  std::vector<FlowClass*> component_classes;
   std::vector<detail::MaxMinFlow> problem;
   detail::MaxMinSolver solver;
 
@@ -78,17 +83,19 @@ struct FairShare::Impl {
 
   static void on_flow_due(void* context);
   static void on_head_due(void* context);
+  static void on_class_due(void* context);
 
   void validate(const FlowSpec& spec) const;
   FlowState* start(const FlowSpec& spec, std::coroutine_handle<> waiting, FlowAwaiter* awaiter);
-  void finish(FlowState* flow, bool completed);
-  void enlist(FlowState* flow);
-  void unregister(FlowState* flow);
+  void withdraw(FlowState* flow);
+  void join(FlowState* flow, double work);
+  void drop_if_empty(FlowClass& c);
+  void uncouple(const FlowClassKey& key, std::size_t flows);
   void make_explicit(ResourceState& r);
   void make_shared(ResourceState& r);
-  void solve_from(const FlowState& seed);
-  void schedule_completion(FlowState* flow);
-  void complete(FlowState* flow);
+  void solve_from(const FlowClassKey& seed);
+  void schedule_head(FlowClass& c);
+  void wake(FlowState* flow);
 };
 
 void FairShare::Impl::validate(const FlowSpec& spec) const {
@@ -113,9 +120,8 @@ void FairShare::Impl::validate(const FlowSpec& spec) const {
 
 FlowState* FairShare::Impl::start(const FlowSpec& spec, std::coroutine_handle<> waiting, FlowAwaiter* awaiter) {
   validate(spec);
-  // Every field of the first two lines is set here (see FlowState); usages past usage_count,
-  // slots (set by enlist) and visit (compared with a stamp that only grows) are never read
-  // stale.
+  // Every field of the first two lines is set here (see FlowState); usages past usage_count
+  // and flow_class (set by join) are never read stale.
   FlowState* flow = pool.take_as_left();
   flow->owner = this;
   flow->weight = spec.weight;
@@ -142,60 +148,96 @@ FlowState* FairShare::Impl::start(const FlowSpec& spec, std::coroutine_handle<> 
     first.sharing.add(flow, spec.work);
     return flow;
   }
-  flow->mode = FlowMode::Explicit;
-  flow->remaining = spec.work;
-  flow->rate = 0.0;
-  flow->updated = sim.now();
   if (spec.usage_count > 1) {
     for (std::size_t i = 0; i < spec.usage_count; ++i) {
       ResourceState& r = resource(flow->usages[i].resource);
       if (r.coupled++ == 0) make_explicit(r);
     }
   }
-  enlist(flow);
-  solve_from(*flow);
+  join(flow, spec.work);
+  solve_from(flow->flow_class->key);
   return flow;
 }
 
-void FairShare::Impl::enlist(FlowState* flow) {
-  for (std::uint8_t i = 0; i < flow->usage_count; ++i) {
-    ResourceState& r = resource(flow->usages[i].resource);
-    flow->slots[i] = static_cast<std::uint32_t>(r.flows.size());
-    r.flows.push_back(flow);
+void FairShare::Impl::join(FlowState* flow, double work) {
+  auto [it, made] = classes.try_emplace(FlowClassKey::of(*flow));
+  if (made) {
+    it->second = std::make_unique<FlowClass>();
+    FlowClass& c = *it->second;
+    c.key = it->first;
+    c.owner = this;
+    c.updated = sim.now();
+    for (std::uint8_t i = 0; i < c.key.usage_count; ++i) {
+      ResourceState& r = resource(c.key.usages[i].resource);
+      c.slots[i] = static_cast<std::uint32_t>(r.classes.size());
+      r.classes.push_back(&c);
+    }
+  }
+  FlowClass& c = *it->second;
+  c.advance(sim.now());
+  flow->mode = FlowMode::Explicit;
+  flow->flow_class = &c;
+  flow->virtual_finish = c.virtual_time + std::max(work, 0.0);
+  c.members.push({flow->virtual_finish, flow->sequence, flow});
+  c.head_moved = true;
+}
+
+void FairShare::Impl::drop_if_empty(FlowClass& c) {
+  if (!c.members.empty()) return;
+  sim.cancel(c.head_event);
+  for (std::uint8_t i = 0; i < c.key.usage_count; ++i) {
+    ResourceState& r = resource(c.key.usages[i].resource);
+    const std::uint32_t slot = c.slots[i];
+    FlowClass* moved = r.classes.back();
+    r.classes[slot] = moved;
+    r.classes.pop_back();
+    if (moved != &c) {
+      for (std::uint8_t j = 0; j < moved->key.usage_count; ++j) {
+        if (moved->key.usages[j].resource.index == r.index) moved->slots[j] = slot;
+      }
+    }
+  }
+  const FlowClassKey key = c.key;  // erasing destroys c
+  classes.erase(key);
+}
+
+// `flows` of class `key` have ended: the resources they crossed may no longer be coupled.
+void FairShare::Impl::uncouple(const FlowClassKey& key, std::size_t flows) {
+  for (std::uint8_t i = 0; i < key.usage_count; ++i) {
+    ResourceState& r = resource(key.usages[i].resource);
+    if (key.usage_count > 1) r.coupled -= flows;
+    if (r.coupled == 0 && !r.classes.empty()) make_shared(r);
   }
 }
 
 void FairShare::Impl::make_explicit(ResourceState& r) {
-  const double now = sim.now();
-  r.sharing.drain([this, now](FlowState* flow, double remaining) {
-    flow->mode = FlowMode::Explicit;
-    flow->remaining = remaining;
-    flow->rate = 0.0;
-    flow->updated = now;
-    enlist(flow);
-  });
+  r.sharing.drain([this](FlowState* flow, double remaining) { join(flow, remaining); });
 }
 
 void FairShare::Impl::make_shared(ResourceState& r) {
   // Every flow left here crosses r alone; hand them back to processor sharing in start order.
-  std::vector<FlowState*> flows = std::move(r.flows);
-  r.flows.clear();
-  std::sort(flows.begin(), flows.end(), [](const FlowState* a, const FlowState* b) { return a->sequence < b->sequence; });
   const double now = sim.now();
-  for (FlowState* flow : flows) {
-    PC_ASSERT(flow->mode == FlowMode::Explicit && flow->usage_count == 1);
-    sim.cancel(flow->completion);
-    const double remaining = flow->remaining_at(now);
-    flow->rate = 0.0;
-    r.sharing.add(flow, remaining);
+  std::vector<std::pair<FlowState*, double>> flows;
+  while (!r.classes.empty()) {
+    FlowClass& c = *r.classes.back();
+    PC_ASSERT(c.key.usage_count == 1);
+    c.advance(now);
+    for (const detail::KeyedFlow& entry : c.members) {
+      entry.flow->flow_class = nullptr;
+      flows.emplace_back(entry.flow, std::max(0.0, entry.key - c.virtual_time));
+    }
+    c.members.clear();
+    drop_if_empty(c);
   }
+  std::sort(flows.begin(), flows.end(), [](const auto& a, const auto& b) { return a.first->sequence < b.first->sequence; });
+  for (auto& [flow, remaining] : flows) r.sharing.add(flow, remaining);
 }
 
-void FairShare::Impl::solve_from(const FlowState& seed) {
+void FairShare::Impl::solve_from(const FlowClassKey& seed) {
   // Collect the connected component(s) of explicit resources around the seed's resources.
   const std::uint64_t stamp = ++visit_stamp;
   component_resources.clear();
-  component_flows.clear();
+  component_classes.clear();
   for (std::uint8_t i = 0; i < seed.usage_count; ++i) {
     ResourceState& r = resource(seed.usages[i].resource);
     if (r.coupled > 0 && r.visit != stamp) {
@@ -206,12 +248,12 @@ void FairShare::Impl::solve_from(const FlowState& seed) {
   for (std::size_t next = 0; next < component_resources.size(); ++next) {
     ResourceState& r = *component_resources[next];
     r.local = static_cast<std::uint32_t>(next);
-    for (FlowState* flow : r.flows) {
-      if (flow->visit == stamp) continue;
-      flow->visit = stamp;
-      component_flows.push_back(flow);
-      for (std::uint8_t u = 0; u < flow->usage_count; ++u) {
-        ResourceState& other = resource(flow->usages[u].resource);
+    for (FlowClass* c : r.classes) {
+      if (c->visit == stamp) continue;
+      c->visit = stamp;
+      component_classes.push_back(c);
+      for (std::uint8_t u = 0; u < c->key.usage_count; ++u) {
+        ResourceState& other = resource(c->key.usages[u].resource);
         if (other.visit != stamp) {
           other.visit = stamp;
           component_resources.push_back(&other);
@@ -219,79 +261,76 @@ void FairShare::Impl::solve_from(const FlowState& seed) {
       }
     }
   }
-  if (component_flows.empty()) return;
+  if (component_classes.empty()) return;
 
+  // A class of n flows is one flow of n times their weight and bound (see FlowClass).
   const double now = sim.now();
-  problem.resize(component_flows.size());
-  for (std::size_t i = 0; i < component_flows.size(); ++i) {
-    FlowState* flow = component_flows[i];
-    PC_ASSERT(flow->mode == FlowMode::Explicit);
-    flow->remaining = flow->remaining_at(now);
-    flow->updated = now;
+  problem.resize(component_classes.size());
+  for (std::size_t i = 0; i < component_classes.size(); ++i) {
+    FlowClass& c = *component_classes[i];
+    PC_ASSERT(!c.members.empty());
+    const auto n = static_cast<double>(c.size());
     detail::MaxMinFlow& p = problem[i];
-    p.weight = flow->weight;
-    p.bound = flow->bound;
-    p.usage_count = flow->usage_count;
-    for (std::uint8_t u = 0; u < flow->usage_count; ++u) {
-      p.resource[u] = resource(flow->usages[u].resource).local;
-      p.cost[u] = flow->usages[u].cost;
+    p.weight = n * c.key.weight;
+    p.bound = n * c.key.bound;
+    p.usage_count = c.key.usage_count;
+    for (std::uint8_t u = 0; u < c.key.usage_count; ++u) {
+      p.resource[u] = resource(c.key.usages[u].resource).local;
+      p.cost[u] = c.key.usages[u].cost;
     }
   }
   solver.solve(problem, component_resources.size());
-  for (std::size_t i = 0; i < component_flows.size(); ++i) {
-    component_flows[i]->rate = problem[i].rate;
-    schedule_completion(component_flows[i]);
+  // A class whose rate and first member are unchanged keeps its event: in a component of many
+  // clients of one server, most changes leave most classes as they were.
+  for (std::size_t i = 0; i < component_classes.size(); ++i) {
+    FlowClass& c = *component_classes[i];
+    const double rate = problem[i].rate / static_cast<double>(c.size());
+    if (rate == c.rate && !c.head_moved && c.head_event) continue;
+    c.advance(now);
+    c.rate = rate;
+    schedule_head(c);
   }
 }
 
-void FairShare::Impl::schedule_completion(FlowState* flow) {
-  PC_ASSERT(flow->rate > 0.0);
-  const double due = sim.now() + std::max(0.0, flow->remaining) / flow->rate;
-  if (flow->completion) sim.reschedule(flow->completion, due);
-  else flow->completion = sim.schedule_at(due, &on_flow_due, flow);
+void FairShare::Impl::schedule_head(FlowClass& c) {
+  PC_ASSERT(c.rate > 0.0);
+  const double due = sim.now() + std::max(0.0, c.members.top().key - c.virtual_time) / c.rate;
+  if (c.head_event) sim.reschedule(c.head_event, due);
+  else c.head_event = sim.schedule_at(due, &on_class_due, &c);
+  c.head_moved = false;
 }
 
-void FairShare::Impl::unregister(FlowState* flow) {
-  for (std::uint8_t i = 0; i < flow->usage_count; ++i) {
-    ResourceState& r = resource(flow->usages[i].resource);
-    const std::uint32_t slot = flow->slots[i];
-    FlowState* moved = r.flows.back();
-    r.flows[slot] = moved;
-    r.flows.pop_back();
-    if (moved != flow) {
-      for (std::uint8_t j = 0; j < moved->usage_count; ++j) {
-        if (moved->usages[j].resource.index == r.index) moved->slots[j] = slot;
-      }
-    }
-  }
+void FairShare::Impl::wake(FlowState* flow) {
+  --active;
+  flow->awaiter->flow_ = nullptr;
+  sim.wake(flow->waiting);
+  pool.give_back(flow);
 }
 
-void FairShare::Impl::finish(FlowState* flow, bool completed) {
+// A flow withdrawn before it is done (its process torn down).
+void FairShare::Impl::withdraw(FlowState* flow) {
   if (flow->mode != FlowMode::Explicit) {
     resource(flow->usages[0].resource).sharing.remove(flow);
   } else {
-    unregister(flow);
-    sim.cancel(flow->completion);
-    const bool multi = flow->usage_count > 1;
-    for (std::uint8_t i = 0; i < flow->usage_count; ++i) {
-      ResourceState& r = resource(flow->usages[i].resource);
-      if (multi) --r.coupled;
-      if (r.coupled == 0 && !r.flows.empty()) make_shared(r);
-    }
-    solve_from(*flow);
+    FlowClass& c = *flow->flow_class;
+    c.advance(sim.now());
+    c.members.erase(flow->finish_index);
+    c.head_moved = true;
+    const FlowClassKey key = c.key;
+    drop_if_empty(c);
+    uncouple(key, 1);
+    solve_from(key);
   }
   --active;
-  if (completed) {
-    flow->awaiter->flow_ = nullptr;
-    sim.wake(flow->waiting);
-  }
   pool.give_back(flow);
 }
 
 void FairShare::Impl::on_flow_due(void* context) {
   auto* flow = static_cast<FlowState*>(context);
   flow->completion.reset();
-  static_cast<Impl*>(flow->owner)->finish(flow, true);
+  auto& self = *static_cast<Impl*>(flow->owner);
+  self.resource(flow->usages[0].resource).sharing.remove(flow);
+  self.wake(flow);
 }
 
 void FairShare::Impl::on_head_due(void* context) {
@@ -300,12 +339,28 @@ void FairShare::Impl::on_head_due(void* context) {
   std::vector<FlowState*>& done = self.finished;
   done.clear();
   r->sharing.take_finished(done);
-  for (FlowState* flow : done) {
-    --self.active;
-    flow->awaiter->flow_ = nullptr;
-    self.sim.wake(flow->waiting);
-    self.pool.give_back(flow);
+  for (FlowState* flow : done) self.wake(flow);
+}
+
+void FairShare::Impl::on_class_due(void* context) {
+  auto& c = *static_cast<FlowClass*>(context);
+  Impl& self = *static_cast<Impl*>(c.owner);
+  c.head_event.reset();  // it is firing now
+  c.advance(self.sim.now());
+  // The head is due now by construction; pin the clock to it so rounding cannot leave it running.
+  c.virtual_time = std::max(c.virtual_time, c.members.top().key);
+  std::vector<FlowState*>& done = self.class_finished;
+  done.clear();
+  while (!c.members.empty() && c.members.top().key <= c.virtual_time) {
+    done.push_back(c.members.top().flow);
+    c.members.pop();
   }
+  c.head_moved = true;
+  const FlowClassKey key = c.key;
+  self.drop_if_empty(c);
+  self.uncouple(key, done.size());
+  self.solve_from(key);
+  for (FlowState* flow : done) self.wake(flow);
 }
 
 // --- FlowAwaiter ------------------------------------------------------------------------------
@@ -339,7 +394,10 @@ FairShare::~FairShare() {
     sim_->cancel(flow->completion);
   };
   for (auto& r : impl_->resources) {
-    for (FlowState* flow : r.flows) detach(flow);
+    for (FlowClass* c : r.classes) {
+      sim_->cancel(c->head_event);
+      for (const detail::KeyedFlow& entry : c->members) detach(entry.flow);
+    }
     r.sharing.drain([&](FlowState* flow, double) { detach(flow); });
   }
 }
@@ -358,16 +416,18 @@ std::size_t FairShare::active_flows() const noexcept { return impl_->active; }
 
 std::size_t FairShare::active_flows(ResourceId resource) const {
   const auto& r = impl_->resource(resource);
-  return r.flows.size() + r.sharing.size();
+  std::size_t flows = r.sharing.size();
+  for (const FlowClass* c : r.classes) flows += c->size();
+  return flows;
 }
 
 double FairShare::utilization(ResourceId resource) const {
   const auto& r = impl_->resource(resource);
   if (r.coupled == 0) return r.sharing.usage();
   double usage = 0.0;
-  for (const FlowState* flow : r.flows) {
-    for (std::uint8_t u = 0; u < flow->usage_count; ++u) {
-      if (flow->usages[u].resource == resource) usage += flow->usages[u].cost * flow->rate;
+  for (const FlowClass* c : r.classes) {
+    for (std::uint8_t u = 0; u < c->key.usage_count; ++u) {
+      if (c->key.usages[u].resource == resource) usage += c->key.usages[u].cost * c->rate * static_cast<double>(c->size());
     }
   }
   return usage;
@@ -380,30 +440,42 @@ detail::FlowState* FairShare::start(const FlowSpec& spec, std::coroutine_handle<
 void FairShare::withdraw(detail::FlowState* flow) noexcept {
   // Runs from an awaiter's destructor during teardown: nothing sensible to do with an error.
   try {
-    impl_->finish(flow, false);
+    impl_->withdraw(flow);
   } catch (...) {
   }
 }
 
 void FairShare::check_invariants() const {
   std::size_t flows_seen = 0;  // each flow counted once, on its first resource
+  std::size_t classes_seen = 0;  // each class counted once, on its first resource
   for (const auto& r : impl_->resources) {
     std::size_t coupled = 0;
-    for (std::size_t slot = 0; slot < r.flows.size(); ++slot) {
-      const FlowState* flow = r.flows[slot];
+    for (std::size_t slot = 0; slot < r.classes.size(); ++slot) {
+      const FlowClass& c = *r.classes[slot];
       bool found = false;
-      for (std::uint8_t u = 0; u < flow->usage_count; ++u) {
-        if (flow->usages[u].resource.index == r.index) found = flow->slots[u] == slot;
+      for (std::uint8_t u = 0; u < c.key.usage_count; ++u) {
+        if (c.key.usages[u].resource.index == r.index) found = c.slots[u] == slot;
       }
-      PC_ASSERT_MSG(found, fmt::format("flow registry of '{}' out of step", r.name));
-      if (flow->usage_count > 1) ++coupled;
-      if (flow->usages[0].resource.index == r.index) ++flows_seen;
-      PC_ASSERT(flow->mode == FlowMode::Explicit);
-      PC_ASSERT(flow->rate > 0.0 && static_cast<bool>(flow->completion));
+      PC_ASSERT_MSG(found, fmt::format("class registry of '{}' out of step", r.name));
+      PC_ASSERT(!c.members.empty() && c.members.ordered());
+      PC_ASSERT(c.rate > 0.0 && static_cast<bool>(c.head_event));
+      const auto it = impl_->classes.find(c.key);
+      PC_ASSERT_MSG(it != impl_->classes.end() && it->second.get() == &c, fmt::format("a class of '{}' is not registered", r.name));
+      for (const detail::KeyedFlow& entry : c.members) {
+        const FlowState& flow = *entry.flow;
+        PC_ASSERT(flow.mode == FlowMode::Explicit && flow.flow_class == &c);
+        PC_ASSERT(entry.key == flow.virtual_finish);
+        PC_ASSERT_MSG(detail::FlowClassKey::of(flow) == c.key, fmt::format("a flow of '{}' is in another's class", r.name));
+      }
+      if (c.key.usage_count > 1) coupled += c.size();
+      if (c.key.usages[0].resource.index == r.index) {
+        flows_seen += c.size();
+        ++classes_seen;
+      }
     }
     PC_ASSERT_MSG(coupled == r.coupled, fmt::format("coupled count of '{}'", r.name));
     if (r.coupled == 0) {
-      PC_ASSERT_MSG(r.flows.empty(), fmt::format("'{}' lists flows while not coupled", r.name));
+      PC_ASSERT_MSG(r.classes.empty(), fmt::format("'{}' lists flows while not coupled", r.name));
       flows_seen += r.sharing.size();
       r.sharing.check();
     } else {
@@ -412,6 +484,7 @@ void FairShare::check_invariants() const {
     PC_ASSERT_MSG(utilization(ResourceId{r.index}) <= 1.0 + 1e-9, fmt::format("'{}' over capacity", r.name));
   }
   PC_ASSERT_MSG(flows_seen == impl_->active, fmt::format("{} flows registered, {} active", flows_seen, impl_->active));
+  PC_ASSERT(classes_seen == impl_->classes.size());
   PC_ASSERT(impl_->pool.in_use() == impl_->active);
 }
 

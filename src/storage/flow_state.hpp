@@ -6,8 +6,10 @@
 //    the resource's virtual clock: it finishes when the clock reaches `virtual_finish`.
 //  - Bounded: on a resource it crosses alone, running at its own bound. Rate is constant until
 //    the resource's flow set changes; it has its own completion event.
-//  - Explicit: in a component of resources coupled by multi-resource flows; its rate comes from
-//    progressive filling over the component; it has its own completion event.
+//  - Explicit: in a component of resources coupled by multi-resource flows, a member of the
+//    class of flows interchangeable with it (FlowClass); the class's rate comes from
+//    progressive filling over the component, and its progress is read off the class's virtual
+//    clock: it finishes when the clock reaches `virtual_finish`.
 
 #include <pagecache/fair_share.hpp>
 
@@ -20,6 +22,7 @@
 namespace pagecache::detail {
 
 struct FlowState;
+struct FlowClass;
 
 // A flow's place in one of processor sharing's heaps. The key is copied into the heap's array
 // so that comparisons do not chase the pointer to the flow (cache misses dominate with many
@@ -53,7 +56,7 @@ enum class FlowMode : std::uint8_t { Sharing, Bounded, Explicit };
 
 // Laid out for the common case, a flow on one resource in processor sharing: what it touches
 // from start to end lies in the first two cache lines; the fields of flows solved explicitly
-// (more resources, registry slots, search stamp) come after. FairShare initialises a recycled
+// (more resources, their class) come after. FairShare initialises a recycled
 // flow field by field instead of assigning FlowState(): with 10^5 flows in flight a recycled
 // one is out of cache, and the two lines it writes are the ones it uses.
 struct alignas(64) FlowState {
@@ -63,26 +66,24 @@ struct alignas(64) FlowState {
   double bound = kUnbounded;
   double threshold = kUnbounded;  // bound / weight: the fair-share level at which the bound bites
   std::uint64_t sequence = 0;     // start order, breaks ties deterministically
-  double remaining = 0.0;         // Bounded/Explicit: work left at time `updated`
-  double rate = 0.0;              // Bounded/Explicit: current rate
+  double remaining = 0.0;         // Bounded: work left at time `updated`
+  double rate = 0.0;              // Bounded: current rate
   double updated = 0.0;
 
   // Line 1: where it is, who waits for it, its first resource.
-  double virtual_finish = 0.0;  // Sharing: resource virtual time at which it is done
-  EventHandle completion;       // Bounded/Explicit
+  double virtual_finish = 0.0;  // Sharing/Explicit: resource or class virtual time at which it is done
+  EventHandle completion;       // Bounded
   std::coroutine_handle<> waiting;
   FlowAwaiter* awaiter = nullptr;
-  std::uint32_t finish_index = 0;             // in the sharing flows' heap by virtual finish
+  std::uint32_t finish_index = 0;             // in the sharing flows' (or its class's) heap by virtual finish
   std::uint32_t sharing_threshold_index = 0;  // in the sharing flows' heap by threshold
   std::uint32_t bounded_threshold_index = 0;  // in the bounded flows' heap by threshold
   FlowMode mode = FlowMode::Explicit;
   std::uint8_t usage_count = 0;
   std::array<Usage, kMaxResourcesPerFlow> usages{};  // usages[0] ends line 1
 
-  // Explicit flows only: where it is in the resources' registries (index into each resource's
-  // flow list), and the component search stamp.
-  std::array<std::uint32_t, kMaxResourcesPerFlow> slots{};
-  std::uint64_t visit = 0;
+  // Explicit flows only.
+  FlowClass* flow_class = nullptr;
 
   double cost() const noexcept { return usages[0].cost; }  // for single-resource flows
   double remaining_at(double now) const noexcept { return remaining - rate * (now - updated); }

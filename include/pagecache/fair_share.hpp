@@ -96,6 +96,8 @@ class [[nodiscard]] FlowAwaiter {
 
 class FairShare {
  public:
+  /// It may outlive `sim` once no flow is in progress: destroying the simulator destroys its
+  /// processes, and with them their flows.
   explicit FairShare(Simulator& sim);
   ~FairShare();
   FairShare(const FairShare&) = delete;

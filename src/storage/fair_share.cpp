@@ -398,7 +398,7 @@ FairShare::~FairShare() {
       sim_->cancel(c->head_event);
       for (const detail::KeyedFlow& entry : c->members) detach(entry.flow);
     }
-    r.sharing.drain([&](FlowState* flow, double) { detach(flow); });
+    if (!r.sharing.empty()) r.sharing.drain([&](FlowState* flow, double) { detach(flow); });
   }
 }
 

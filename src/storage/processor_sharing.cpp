@@ -17,7 +17,8 @@ ProcessorSharing::ProcessorSharing(Simulator& sim, EventCallback flow_due, Event
 ProcessorSharing::~ProcessorSharing() { cancel_events(); }
 
 void ProcessorSharing::cancel_events() noexcept {
-  sim_->cancel(head_event_);
+  // Without events it does not touch the simulator, which may be gone (see ~FairShare).
+  if (head_event_) sim_->cancel(head_event_);
   for (const KeyedFlow& entry : bounded_) sim_->cancel(entry.flow->completion);
 }
 

@@ -273,5 +273,25 @@ TEST_CASE("tearing down a simulation with flows in progress is clean", "[fair_sh
     share.reset();  // the FairShare goes first: its flows are detached
     sim.reset();
   }
+  {
+    // The processes go first: each coupled flow withdrawn leaves its class, the others are
+    // solved again.
+    auto sim = std::make_unique<Simulator>();
+    FairShare share(*sim);
+    Disk disk(share, "disk", 100 * MB, 100 * MB);
+    Link link(share, "link", 10 * MB, 0.0);
+    auto remote = [](const Disk& d, const Link& l, double bytes) -> Task<void> {
+      co_await l.send_through(FlowSpec{.work = bytes}.through(d.read_usage()));
+    };
+    for (double bytes : {60 * MB, 60 * MB, 30 * MB}) sim->spawn(remote(disk, link, bytes));
+    double done = 0;
+    sim->spawn(read_at(*sim, disk, 0.0, 100 * MB, done));
+    sim->run_until(0.5);
+    CHECK(share.active_flows() == 4);
+    share.check_invariants();
+    sim.reset();
+    CHECK(share.active_flows() == 0);
+    share.check_invariants();
+  }
   SUCCEED();
 }

@@ -23,7 +23,8 @@
 // their connected component, in classes of interchangeable flows (same resources, costs,
 // bound and weight: max-min gives them one rate): O(classes in it) per change, plus O(log n)
 // for the flow's place in its class. N applications on one NFS client make a few classes;
-// N clients of one server make N.
+// N clients of one server make N, but a change on one client leaves out the server while the
+// server stays below capacity (it is then no flow's bottleneck), and solves that client only.
 
 #include <pagecache/simulator.hpp>
 

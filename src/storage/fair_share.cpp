@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <deque>
+#include <limits>
 #include <unordered_map>
 #include <vector>
 
@@ -60,8 +61,20 @@ struct FairShare::Impl {
     std::size_t coupled = 0;          // how many flows crossing it cross other resources too
     detail::ProcessorSharing sharing;
     std::uint64_t visit = 0;
-    std::uint32_t local = 0;  // index within the component being solved
+    std::uint32_t local = 0;  // index within the component being solved, or kLeftOut
+    // While coupled: the capacity its classes used when last solved (sum of cost *
+    // contribution), classes gone since included: an upper bound, kept so that capacity freed
+    // by a departure does not make a saturated resource look slack before it is solved again.
+    // And the change a solve that leaves it out would make to it.
+    double usage = 0.0;
+    double pending = 0.0;
   };
+
+  // A solve may leave out a resource that is crossed by many classes and not close to
+  // saturation (see solve_from).
+  static constexpr std::size_t kLeaveOutAbove = 4;  // classes
+  static constexpr double kSlack = 1e-6;            // of its capacity
+  static constexpr std::uint32_t kLeftOut = std::numeric_limits<std::uint32_t>::max();
 
   Simulator& sim;
   std::deque<ResourceState> resources;  // deque: stable addresses
@@ -75,6 +88,7 @@ struct FairShare::Impl {
   std::vector<FlowState*> finished;
   std::vector<FlowState*> class_finished;
   std::vector<ResourceState*> component_resources;
+  std::vector<ResourceState*> left_out;
   std::vector<FlowClass*> component_classes;
   std::vector<detail::MaxMinFlow> problem;
   detail::MaxMinSolver solver;
@@ -94,6 +108,7 @@ struct FairShare::Impl {
   void make_explicit(ResourceState& r);
   void make_shared(ResourceState& r);
   void solve_from(const FlowClassKey& seed);
+  bool solve_component(const FlowClassKey& seed, bool leave_out_slack);
   void schedule_head(FlowClass& c);
   void wake(FlowState* flow);
 };
@@ -212,6 +227,8 @@ void FairShare::Impl::uncouple(const FlowClassKey& key, std::size_t flows) {
 
 void FairShare::Impl::make_explicit(ResourceState& r) {
   r.sharing.drain([this](FlowState* flow, double remaining) { join(flow, remaining); });
+  r.usage = 1.0;  // not known until it is solved: never left out before
+  r.pending = 0.0;
 }
 
 void FairShare::Impl::make_shared(ResourceState& r) {
@@ -234,37 +251,47 @@ void FairShare::Impl::make_shared(ResourceState& r) {
 }
 
 void FairShare::Impl::solve_from(const FlowClassKey& seed) {
-  // Collect the connected component(s) of explicit resources around the seed's resources.
+  if (!solve_component(seed, true)) solve_component(seed, false);
+}
+
+// Solves the component around the seed class's resources, or, with `leave_out_slack`, the part
+// of it reached without crossing resources that are crossed by many classes and stay
+// unsaturated. Leaving those out is exact: in a max-min allocation a resource below capacity
+// is no flow's bottleneck, so its constraint can be dropped without changing the allocation,
+// as long as it is still below capacity afterwards (checked; false if not, or if a class is
+// left with nothing to limit it, and then nothing is changed). With N clients of one server
+// that is not saturated, a change on one client solves that client's classes, not N.
+bool FairShare::Impl::solve_component(const FlowClassKey& seed, bool leave_out_slack) {
   const std::uint64_t stamp = ++visit_stamp;
   component_resources.clear();
+  left_out.clear();
   component_classes.clear();
-  for (std::uint8_t i = 0; i < seed.usage_count; ++i) {
-    ResourceState& r = resource(seed.usages[i].resource);
-    if (r.coupled > 0 && r.visit != stamp) {
-      r.visit = stamp;
-      component_resources.push_back(&r);
+  const auto reach = [&](ResourceState& r) {
+    if (r.coupled == 0 || r.visit == stamp) return;
+    r.visit = stamp;
+    if (leave_out_slack && r.classes.size() > kLeaveOutAbove && r.usage < 1.0 - kSlack) {
+      r.local = kLeftOut;
+      r.pending = 0.0;
+      left_out.push_back(&r);
+      return;
     }
-  }
+    r.local = static_cast<std::uint32_t>(component_resources.size());
+    component_resources.push_back(&r);
+  };
+  const auto take = [&](FlowClass& c) {
+    if (c.visit == stamp) return;
+    c.visit = stamp;
+    component_classes.push_back(&c);
+    for (std::uint8_t u = 0; u < c.key.usage_count; ++u) reach(resource(c.key.usages[u].resource));
+  };
+  if (auto it = classes.find(seed); it != classes.end()) take(*it->second);
+  for (std::uint8_t i = 0; i < seed.usage_count; ++i) reach(resource(seed.usages[i].resource));
   for (std::size_t next = 0; next < component_resources.size(); ++next) {
-    ResourceState& r = *component_resources[next];
-    r.local = static_cast<std::uint32_t>(next);
-    for (FlowClass* c : r.classes) {
-      if (c->visit == stamp) continue;
-      c->visit = stamp;
-      component_classes.push_back(c);
-      for (std::uint8_t u = 0; u < c->key.usage_count; ++u) {
-        ResourceState& other = resource(c->key.usages[u].resource);
-        if (other.visit != stamp) {
-          other.visit = stamp;
-          component_resources.push_back(&other);
-        }
-      }
-    }
+    for (FlowClass* c : component_resources[next]->classes) take(*c);
   }
-  if (component_classes.empty()) return;
+  if (component_classes.empty()) return true;
 
   // A class of n flows is one flow of n times their weight and bound (see FlowClass).
-  const double now = sim.now();
   problem.resize(component_classes.size());
   for (std::size_t i = 0; i < component_classes.size(); ++i) {
     FlowClass& c = *component_classes[i];
@@ -273,23 +300,52 @@ void FairShare::Impl::solve_from(const FlowClassKey& seed) {
     detail::MaxMinFlow& p = problem[i];
     p.weight = n * c.key.weight;
     p.bound = n * c.key.bound;
-    p.usage_count = c.key.usage_count;
+    p.usage_count = 0;
     for (std::uint8_t u = 0; u < c.key.usage_count; ++u) {
-      p.resource[u] = resource(c.key.usages[u].resource).local;
-      p.cost[u] = c.key.usages[u].cost;
+      const std::uint32_t local = resource(c.key.usages[u].resource).local;
+      if (local == kLeftOut) continue;
+      p.resource[p.usage_count] = local;
+      p.cost[p.usage_count] = c.key.usages[u].cost;
+      ++p.usage_count;
     }
+    if (p.usage_count == 0 && !std::isfinite(p.bound)) return false;
   }
   solver.solve(problem, component_resources.size());
+  if (!left_out.empty()) {
+    for (std::size_t i = 0; i < component_classes.size(); ++i) {
+      const FlowClass& c = *component_classes[i];
+      const double change = problem[i].rate - c.contribution;
+      for (std::uint8_t u = 0; u < c.key.usage_count; ++u) {
+        ResourceState& r = resource(c.key.usages[u].resource);
+        if (r.local == kLeftOut) r.pending += c.key.usages[u].cost * change;
+      }
+    }
+    for (const ResourceState* r : left_out) {
+      if (r->usage + r->pending >= 1.0 - kSlack) return false;
+    }
+    for (ResourceState* r : left_out) r->usage += r->pending;
+  }
   // A class whose rate and first member are unchanged keeps its event: in a component of many
   // clients of one server, most changes leave most classes as they were.
+  const double now = sim.now();
   for (std::size_t i = 0; i < component_classes.size(); ++i) {
     FlowClass& c = *component_classes[i];
+    c.contribution = problem[i].rate;
     const double rate = problem[i].rate / static_cast<double>(c.size());
     if (rate == c.rate && !c.head_moved && c.head_event) continue;
     c.advance(now);
     c.rate = rate;
     schedule_head(c);
   }
+  for (ResourceState* r : component_resources) {
+    r->usage = 0.0;
+    for (const FlowClass* c : r->classes) {
+      for (std::uint8_t u = 0; u < c->key.usage_count; ++u) {
+        if (c->key.usages[u].resource.index == r->index) r->usage += c->key.usages[u].cost * c->contribution;
+      }
+    }
+  }
+  return true;
 }
 
 void FairShare::Impl::schedule_head(FlowClass& c) {
@@ -474,6 +530,17 @@ void FairShare::check_invariants() const {
       }
     }
     PC_ASSERT_MSG(coupled == r.coupled, fmt::format("coupled count of '{}'", r.name));
+    if (r.coupled > 0) {
+      double usage = 0.0;
+      for (const FlowClass* c : r.classes) {
+        const double total = c->rate * static_cast<double>(c->size());
+        PC_ASSERT_MSG(std::abs(c->contribution - total) <= 1e-9 * total, fmt::format("a class of '{}' is not solved", r.name));
+        for (std::uint8_t u = 0; u < c->key.usage_count; ++u) {
+          if (c->key.usages[u].resource.index == r.index) usage += c->key.usages[u].cost * c->contribution;
+        }
+      }
+      PC_ASSERT_MSG(usage <= r.usage + 1e-9, fmt::format("usage of '{}': {} kept, {} summed", r.name, r.usage, usage));
+    }
     if (r.coupled == 0) {
       PC_ASSERT_MSG(r.classes.empty(), fmt::format("'{}' lists flows while not coupled", r.name));
       flows_seen += r.sharing.size();

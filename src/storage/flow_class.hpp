@@ -68,6 +68,7 @@ struct FlowClass {
   std::uint32_t local = 0;     // index in the component being solved
   bool head_moved = false;     // members joined or left since the head event was scheduled
   double rate = 0.0;           // of each member
+  double contribution = 0.0;   // the members' summed rate when last solved, in the resources' usage
   double virtual_time = 0.0;   // work each member has done since the class formed, at `updated`
   double updated = 0.0;
   EventHandle head_event;      // when the first member is done

@@ -71,7 +71,8 @@ struct FairShare::Impl {
   };
 
   // A solve may leave out a resource that is crossed by many classes and not close to
-  // saturation (see solve_from).
+  // saturation (see solve_component). One crossed by a few costs little to keep in, and a
+  // class left with nothing limiting it would need a second solve.
   static constexpr std::size_t kLeaveOutAbove = 4;  // classes
   static constexpr double kSlack = 1e-6;            // of its capacity
   static constexpr std::uint32_t kLeftOut = std::numeric_limits<std::uint32_t>::max();

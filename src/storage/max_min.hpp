@@ -5,7 +5,11 @@
 // unfrozen flows grow together, flow f at weight_f * t. As t rises, the first limit reached
 // freezes flows: a resource saturating freezes every unfrozen flow crossing it (at
 // weight_f * t), a flow reaching its bound freezes that flow (at bound_f). Frozen flows keep
-// their share; the others continue from there. O(rounds * (flows * usages + resources)).
+// their share; the others continue from there. A round costs O(flows * usages + resources);
+// after a few rounds the next limits come from a heap of the resources by the level at which
+// each saturates and a heap of the flows by bound, so that a solve costs O(flows * usages *
+// log(flows + resources)) however many distinct levels there are (clients of one server
+// behind links of many speeds make one level per speed).
 
 #include <array>
 #include <cstddef>
@@ -30,8 +34,33 @@ class MaxMinSolver {
   void solve(std::span<MaxMinFlow> flows, std::size_t resource_count);
 
  private:
-  std::vector<double> capacity_;   // capacity left per resource
-  std::vector<double> demand_;     // sum of cost * weight of unfrozen flows per resource
+  // A limit ahead: a resource's saturation level or a flow's bound / weight. The heaps keep
+  // stale entries (a resource's level rises as flows on it freeze elsewhere; a flow may freeze
+  // on a resource before its bound), skipped when they come out: with N flows frozen in one
+  // round, as when N clients share one saturated server, nothing is re-keyed.
+  struct Limit {
+    double level;
+    std::uint32_t index;  // resource or flow
+  };
+  struct LaterLimit {
+    bool operator()(const Limit& a, const Limit& b) const noexcept {
+      return a.level > b.level || (a.level == b.level && a.index > b.index);
+    }
+  };
+
+  static constexpr int kPlainRounds = 4;
+
+  void solve_with_heaps(std::span<MaxMinFlow> flows, std::size_t resource_count, std::uint32_t unfrozen, double level);
+  double saturation_level(std::size_t resource) const noexcept;
+
+  std::vector<double> used_;                // capacity used by frozen flows, per resource
+  std::vector<double> demand_;              // sum of cost * weight of unfrozen flows per resource
+  std::vector<std::uint32_t> unfrozen_on_;  // unfrozen flows per resource
+  std::vector<std::uint32_t> first_flow_;   // per resource: where its flows start in flows_on_
+  std::vector<std::uint32_t> flows_on_;
+  std::vector<Limit> saturations_;          // heap of resources by saturation level
+  std::vector<Limit> bounds_;               // heap of bounded flows by bound / weight
+  std::vector<std::uint32_t> freezing_;
   std::vector<std::uint8_t> frozen_;
 };
 

@@ -86,8 +86,7 @@ struct FairShare::Impl {
   std::size_t active = 0;
 
   // Scratch space, kept to avoid allocating per event.
-  std::vector<FlowState*> finished;
-  std::vector<FlowState*> class_finished;
+  std::vector<FlowState*> finished;  // by a head or class event, to be woken
   std::vector<ResourceState*> component_resources;
   std::vector<ResourceState*> left_out;
   std::vector<FlowClass*> component_classes;
@@ -406,7 +405,7 @@ void FairShare::Impl::on_class_due(void* context) {
   c.advance(self.sim.now());
   // The head is due now by construction; pin the clock to it so rounding cannot leave it running.
   c.virtual_time = std::max(c.virtual_time, c.members.top().key);
-  std::vector<FlowState*>& done = self.class_finished;
+  std::vector<FlowState*>& done = self.finished;
   done.clear();
   while (!c.members.empty() && c.members.top().key <= c.virtual_time) {
     done.push_back(c.members.top().flow);

@@ -6,6 +6,12 @@ namespace pagecache::detail {
 
 namespace {
 
+// How many events ahead pop() prefetches what an event will touch first (its context, and for
+// a run its node, recycled when it fires). With 10^5 processes in step, consecutive events
+// belong to different processes whose state is out of cache; the runs and the ring know their
+// next events long before they fire, so the misses can overlap instead of following one another.
+constexpr std::size_t kAhead = 8;
+
 // Unrolls a circular buffer of `count` items from `head` into one twice the size.
 template <class T>
 void grow_circular(std::vector<T>& buffer, std::size_t& head, std::size_t count) {
@@ -174,6 +180,7 @@ EventQueue::Fired EventQueue::pop() noexcept {
   if (source == kRing) {
     const Wake& wake = ring_[ring_head_];
     const Fired fired{wake.time, wake.callback, wake.context};
+    if (ring_count_ > kAhead) __builtin_prefetch(ring_[(ring_head_ + kAhead) & (ring_.size() - 1)].context, 1);
     ring_head_ = (ring_head_ + 1) & (ring_.size() - 1);
     --ring_count_;
     return fired;
@@ -185,8 +192,14 @@ EventQueue::Fired EventQueue::pop() noexcept {
     nodes_.give_back(node);
     return fired;
   }
-  const RunEntry& entry = runs_[source].slots[runs_[source].head];
+  const Run& run = runs_[source];
+  const RunEntry& entry = run.slots[run.head];
   const Fired fired{entry.time, entry.callback, entry.context};
+  if (run.count > kAhead) {
+    const RunEntry& ahead = run.slots[(run.head + kAhead) & run.mask];
+    __builtin_prefetch(ahead.context, 1);
+    __builtin_prefetch(ahead.event, 1);
+  }
   nodes_.give_back(entry.event);
   --run_live_;
   take_front(source);

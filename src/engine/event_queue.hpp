@@ -12,7 +12,8 @@
 //    be cancelled and moved in O(log n)).
 // Measured on the scaling harness, the heap's O(log n) pops and the cache misses of their
 // moves were the largest single cost at 10^4 pipelines and more; most events now skip it.
-// Nothing allocates once the buffers have grown to their peaks.
+// Nothing allocates once the buffers have grown to their peaks. pop() prefetches the state of
+// events a few places behind the front of the ring and of its run (see kAhead).
 
 #include <pagecache/simulator.hpp>
 

@@ -66,6 +66,7 @@ FileRef Host::add_file(std::string name, std::int64_t size, DiskRef disk_ref, bo
     throw ConfigError(fmt::format("file '{}' ({} bytes) does not fit on disk '{}' ({} bytes)", name, size, d.name(), d.capacity()));
   }
   const cache::FileId id = impl_->files.add(std::move(name), size, d);
+  impl_->cache.add_file(id);
   if (cached_at_start) impl_->cache.add_clean(id, size, impl_->sim.now());
   return FileRef{id};
 }
@@ -73,7 +74,9 @@ FileRef Host::add_file(std::string name, std::int64_t size, DiskRef disk_ref, bo
 FileRef Host::add_remote_file(Host& server, FileRef server_file, const Link& link) {
   const cache::FileId id = server.impl_->id(server_file);
   const cache::FileInfo& info = server.impl_->files[id];
-  return FileRef{impl_->files.add_remote(info.name, info.size, cache::RemoteFile{&server.impl_->io, id, &link})};
+  const cache::FileId client_id = impl_->files.add_remote(info.name, info.size, cache::RemoteFile{&server.impl_->io, id, &link});
+  impl_->cache.add_file(client_id);
+  return FileRef{client_id};
 }
 
 const std::string& Host::file_name(FileRef file) const { return impl_->files[impl_->id(file)].name; }

@@ -14,6 +14,7 @@
 #include <deque>
 #include <map>
 #include <memory>
+#include <span>
 #include <unordered_map>
 
 namespace pagecache {
@@ -23,6 +24,17 @@ namespace {
 struct PlacedFile {
   Host* host;
   FileRef ref;
+  const std::string* name;
+};
+
+// A task's files, found once before the run: looking names up per I/O phase cost a hashed
+// lookup and the reading of long-cold strings, a few cache misses each with 10^5 applications.
+// Spans of one array, in the order of the task's lists.
+struct TaskFiles {
+  std::uint32_t reads = 0;  // first read; the writes follow the reads, the deletes the writes
+  std::uint32_t writes = 0;
+  std::uint32_t deletes = 0;
+  std::uint32_t end = 0;
 };
 
 class Runner {
@@ -44,10 +56,19 @@ class Runner {
     }
     for (const LinkSpec& l : scenario.links) links_[{l.host_a, l.host_b}] = &links_storage_.emplace_back(share_, l.name, l.bandwidth, l.latency);
     files_.reserve(scenario.files.size());
+    file_order_.reserve(scenario.files.size());
     for (const FileSpec& f : scenario.files) {
       Host& host = *hosts_.at(f.host);
-      files_[f.name] = PlacedFile{&host, host.add_file(f.name, f.size, disks_.at(f.host).at(f.disk), f.cached)};
-      file_order_.push_back(f.name);
+      auto [it, added] = files_.try_emplace(f.name, PlacedFile{&host, host.add_file(f.name, f.size, disks_.at(f.host).at(f.disk), f.cached), nullptr});
+      if (!added) throw ConfigError(fmt::format("two files named '{}'", f.name));
+      it->second.name = &it->first;
+      file_order_.push_back(&it->second);
+    }
+    for (const AppSpec& app : scenario.apps) {
+      for (const TaskSpec& task : app.tasks) plan_files(task);
+    }
+    for (const WorkflowSpec& w : scenario.workflows) {
+      for (const TaskSpec& task : w.tasks) plan_files(task);
     }
   }
 
@@ -59,9 +80,11 @@ class Runner {
     result_.timeline.reserve(3 * tasks);
     plan_cache_contents(tasks);
     const auto wall_start = std::chrono::steady_clock::now();
+    const TaskFiles* plan = task_files_.data();
     for (const AppSpec& app : scenario_.apps) {
       ++running_;
-      sim_.spawn(run_app(app));
+      sim_.spawn(run_app(app, plan));
+      plan += app.tasks.size();
     }
     for (const WorkflowSpec& w : scenario_.workflows) {
       slots_.push_back(std::make_unique<workload::CoreSlots>(sim_, core_count(w.host)));
@@ -71,7 +94,7 @@ class Runner {
       std::vector<std::vector<Event*>> prerequisites = prerequisites_of(w, done);
       for (std::size_t i = 0; i < w.tasks.size(); ++i) {
         ++running_;
-        sim_.spawn(run_workflow_task(w, w.tasks[i], slots, std::move(prerequisites[i]), done[i]));
+        sim_.spawn(run_workflow_task(w, w.tasks[i], *plan++, slots, std::move(prerequisites[i]), done[i]));
       }
     }
     if (scenario_.memory_sample_interval > 0.0) sim_.spawn(sample_memory());
@@ -122,17 +145,35 @@ class Runner {
  private:
   RunSummary& summary() { return result_.summary; }
 
-  // The file as seen from `host`: its own, or the server's through the link between them
-  // (registered once per host and file).
-  FileRef file_on(const std::string& host, const std::string& name) {
-    const PlacedFile& stored = files_.at(name);
-    Host& client = *hosts_.at(host);
+  void plan_files(const TaskSpec& task) {
+    TaskFiles& plan = task_files_.emplace_back();
+    const auto add = [&](const std::vector<std::string>& names) {
+      for (const std::string& name : names) {
+        const auto it = files_.find(name);
+        if (it == files_.end()) throw ConfigError(fmt::format("task '{}': no file named '{}'", task.name, name));
+        planned_files_.push_back(&it->second);
+      }
+      return static_cast<std::uint32_t>(planned_files_.size());
+    };
+    plan.reads = static_cast<std::uint32_t>(planned_files_.size());
+    plan.writes = add(task.reads);
+    plan.deletes = add(task.writes);
+    plan.end = add(task.deletes);
+  }
+
+  std::span<const PlacedFile* const> planned(std::uint32_t begin, std::uint32_t end) const {
+    return {planned_files_.data() + begin, planned_files_.data() + end};
+  }
+
+  // The file as seen from `client`: its own, or the server's through the link between them
+  // (registered once per host and file, when first used).
+  FileRef file_on(Host& client, const PlacedFile& stored) {
     if (stored.host == &client) return stored.ref;
-    auto key = std::make_pair(host, name);
+    const auto key = std::make_pair(&client, &stored);
     if (auto it = remote_files_.find(key); it != remote_files_.end()) return it->second;
     const std::string& server = stored.host->name();
-    auto link = links_.find({host, server});
-    if (link == links_.end()) link = links_.find({server, host});
+    auto link = links_.find({client.name(), server});
+    if (link == links_.end()) link = links_.find({server, client.name()});
     const FileRef ref = client.add_remote_file(*stored.host, stored.ref, *link->second);
     remote_files_.emplace(key, ref);
     return ref;
@@ -175,19 +216,16 @@ class Runner {
 
   void record_cache(const std::string& app, const TaskSpec& task, const char* phase) {
     if (!record_cache_) return;
-    for (const std::string& name : file_order_) {
-      const PlacedFile& f = files_.at(name);
-      result_.cache.push_back({app, task.name, phase, name, f.host->cached(f.ref)});
-    }
+    for (const PlacedFile* f : file_order_) result_.cache.push_back({app, task.name, phase, *f->name, f->host->cached(f->ref)});
   }
 
   // One I/O phase: every file read (or written) whole, one after the other. Returns the bytes
   // moved; its row goes straight into the timeline (with 10^5 applications every copy of a
   // row is a few cache misses).
-  Task<std::int64_t> io_phase(const std::string& app, const TaskSpec& task, Host& host, bool reading) {
+  Task<std::int64_t> io_phase(const std::string& app, const TaskSpec& task, const TaskFiles& plan, Host& host, bool reading) {
     PhaseRow row{app, task.name, reading ? "read" : "write", sim_.now(), 0, 0, 0, 0};
-    for (const std::string& name : reading ? task.reads : task.writes) {
-      const FileRef file = file_on(host.name(), name);
+    for (const PlacedFile* placed : reading ? planned(plan.reads, plan.writes) : planned(plan.writes, plan.deletes)) {
+      const FileRef file = file_on(host, *placed);
       const IoResult r = reading ? co_await host.read_file(file, task.chunk_size, task.direct_io)
                                  : co_await host.write_file(file, task.chunk_size, task.direct_io);
       if (!reading && task.fsync) co_await host.fsync(file);
@@ -202,23 +240,22 @@ class Runner {
     co_return bytes;
   }
 
-  Task<void> run_task(const std::string& app, const TaskSpec& task, Host& host) {
-    const std::int64_t read_bytes = co_await io_phase(app, task, host, true);
+  Task<void> run_task(const std::string& app, const TaskSpec& task, const TaskFiles& plan, Host& host) {
+    const std::int64_t read_bytes = co_await io_phase(app, task, plan, host, true);
     const double compute_start = sim_.now();
     if (task.compute > 0.0) co_await host.compute(task.compute);
     result_.timeline.push_back({app, task.name, "compute", compute_start, sim_.now(), 0, 0, 0});
-    co_await io_phase(app, task, host, false);
+    co_await io_phase(app, task, plan, host, false);
     host.release_memory(read_bytes);  // the task's buffers are freed when it ends
-    for (const std::string& name : task.deletes) {
-      co_await host.delete_file(file_on(host.name(), name));
-      const PlacedFile& stored = files_.at(name);
-      if (stored.host != &host) co_await stored.host->delete_file(stored.ref);  // on the server too
+    for (const PlacedFile* stored : planned(plan.deletes, plan.end)) {
+      co_await host.delete_file(file_on(host, *stored));
+      if (stored->host != &host) co_await stored->host->delete_file(stored->ref);  // on the server too
     }
   }
 
-  Task<void> run_app(const AppSpec& app) {
+  Task<void> run_app(const AppSpec& app, const TaskFiles* plan) {
     Host& host = *hosts_.at(app.host);
-    for (const TaskSpec& task : app.tasks) co_await run_task(app.name, task, host);
+    for (const TaskSpec& task : app.tasks) co_await run_task(app.name, task, *plan++, host);
     finish_one();
   }
 
@@ -252,11 +289,11 @@ class Runner {
     return waits;
   }
 
-  Task<void> run_workflow_task(const WorkflowSpec& w, const TaskSpec& task, workload::CoreSlots& slots,
+  Task<void> run_workflow_task(const WorkflowSpec& w, const TaskSpec& task, const TaskFiles& plan, workload::CoreSlots& slots,
                                std::vector<Event*> prerequisites, Event& done) {
     for (Event* prerequisite : prerequisites) co_await prerequisite->wait();
     co_await slots.acquire();
-    co_await run_task(w.name, task, *hosts_.at(w.host));
+    co_await run_task(w.name, task, plan, *hosts_.at(w.host));
     slots.release();
     done.trigger();
     finish_one();
@@ -276,9 +313,11 @@ class Runner {
   std::vector<std::string> host_order_;
   std::deque<Link> links_storage_;
   std::map<std::pair<std::string, std::string>, const Link*> links_;
-  std::unordered_map<std::string, PlacedFile> files_;  // looked up per I/O phase: hashed
-  std::map<std::pair<std::string, std::string>, FileRef> remote_files_;
-  std::vector<std::string> file_order_;
+  std::unordered_map<std::string, PlacedFile> files_;  // nodes: stable addresses
+  std::vector<TaskFiles> task_files_;                  // per task, apps' then workflows', in order
+  std::vector<const PlacedFile*> planned_files_;
+  std::map<std::pair<const Host*, const PlacedFile*>, FileRef> remote_files_;
+  std::vector<const PlacedFile*> file_order_;
   bool record_cache_ = false;
   std::vector<std::unique_ptr<workload::CoreSlots>> slots_;
   std::deque<std::deque<Event>> workflow_done_;  // per workflow, its tasks' ends in workflow order

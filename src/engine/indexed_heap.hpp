@@ -54,6 +54,28 @@ class IndexedHeap {
     restore(index);
   }
   void clear() noexcept { entries_.clear(); }
+
+  // Unordered use: while nobody asks for its top, a holder may keep the entries as a plain
+  // array, where adding or removing one moves at most one other, and order them when needed.
+  // top() and the ordered operations are only valid once make_ordered() has run.
+  void push_unordered(const Entry& entry) {
+    entries_.push_back(entry);
+    place_(entries_.back(), static_cast<Index>(entries_.size() - 1));
+  }
+  void erase_unordered(Index index) noexcept {
+    const Index last = static_cast<Index>(entries_.size() - 1);
+    if (index != last) {
+      entries_[index] = std::move(entries_[last]);
+      place_(entries_[index], index);
+    }
+    entries_.pop_back();
+  }
+  /// Orders the entries into a heap, in O(n).
+  void make_ordered() noexcept {
+    const Index size = static_cast<Index>(entries_.size());
+    if (size < 2) return;
+    for (Index i = (size - 2) / kArity + 1; i-- > 0;) sift_down(i);
+  }
   /// True if no entry would come out before its parent: for invariant checks.
   bool ordered() const noexcept {
     for (Index i = 1; i < entries_.size(); ++i) {

@@ -56,13 +56,16 @@ void ProcessorSharing::insert_bounded(FlowState* flow, double remaining) {
   flow->remaining = std::max(remaining, 0.0);
   flow->rate = flow->bound;
   flow->updated = sim_->now();
-  bounded_.push({flow->threshold, flow->sequence, flow});
+  if (bounded_ordered_) bounded_.push({flow->threshold, flow->sequence, flow});
+  else bounded_.push_unordered({flow->threshold, flow->sequence, flow});
   bounded_usage_ += flow->cost() * flow->bound;
   flow->completion = sim_->schedule_at(sim_->now() + flow->remaining / flow->rate, flow_due_, flow);
 }
 
 double ProcessorSharing::erase_bounded(FlowState* flow) {
-  bounded_.erase(flow->bounded_threshold_index);
+  if (bounded_ordered_) bounded_.erase(flow->bounded_threshold_index);
+  else bounded_.erase_unordered(flow->bounded_threshold_index);
+  if (bounded_.empty()) bounded_ordered_ = false;
   bounded_usage_ = bounded_.empty() ? 0.0 : bounded_usage_ - flow->cost() * flow->bound;
   sim_->cancel(flow->completion);
   return std::max(0.0, flow->remaining_at(sim_->now()));
@@ -130,8 +133,9 @@ void ProcessorSharing::rebalance() {
       insert_bounded(flow, erase_sharing(flow));
       continue;
     }
-    if (!bounded_.empty() && (level <= 0.0 || bounded_.top().key > level * (1.0 + precision::kRelativeRate))) {
-      FlowState* flow = bounded_.top().flow;
+    // At an infinite level no bound is above it: the bounded flows need no order.
+    if (!bounded_.empty() && level != kUnbounded && (level <= 0.0 || top_bounded().key > level * (1.0 + precision::kRelativeRate))) {
+      FlowState* flow = top_bounded().flow;
       const double remaining = erase_bounded(flow);
       insert_sharing(flow, remaining);
       continue;
@@ -141,6 +145,17 @@ void ProcessorSharing::rebalance() {
   }
   PC_ASSERT(sharing_.empty() || level_ > 0.0);
   updated_ = now;
+}
+
+// The bounded flow with the highest threshold (the latest started of equals), ordering the
+// group first if it was not. The order, once made, is kept until the group empties: a
+// resource near saturation asks at every change.
+const KeyedFlow& ProcessorSharing::top_bounded() noexcept {
+  if (!bounded_ordered_) {
+    bounded_.make_ordered();
+    bounded_ordered_ = true;
+  }
+  return bounded_.top();
 }
 
 void ProcessorSharing::schedule_head() {
@@ -182,6 +197,10 @@ void ProcessorSharing::check() const {
     max_bounded_threshold = std::max(max_bounded_threshold, flow->threshold);
   }
   PC_ASSERT(sharing_threshold_.size() <= sharing_.size());
+  PC_ASSERT(!bounded_ordered_ || bounded_.ordered());
+  for (std::size_t i = 0; i < bounded_.size(); ++i) {
+    PC_ASSERT(bounded_.at(static_cast<HighestThresholdFirst::Index>(i)).flow->bounded_threshold_index == i);
+  }
   const auto close = [](double a, double b) { return std::abs(a - b) <= 1e-9 * std::max({1.0, std::abs(a), std::abs(b)}); };
   PC_ASSERT_MSG(close(sharing_cost, sharing_weighted_cost_),
                 fmt::format("sharing cost {} vs {}", sharing_cost, sharing_weighted_cost_));

@@ -63,6 +63,7 @@ class ProcessorSharing {
   double erase_sharing(FlowState* flow);
   void insert_bounded(FlowState* flow, double remaining);
   double erase_bounded(FlowState* flow);
+  const KeyedFlow& top_bounded() noexcept;
   void cancel_events() noexcept;
 
   Simulator* sim_;
@@ -72,7 +73,12 @@ class ProcessorSharing {
 
   FinishHeap sharing_;                      // sharing flows by virtual finish
   LowestThresholdFirst sharing_threshold_;  // sharing flows with a finite threshold, by threshold
-  HighestThresholdFirst bounded_;           // bounded flows by threshold
+  // Bounded flows by threshold. Only rebalance asks for the highest, and only while the level
+  // is finite: until then they are kept unordered (see top_bounded). With 10^5 memory copies
+  // in flight, each at its own bound on a memory far from saturated, every insertion into the
+  // heap moved a path of entries and wrote where each went into its flow, long out of cache.
+  HighestThresholdFirst bounded_;
+  bool bounded_ordered_ = false;
   double sharing_weighted_cost_ = 0.0;      // sum over sharing of cost * weight
   double bounded_usage_ = 0.0;              // sum over bounded of cost * bound
   double level_ = kUnbounded;               // t
@@ -91,7 +97,7 @@ void ProcessorSharing::drain(Visit&& visit) {
     flows.emplace_back(flow, erase_sharing(flow));
   }
   while (!bounded_.empty()) {
-    FlowState* flow = bounded_.top().flow;
+    FlowState* flow = bounded_.at(static_cast<HighestThresholdFirst::Index>(bounded_.size() - 1)).flow;
     flows.emplace_back(flow, erase_bounded(flow));
   }
   sharing_weighted_cost_ = 0.0;

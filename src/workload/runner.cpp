@@ -58,16 +58,21 @@ class Runner {
     files_.reserve(scenario.files.size());
     file_order_.reserve(scenario.files.size());
     for (const FileSpec& f : scenario.files) {
-      Host& host = *hosts_.at(f.host);
-      auto [it, added] = files_.try_emplace(f.name, PlacedFile{&host, host.add_file(f.name, f.size, disks_.at(f.host).at(f.disk), f.cached), nullptr});
+      const std::string what = fmt::format("file '{}'", f.name);
+      Host& host = host_named(f.host, what);
+      const auto disk = disks_.at(f.host).find(f.disk);
+      if (disk == disks_.at(f.host).end()) throw ConfigError(fmt::format("{}: host '{}' has no disk named '{}'", what, f.host, f.disk));
+      auto [it, added] = files_.try_emplace(f.name, PlacedFile{&host, host.add_file(f.name, f.size, disk->second, f.cached), nullptr});
       if (!added) throw ConfigError(fmt::format("two files named '{}'", f.name));
       it->second.name = &it->first;
       file_order_.push_back(&it->second);
     }
     for (const AppSpec& app : scenario.apps) {
+      host_named(app.host, fmt::format("application '{}'", app.name));
       for (const TaskSpec& task : app.tasks) plan_files(task);
     }
     for (const WorkflowSpec& w : scenario.workflows) {
+      host_named(w.host, fmt::format("workflow '{}'", w.name));
       for (const TaskSpec& task : w.tasks) plan_files(task);
     }
   }
@@ -145,6 +150,13 @@ class Runner {
  private:
   RunSummary& summary() { return result_.summary; }
 
+  // Scenarios built in code skip the loader's checks: what the run relies on is checked here.
+  Host& host_named(const std::string& name, const std::string& what) const {
+    const auto it = hosts_.find(name);
+    if (it == hosts_.end()) throw ConfigError(fmt::format("{}: no host named '{}'", what, name));
+    return *it->second;
+  }
+
   void plan_files(const TaskSpec& task) {
     TaskFiles& plan = task_files_.emplace_back();
     const auto add = [&](const std::vector<std::string>& names) {
@@ -174,6 +186,9 @@ class Runner {
     const std::string& server = stored.host->name();
     auto link = links_.find({client.name(), server});
     if (link == links_.end()) link = links_.find({server, client.name()});
+    if (link == links_.end()) {
+      throw ConfigError(fmt::format("file '{}' is on host '{}', and no link joins it to host '{}'", *stored.name, server, client.name()));
+    }
     const FileRef ref = client.add_remote_file(*stored.host, stored.ref, *link->second);
     remote_files_.emplace(key, ref);
     return ref;
@@ -269,7 +284,9 @@ class Runner {
     std::unordered_map<std::string, std::size_t> task_index;
     std::unordered_map<std::string, std::vector<std::size_t>> writers;  // one per file in a loaded scenario
     for (std::size_t i = 0; i < w.tasks.size(); ++i) {
-      task_index.emplace(w.tasks[i].name, i);
+      if (!task_index.emplace(w.tasks[i].name, i).second) {
+        throw ConfigError(fmt::format("workflow '{}': two tasks named '{}'", w.name, w.tasks[i].name));
+      }
       for (const std::string& file : w.tasks[i].writes) {
         std::vector<std::size_t>& of_file = writers[file];
         if (of_file.empty() || of_file.back() != i) of_file.push_back(i);  // a file listed twice is one output
@@ -278,7 +295,13 @@ class Runner {
     std::vector<std::vector<Event*>> waits(w.tasks.size());
     for (std::size_t i = 0; i < w.tasks.size(); ++i) {
       const TaskSpec& task = w.tasks[i];
-      for (const std::string& before : task.after) waits[i].push_back(&done[task_index.at(before)]);
+      for (const std::string& before : task.after) {
+        const auto it = task_index.find(before);
+        if (it == task_index.end()) {
+          throw ConfigError(fmt::format("workflow '{}': task '{}' comes after an unknown task '{}'", w.name, task.name, before));
+        }
+        waits[i].push_back(&done[it->second]);
+      }
       std::vector<std::size_t> producers;
       for (const std::string& input : task.reads) {
         if (auto it = writers.find(input); it != writers.end()) producers.insert(producers.end(), it->second.begin(), it->second.end());

@@ -47,5 +47,47 @@ TEST_CASE("run_scenario rejects two files of one name and a task naming an unkno
   CHECK_THROWS_WITH(run_scenario(unknown), Catch::Contains("no file named 'nowhere'"));
 }
 
+TEST_CASE("run_scenario rejects unknown hosts, unknown disks and remote files without a link", "[run][errors]") {
+  Scenario app_host = one_pipeline();
+  app_host.apps.front().host = "elsewhere";
+  CHECK_THROWS_WITH(run_scenario(app_host), Catch::Contains("application '1': no host named 'elsewhere'"));
+
+  Scenario file_disk = one_pipeline();
+  file_disk.files.front().disk = "tape";
+  CHECK_THROWS_WITH(run_scenario(file_disk), Catch::Contains("host 'node' has no disk named 'tape'"));
+
+  Scenario unlinked = one_pipeline();
+  HostConfig server = unlinked.hosts.front();
+  server.name = "server";
+  unlinked.hosts.push_back(server);
+  unlinked.files.front().host = "server";
+  CHECK_THROWS_AS(run_scenario(unlinked), ConfigError);
+  CHECK_THROWS_WITH(run_scenario(unlinked), Catch::Contains("no link joins it to host 'node'"));
+}
+
+TEST_CASE("run_scenario rejects a workflow with two tasks of one name or an unknown predecessor", "[run][errors]") {
+  Scenario s = one_pipeline();
+  WorkflowSpec w;
+  w.name = "flow";
+  w.host = "node";
+  for (const char* name : {"a", "b"}) {
+    TaskSpec& task = w.tasks.emplace_back();
+    task.name = name;
+    task.reads = {"file_1"};
+    task.chunk_size = 100'000'000;
+  }
+  s.apps.clear();
+
+  Scenario twice = s;
+  twice.workflows.push_back(w);
+  twice.workflows.back().tasks.back().name = "a";
+  CHECK_THROWS_WITH(run_scenario(twice), Catch::Contains("workflow 'flow': two tasks named 'a'"));
+
+  Scenario unknown = s;
+  unknown.workflows.push_back(w);
+  unknown.workflows.back().tasks.back().after = {"z"};
+  CHECK_THROWS_WITH(run_scenario(unknown), Catch::Contains("task 'b' comes after an unknown task 'z'"));
+}
+
 }  // namespace
 }  // namespace pagecache

@@ -54,7 +54,10 @@ using BlockList = boost::intrusive::list<
 
 using LruOrder = BlockList<&Block::lru_hook>;
 using StateOrder = BlockList<&Block::state_hook>;
-using FileOrder = BlockList<&Block::file_hook>;
+// No size counter: a file's entry keeps its block count beside its byte counters, in one cache
+// line (see PageCache::FileEntry).
+using FileOrder = boost::intrusive::list<Block, boost::intrusive::member_hook<Block, SafeHook, &Block::file_hook>,
+                                         boost::intrusive::constant_time_size<false>>;
 // Only its front is asked for: no size counter, which keeps a file's entry small.
 using FileCleanOrder = boost::intrusive::list<Block, boost::intrusive::member_hook<Block, SafeHook, &Block::dirty_or_clean_hook>,
                                               boost::intrusive::constant_time_size<false>>;

@@ -126,6 +126,7 @@ void PageCache::append(Block& block, ListKind kind) {
   list_of(kind).push_back(block);
   on_dirty_linked(block);
   file_list(entry, kind).push_back(block);
+  ++entry.blocks;
   (kind == ListKind::Inactive ? entry.inactive_bytes : entry.active_bytes) += block.size;
   if (block.state == BlockState::Dirty) entry.dirty_bytes += block.size;
   if (block.state == BlockState::Clean) on_clean_linked(block);
@@ -138,6 +139,7 @@ void PageCache::unlink(Block& block) {
   list_of(block.list).erase(block);
   FileOrder& flist = file_list(entry, block.list);
   flist.erase(flist.iterator_to(block));
+  --entry.blocks;
   (block.list == ListKind::Inactive ? entry.inactive_bytes : entry.active_bytes) -= block.size;
   if (block.state == BlockState::Dirty) entry.dirty_bytes -= block.size;
 }
@@ -205,11 +207,13 @@ Block& PageCache::split_front(Block& block, std::int64_t head_size) {
   list.resize(block, head_size);
   list.insert_after(block, tail);
   on_dirty_linked(tail);
-  FileOrder& flist = file_list(files_[block.file], block.list);
+  FileEntry& entry = files_[block.file];
+  FileOrder& flist = file_list(entry, block.list);
   flist.insert(std::next(flist.iterator_to(block)), tail);
+  ++entry.blocks;
   if (tail.state == BlockState::Dirty) dirty_by_age_.insert(std::next(dirty_by_age_.iterator_to(block)), tail);
   if (tail.state == BlockState::Clean && settings_.protect_files_being_written) {
-    FileCleanOrder& clean = file_clean_list(files_[block.file], block.list);
+    FileCleanOrder& clean = file_clean_list(entry, block.list);
     clean.insert(std::next(clean.iterator_to(block)), tail);
   }
   // Per-file byte counters are unchanged: the file holds the same bytes in the same list.
@@ -451,7 +455,7 @@ void PageCache::end_writeback(const Flushed& taken) {
   };
   FileEntry& entry = files_[taken.file];
   const std::size_t in_writeback = inactive_.blocks_in(BlockState::Writeback) + active_.blocks_in(BlockState::Writeback);
-  if (entry.inactive.size() + entry.active.size() <= in_writeback) {
+  if (entry.blocks <= in_writeback) {
     for (FileOrder* flist : {&entry.inactive, &entry.active}) {
       for (Block& block : *flist) end(block);
     }
@@ -629,6 +633,9 @@ void PageCache::check_invariants() const {
     PC_ASSERT_MSG(bytes[0] == entry.inactive_bytes && bytes[1] == entry.active_bytes,
                   fmt::format("file {} byte counters disagree with its blocks", f));
     PC_ASSERT(dirty_bytes == entry.dirty_bytes);
+    PC_ASSERT_MSG(entry.blocks == static_cast<std::size_t>(std::distance(entry.inactive.begin(), entry.inactive.end()) +
+                                                          std::distance(entry.active.begin(), entry.active.end())),
+                  fmt::format("file {}: block count disagrees with its lists", f));
   }
   PC_ASSERT_MSG(blocks_in_files == inactive_.size() + active_.size(), "a block is missing from its file's list");
   for (const FileHeap& files : reclaimable_) {

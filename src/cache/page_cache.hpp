@@ -23,6 +23,7 @@
 #include <pagecache/memory_state.hpp>
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -162,18 +163,24 @@ class PageCache {
   void check_invariants() const;
 
  private:
-  struct FileEntry {
+  // What every operation on a file reads and writes lies in its first cache line; the clean
+  // sub-lists, used by eviction only, in the second. With 10^5 applications a file's entry is
+  // out of cache whenever it is touched (an entry straddling three lines cost up to three
+  // misses each time, and entries were a sixth of the harness's time at 10^5 pipelines).
+  struct alignas(64) FileEntry {
     FileOrder inactive;
     FileOrder active;
     std::int64_t inactive_bytes = 0;
     std::int64_t active_bytes = 0;
     std::int64_t dirty_bytes = 0;
-    int writers = 0;  // writes in progress
+    int writers = 0;            // writes in progress
+    std::uint32_t blocks = 0;   // in `inactive` and `active`
     // With protect_files_being_written: the file's clean blocks in each LRU list, in LRU
     // order (sub-lists of `inactive` and `active`).
     FileCleanOrder clean_inactive;
     FileCleanOrder clean_active;
   };
+  static_assert(offsetof(FileEntry, clean_inactive) == 64, "a file's counters and lists fill its first cache line");
 
   FileEntry& file_entry(FileId file);
   LruList& list_of(ListKind kind) noexcept { return kind == ListKind::Inactive ? inactive_ : active_; }

@@ -85,6 +85,16 @@ class IoController {
   /// `bytes` of a file written in chunks in writeback mode under dirty throttling
   /// (CacheSettings::dirty_throttling).
   Task<IoTally> write_file_throttled(FileId file, std::int64_t bytes, std::int64_t chunk_size);
+  /// What a throttled writer with `remaining` bytes of its chunk to write does next: pause
+  /// (for `pause` seconds, earning `rate` bytes a second), make room by writing back, or
+  /// copy `to_cache` bytes, whose pages it has reserved.
+  struct ThrottledStep {
+    enum Kind : std::uint8_t { Pause, MakeRoom, Copy } kind;
+    std::int64_t to_cache;
+    double pause;
+    double rate;
+  };
+  ThrottledStep next_throttled_step(std::int64_t remaining, double device_bw, bool& throttled, double& credit);
   /// Copies `bytes` into the cache: the memory transfer, then a new dirty block.
   Task<void> write_to_cache(FileId file, std::int64_t bytes);
   Task<IoTally> write_chunk_writethrough(FileId file, std::int64_t chunk);

@@ -83,24 +83,15 @@ const std::string& Host::file_name(FileRef file) const { return impl_->files[imp
 std::int64_t Host::file_size(FileRef file) const { return impl_->files[impl_->id(file)].size; }
 std::size_t Host::file_count() const noexcept { return impl_->files.size(); }
 
-namespace {
-IoResult to_result(double start, double end, const cache::IoTally& tally) {
-  return IoResult{.start = start, .end = end, .bytes = tally.bytes, .cache_bytes = tally.cache_bytes, .disk_bytes = tally.disk_bytes};
-}
-}  // namespace
-
+// IoController's tasks are handed out as they are: a coroutine here would be one frame more
+// per file read or written.
 Task<IoResult> Host::read_file(FileRef file, std::int64_t chunk_size, bool direct) {
-  const cache::FileId id = impl_->id(file);
-  const double start = impl_->sim.now();
-  const cache::IoTally tally = co_await impl_->io.read_file(id, chunk_size, direct);
-  co_return to_result(start, impl_->sim.now(), tally);
+  return impl_->io.read_file(impl_->id(file), chunk_size, direct);
 }
 
 Task<IoResult> Host::write_file(FileRef file, std::int64_t chunk_size, bool direct) {
   const cache::FileId id = impl_->id(file);
-  const double start = impl_->sim.now();
-  const cache::IoTally tally = co_await impl_->io.write_file(id, impl_->files[id].size, chunk_size, direct);
-  co_return to_result(start, impl_->sim.now(), tally);
+  return impl_->io.write_file(id, impl_->files[id].size, chunk_size, direct);
 }
 
 Task<void> Host::fsync(FileRef file) { co_await impl_->io.fsync(impl_->id(file)); }

@@ -232,7 +232,9 @@ IoController::ThrottledStep IoController::next_throttled_step(std::int64_t remai
 // What is decided between two suspensions is decided by next_throttled_step: GCC keeps every
 // local of a coroutine in its frame, and every line of a frame is a miss when it resumes with
 // 10^5 writers in flight.
-Task<IoTally> IoController::write_file_throttled(FileId file, std::int64_t bytes, std::int64_t chunk_size) {
+Task<IoResult> IoController::write_file_throttled(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool whole_file) {
+  const double start = sim_->now();
+  if (whole_file) cache_->set_being_written(file, true);
   const double device_bw = (*files_)[file].disk->write_bandwidth();
   for (std::int64_t offset = 0; offset < bytes; offset += chunk_size) {
     std::int64_t remaining = std::min(chunk_size, bytes - offset);
@@ -262,11 +264,15 @@ Task<IoTally> IoController::write_file_throttled(FileId file, std::int64_t bytes
     }
     if (throttled) --throttled_writers_;
   }
-  co_return IoTally{.bytes = bytes, .cache_bytes = bytes, .disk_bytes = 0};
+  if (whole_file) cache_->set_being_written(file, false);
+  co_return IoResult{.start = start, .end = sim_->now(), .bytes = bytes, .cache_bytes = bytes, .disk_bytes = 0};
 }
 
 Task<IoTally> IoController::write_chunk_writeback(FileId file, std::int64_t chunk) {
-  if (throttles_writers()) co_return co_await write_file_throttled(file, chunk, chunk);
+  if (throttles_writers()) {
+    const IoResult r = co_await write_file_throttled(file, chunk, chunk, false);
+    co_return IoTally{.bytes = r.bytes, .cache_bytes = r.cache_bytes, .disk_bytes = r.disk_bytes};
+  }
   const CacheSettings& settings = cache_->settings();
   const auto limit = [&] {
     return static_cast<std::int64_t>(std::floor(settings.dirty_ratio * static_cast<double>(cache_->dirtyable())));
@@ -308,7 +314,8 @@ Task<IoTally> IoController::write_chunk_writethrough(FileId file, std::int64_t c
   co_return IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
 }
 
-Task<IoTally> IoController::read_file(FileId file, std::int64_t chunk_size, bool direct) {
+Task<IoResult> IoController::read_file(FileId file, std::int64_t chunk_size, bool direct) {
+  const double start = sim_->now();
   if (chunk_size <= 0) throw ConfigError(fmt::format("chunk size must be > 0, got {}", chunk_size));
   const FileInfo& info = (*files_)[file];
   if (direct && info.is_remote()) throw ConfigError(fmt::format("'{}': direct I/O on a remote file is not modelled", info.name));
@@ -347,32 +354,36 @@ Task<IoTally> IoController::read_file(FileId file, std::int64_t chunk_size, bool
     co_await disk->read(chunk, memory_->fresh_copy_rate());
     total += IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
   }
-  co_return total;
+  co_return IoResult{.start = start, .end = sim_->now(), .bytes = total.bytes, .cache_bytes = total.cache_bytes, .disk_bytes = total.disk_bytes};
 }
 
-Task<IoTally> IoController::write_file(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool direct) {
+Task<IoResult> IoController::write_file(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool direct) {
   if (chunk_size <= 0) throw ConfigError(fmt::format("chunk size must be > 0, got {}", chunk_size));
   const FileInfo& info = (*files_)[file];
   if (direct && info.is_remote()) throw ConfigError(fmt::format("'{}': direct I/O on a remote file is not modelled", info.name));
-  IoTally total;
-  cache_->set_being_written(file, true);
   if (!direct && !info.is_remote() && cache_->settings().write_mode == WriteMode::Writeback && throttles_writers()) {
     chunks_ += static_cast<std::uint64_t>((bytes + chunk_size - 1) / chunk_size);
-    total = co_await write_file_throttled(file, bytes, chunk_size);
-  } else {
-    for (std::int64_t offset = 0; offset < bytes; offset += chunk_size) {
-      const std::int64_t chunk = std::min(chunk_size, bytes - offset);
-      ++chunks_;
-      if (!direct) {
-        total += co_await write_chunk(file, chunk);
-        continue;
-      }
-      co_await info.disk->write(chunk);  // O_DIRECT: straight to the disk
-      total += IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
+    return write_file_throttled(file, bytes, chunk_size, true);
+  }
+  return write_file_in_chunks(file, bytes, chunk_size, direct);
+}
+
+Task<IoResult> IoController::write_file_in_chunks(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool direct) {
+  const double start = sim_->now();
+  IoTally total;
+  cache_->set_being_written(file, true);
+  for (std::int64_t offset = 0; offset < bytes; offset += chunk_size) {
+    const std::int64_t chunk = std::min(chunk_size, bytes - offset);
+    ++chunks_;
+    if (!direct) {
+      total += co_await write_chunk(file, chunk);
+      continue;
     }
+    co_await (*files_)[file].disk->write(chunk);  // O_DIRECT: straight to the disk
+    total += IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
   }
   cache_->set_being_written(file, false);
-  co_return total;
+  co_return IoResult{.start = start, .end = sim_->now(), .bytes = total.bytes, .cache_bytes = total.cache_bytes, .disk_bytes = total.disk_bytes};
 }
 
 Task<void> IoController::fsync(FileId file) {

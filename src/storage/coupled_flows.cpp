@@ -1,0 +1,223 @@
+// FairShare's flows that cross several resources: the classes of interchangeable flows, the
+// components of resources they couple, and the max-min solution of a component when a flow of
+// it starts or ends (see FlowClass, and FairShare::Impl::solve_component).
+
+#include "engine/check.hpp"
+#include "storage/fair_share_impl.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+namespace pagecache {
+
+using detail::FlowClass;
+using detail::FlowClassKey;
+using detail::FlowMode;
+using detail::FlowState;
+
+void FairShare::Impl::join(FlowState* flow, double work) {
+  auto [it, made] = classes.try_emplace(FlowClassKey::of(*flow));
+  if (made) {
+    it->second = std::make_unique<FlowClass>();
+    FlowClass& c = *it->second;
+    c.key = it->first;
+    c.owner = this;
+    c.updated = sim.now();
+    for (std::uint8_t i = 0; i < c.key.usage_count; ++i) {
+      ResourceState& r = resource(c.key.usages[i].resource);
+      c.slots[i] = static_cast<std::uint32_t>(r.classes.size());
+      r.classes.push_back(&c);
+    }
+  }
+  FlowClass& c = *it->second;
+  c.advance(sim.now());
+  flow->mode = FlowMode::Explicit;
+  flow->flow_class = &c;
+  flow->virtual_finish = c.virtual_time + std::max(work, 0.0);
+  c.members.push({flow->virtual_finish, flow->sequence, flow});
+  c.head_moved = true;
+}
+
+void FairShare::Impl::drop_if_empty(FlowClass& c) {
+  if (!c.members.empty()) return;
+  sim.cancel(c.head_event);
+  for (std::uint8_t i = 0; i < c.key.usage_count; ++i) {
+    ResourceState& r = resource(c.key.usages[i].resource);
+    const std::uint32_t slot = c.slots[i];
+    FlowClass* moved = r.classes.back();
+    r.classes[slot] = moved;
+    r.classes.pop_back();
+    if (moved != &c) {
+      for (std::uint8_t j = 0; j < moved->key.usage_count; ++j) {
+        if (moved->key.usages[j].resource.index == r.index) moved->slots[j] = slot;
+      }
+    }
+  }
+  const FlowClassKey key = c.key;  // erasing destroys c
+  classes.erase(key);
+}
+
+// `flows` of class `key` have ended: the resources they crossed may no longer be coupled.
+void FairShare::Impl::uncouple(const FlowClassKey& key, std::size_t flows) {
+  for (std::uint8_t i = 0; i < key.usage_count; ++i) {
+    ResourceState& r = resource(key.usages[i].resource);
+    if (key.usage_count > 1) r.coupled -= flows;
+    if (r.coupled == 0 && !r.classes.empty()) make_shared(r);
+  }
+}
+
+void FairShare::Impl::make_explicit(ResourceState& r) {
+  r.sharing.drain([this](FlowState* flow, double remaining) { join(flow, remaining); });
+  r.usage = 1.0;  // not known until it is solved: never left out before
+  r.pending = 0.0;
+}
+
+void FairShare::Impl::make_shared(ResourceState& r) {
+  // Every flow left here crosses r alone; hand them back to processor sharing in start order.
+  const double now = sim.now();
+  std::vector<std::pair<FlowState*, double>> flows;
+  while (!r.classes.empty()) {
+    FlowClass& c = *r.classes.back();
+    PC_ASSERT(c.key.usage_count == 1);
+    c.advance(now);
+    for (const detail::KeyedFlow& entry : c.members) {
+      entry.flow->flow_class = nullptr;
+      flows.emplace_back(entry.flow, std::max(0.0, entry.key - c.virtual_time));
+    }
+    c.members.clear();
+    drop_if_empty(c);
+  }
+  std::sort(flows.begin(), flows.end(), [](const auto& a, const auto& b) { return a.first->sequence < b.first->sequence; });
+  for (auto& [flow, remaining] : flows) r.sharing.add(flow, remaining);
+}
+
+void FairShare::Impl::solve_from(const FlowClassKey& seed) {
+  if (!solve_component(seed, true)) solve_component(seed, false);
+}
+
+// Solves the component around the seed class's resources, or, with `leave_out_slack`, the part
+// of it reached without crossing resources that are crossed by many classes and stay
+// unsaturated. Leaving those out is exact: in a max-min allocation a resource below capacity
+// is no flow's bottleneck, so its constraint can be dropped without changing the allocation,
+// as long as it is still below capacity afterwards (checked; false if not, or if a class is
+// left with nothing to limit it, and then nothing is changed). With N clients of one server
+// that is not saturated, a change on one client solves that client's classes, not N.
+bool FairShare::Impl::solve_component(const FlowClassKey& seed, bool leave_out_slack) {
+  const std::uint64_t stamp = ++visit_stamp;
+  component_resources.clear();
+  left_out.clear();
+  component_classes.clear();
+  const auto reach = [&](ResourceState& r) {
+    if (r.coupled == 0 || r.visit == stamp) return;
+    r.visit = stamp;
+    if (leave_out_slack && r.classes.size() > kLeaveOutAbove && r.usage < 1.0 - kSlack) {
+      r.local = kLeftOut;
+      r.pending = 0.0;
+      left_out.push_back(&r);
+      return;
+    }
+    r.local = static_cast<std::uint32_t>(component_resources.size());
+    component_resources.push_back(&r);
+  };
+  const auto take = [&](FlowClass& c) {
+    if (c.visit == stamp) return;
+    c.visit = stamp;
+    component_classes.push_back(&c);
+    for (std::uint8_t u = 0; u < c.key.usage_count; ++u) reach(resource(c.key.usages[u].resource));
+  };
+  if (auto it = classes.find(seed); it != classes.end()) take(*it->second);
+  for (std::uint8_t i = 0; i < seed.usage_count; ++i) reach(resource(seed.usages[i].resource));
+  for (std::size_t next = 0; next < component_resources.size(); ++next) {
+    for (FlowClass* c : component_resources[next]->classes) take(*c);
+  }
+  if (component_classes.empty()) return true;
+
+  // A class of n flows is one flow of n times their weight and bound (see FlowClass).
+  problem.resize(component_classes.size());
+  for (std::size_t i = 0; i < component_classes.size(); ++i) {
+    FlowClass& c = *component_classes[i];
+    PC_ASSERT(!c.members.empty());
+    const auto n = static_cast<double>(c.size());
+    detail::MaxMinFlow& p = problem[i];
+    p.weight = n * c.key.weight;
+    p.bound = n * c.key.bound;
+    p.usage_count = 0;
+    for (std::uint8_t u = 0; u < c.key.usage_count; ++u) {
+      const std::uint32_t local = resource(c.key.usages[u].resource).local;
+      if (local == kLeftOut) continue;
+      p.resource[p.usage_count] = local;
+      p.cost[p.usage_count] = c.key.usages[u].cost;
+      ++p.usage_count;
+    }
+    if (p.usage_count == 0 && !std::isfinite(p.bound)) return false;
+  }
+  solver.solve(problem, component_resources.size());
+  if (!left_out.empty()) {
+    for (std::size_t i = 0; i < component_classes.size(); ++i) {
+      const FlowClass& c = *component_classes[i];
+      const double change = problem[i].rate - c.contribution;
+      for (std::uint8_t u = 0; u < c.key.usage_count; ++u) {
+        ResourceState& r = resource(c.key.usages[u].resource);
+        if (r.local == kLeftOut) r.pending += c.key.usages[u].cost * change;
+      }
+    }
+    for (const ResourceState* r : left_out) {
+      if (r->usage + r->pending >= 1.0 - kSlack) return false;
+    }
+    for (ResourceState* r : left_out) r->usage += r->pending;
+  }
+  // A class whose rate and first member are unchanged keeps its event: in a component of many
+  // clients of one server, most changes leave most classes as they were.
+  const double now = sim.now();
+  for (std::size_t i = 0; i < component_classes.size(); ++i) {
+    FlowClass& c = *component_classes[i];
+    c.contribution = problem[i].rate;
+    const double rate = problem[i].rate / static_cast<double>(c.size());
+    if (rate == c.rate && !c.head_moved && c.head_event) continue;
+    c.advance(now);
+    c.rate = rate;
+    schedule_head(c);
+  }
+  for (ResourceState* r : component_resources) {
+    r->usage = 0.0;
+    for (const FlowClass* c : r->classes) {
+      for (std::uint8_t u = 0; u < c->key.usage_count; ++u) {
+        if (c->key.usages[u].resource.index == r->index) r->usage += c->key.usages[u].cost * c->contribution;
+      }
+    }
+  }
+  return true;
+}
+
+void FairShare::Impl::schedule_head(FlowClass& c) {
+  PC_ASSERT(c.rate > 0.0);
+  const double due = sim.now() + std::max(0.0, c.members.top().key - c.virtual_time) / c.rate;
+  if (c.head_event) sim.reschedule(c.head_event, due);
+  else c.head_event = sim.schedule_at(due, &on_class_due, &c);
+  c.head_moved = false;
+}
+
+void FairShare::Impl::on_class_due(void* context) {
+  auto& c = *static_cast<FlowClass*>(context);
+  Impl& self = *static_cast<Impl*>(c.owner);
+  c.head_event.reset();  // it is firing now
+  c.advance(self.sim.now());
+  // The head is due now by construction; pin the clock to it so rounding cannot leave it running.
+  c.virtual_time = std::max(c.virtual_time, c.members.top().key);
+  std::vector<FlowState*>& done = self.finished;
+  done.clear();
+  while (!c.members.empty() && c.members.top().key <= c.virtual_time) {
+    done.push_back(c.members.top().flow);
+    c.members.pop();
+  }
+  c.head_moved = true;
+  const FlowClassKey key = c.key;
+  self.drop_if_empty(c);
+  self.uncouple(key, done.size());
+  self.solve_from(key);
+  for (FlowState* flow : done) self.wake(flow);
+}
+
+}  // namespace pagecache

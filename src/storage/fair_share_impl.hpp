@@ -1,0 +1,95 @@
+#pragma once
+// FairShare::Impl: the state behind FairShare, shared by its two halves: fair_share.cpp (flows
+// starting and ending, resources crossed alone, the public interface) and coupled_flows.cpp
+// (flows coupling resources: classes, components, their solution).
+
+#include <pagecache/fair_share.hpp>
+
+#include "engine/object_pool.hpp"
+#include "storage/flow_class.hpp"
+#include "storage/flow_state.hpp"
+#include "storage/max_min.hpp"
+#include "storage/processor_sharing.hpp"
+
+#include <deque>
+#include <limits>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace pagecache {
+
+struct FairShare::Impl {
+  explicit Impl(Simulator& s) : sim(s) {}
+
+  // One resource and how the rates of the flows crossing it are found. While no multi-resource
+  // flow crosses it (`coupled == 0`) its flows are held by `sharing` alone, in O(log n) per
+  // change; otherwise they are Explicit, members of the classes listed in `classes`, and
+  // solved with the rest of their component. (Listing every flow, needed or not, was a cache
+  // miss per flow end at 10^5 flows: removing one moves another.)
+  struct ResourceState {
+    ResourceState(Impl* owner_, std::uint32_t index_, std::string name_, Simulator& sim,
+                  EventCallback flow_due, EventCallback head_due)
+        : owner(owner_), index(index_), name(std::move(name_)), sharing(sim, flow_due, head_due, this) {}
+
+    Impl* owner;
+    std::uint32_t index;
+    std::string name;
+    std::vector<detail::FlowClass*> classes;  // the classes of Explicit flows crossing it (none while not coupled)
+    std::size_t coupled = 0;          // how many flows crossing it cross other resources too
+    detail::ProcessorSharing sharing;
+    std::uint64_t visit = 0;
+    std::uint32_t local = 0;  // index within the component being solved, or kLeftOut
+    // While coupled: the capacity its classes used when last solved (sum of cost *
+    // contribution), classes gone since included: an upper bound, kept so that capacity freed
+    // by a departure does not make a saturated resource look slack before it is solved again.
+    // And the change a solve that leaves it out would make to it.
+    double usage = 0.0;
+    double pending = 0.0;
+  };
+
+  // A solve may leave out a resource that is crossed by many classes and not close to
+  // saturation (see solve_component). One crossed by a few costs little to keep in, and a
+  // class left with nothing limiting it would need a second solve.
+  static constexpr std::size_t kLeaveOutAbove = 4;  // classes
+  static constexpr double kSlack = 1e-6;            // of its capacity
+  static constexpr std::uint32_t kLeftOut = std::numeric_limits<std::uint32_t>::max();
+
+  Simulator& sim;
+  std::deque<ResourceState> resources;  // deque: stable addresses
+  detail::ObjectPool<detail::FlowState> pool;
+  std::unordered_map<detail::FlowClassKey, std::unique_ptr<detail::FlowClass>, detail::FlowClassKeyHash> classes;
+  std::uint64_t next_sequence = 0;
+  std::uint64_t visit_stamp = 0;
+  std::size_t active = 0;
+
+  // Scratch space, kept to avoid allocating per event.
+  std::vector<detail::FlowState*> finished;  // by a head or class event, to be woken
+  std::vector<ResourceState*> component_resources;
+  std::vector<ResourceState*> left_out;
+  std::vector<detail::FlowClass*> component_classes;
+  std::vector<detail::MaxMinFlow> problem;
+  detail::MaxMinSolver solver;
+
+  ResourceState& resource(ResourceId id) { return resources[id.index]; }
+
+  static void on_flow_due(void* context);
+  static void on_head_due(void* context);
+  static void on_class_due(void* context);
+
+  void validate(const FlowSpec& spec) const;
+  detail::FlowState* start(const FlowSpec& spec, std::coroutine_handle<> waiting, FlowAwaiter* awaiter);
+  void withdraw(detail::FlowState* flow);
+  void join(detail::FlowState* flow, double work);
+  void drop_if_empty(detail::FlowClass& c);
+  void uncouple(const detail::FlowClassKey& key, std::size_t flows);
+  void make_explicit(ResourceState& r);
+  void make_shared(ResourceState& r);
+  void solve_from(const detail::FlowClassKey& seed);
+  bool solve_component(const detail::FlowClassKey& seed, bool leave_out_slack);
+  void schedule_head(detail::FlowClass& c);
+  void wake(detail::FlowState* flow);
+};
+
+}  // namespace pagecache

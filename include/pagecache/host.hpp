@@ -82,8 +82,11 @@ class Host {
 
   /// Reads the whole file in chunks of `chunk_size` bytes; each chunk's copy is kept in
   /// application memory until release_memory(). `direct`: O_DIRECT, bypassing the page cache.
+  /// Throws ConfigError at the call for a file unknown here, a chunk size <= 0 or direct I/O
+  /// on a remote file; SimulationError from the task when the read cannot proceed.
   Task<IoResult> read_file(FileRef file, std::int64_t chunk_size, bool direct = false);
   /// Writes the file's whole size in chunks of `chunk_size` bytes. `direct`: O_DIRECT.
+  /// Errors as read_file's.
   Task<IoResult> write_file(FileRef file, std::int64_t chunk_size, bool direct = false);
   /// fsync(2): returns when every dirty byte of the file is on its disk.
   Task<void> fsync(FileRef file);

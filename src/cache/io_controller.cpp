@@ -314,11 +314,21 @@ Task<IoTally> IoController::write_chunk_writethrough(FileId file, std::int64_t c
   co_return IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
 }
 
-Task<IoResult> IoController::read_file(FileId file, std::int64_t chunk_size, bool direct) {
-  const double start = sim_->now();
+// Checks the request at the call, as write_file does: the task it hands out is the whole read.
+void IoController::check_request(FileId file, std::int64_t chunk_size, bool direct) const {
   if (chunk_size <= 0) throw ConfigError(fmt::format("chunk size must be > 0, got {}", chunk_size));
   const FileInfo& info = (*files_)[file];
   if (direct && info.is_remote()) throw ConfigError(fmt::format("'{}': direct I/O on a remote file is not modelled", info.name));
+}
+
+Task<IoResult> IoController::read_file(FileId file, std::int64_t chunk_size, bool direct) {
+  check_request(file, chunk_size, direct);
+  return read_whole_file(file, chunk_size, direct);
+}
+
+Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_size, bool direct) {
+  const double start = sim_->now();
+  const FileInfo& info = (*files_)[file];
   // What the loop needs of the file, kept here: with many readers the file's record is out of
   // cache at every chunk, this frame is not.
   const std::int64_t size = info.size;
@@ -358,9 +368,8 @@ Task<IoResult> IoController::read_file(FileId file, std::int64_t chunk_size, boo
 }
 
 Task<IoResult> IoController::write_file(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool direct) {
-  if (chunk_size <= 0) throw ConfigError(fmt::format("chunk size must be > 0, got {}", chunk_size));
+  check_request(file, chunk_size, direct);
   const FileInfo& info = (*files_)[file];
-  if (direct && info.is_remote()) throw ConfigError(fmt::format("'{}': direct I/O on a remote file is not modelled", info.name));
   if (!direct && !info.is_remote() && cache_->settings().write_mode == WriteMode::Writeback && throttles_writers()) {
     chunks_ += static_cast<std::uint64_t>((bytes + chunk_size - 1) / chunk_size);
     return write_file_throttled(file, bytes, chunk_size, true);

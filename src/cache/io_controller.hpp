@@ -49,10 +49,12 @@ class IoController {
   /// copy stays in application memory until released); `direct`: bypassing the page cache
   /// (O_DIRECT: from the disk into the application's buffer).
   /// Its result is Host::read_file's: Host hands this task out as its own, a frame fewer per
-  /// file read (with 10^5 applications each frame made is a few cache misses).
+  /// file read (with 10^5 applications each frame made is a few cache misses). Not a coroutine
+  /// itself: it checks the request (ConfigError at the call) and hands out the read.
   Task<IoResult> read_file(FileId file, std::int64_t chunk_size, bool direct = false);
   /// Writes `bytes` to `file` in chunks of `chunk_size` bytes; `direct`: straight to the disk.
-  /// Not a coroutine itself: it hands out the task that writes the file (throttled or not).
+  /// Not a coroutine itself: it checks the request as read_file does and hands out the task
+  /// that writes the file (throttled or not).
   Task<IoResult> write_file(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool direct = false);
   /// fsync: writes back every dirty byte of `file` and waits for it, and for writebacks of it
   /// already in progress.
@@ -81,6 +83,9 @@ class IoController {
   std::uint64_t chunk_operations() const noexcept { return chunks_; }
 
  private:
+  /// Throws ConfigError for a chunk size <= 0 or direct I/O on a remote file.
+  void check_request(FileId file, std::int64_t chunk_size, bool direct) const;
+  Task<IoResult> read_whole_file(FileId file, std::int64_t chunk_size, bool direct);
   /// Flushes up to `amount` dirty bytes (skipping `excluded`) and waits for their writes.
   Task<std::int64_t> write_back(std::int64_t amount, FileId excluded);
   Task<IoTally> write_chunk_writeback(FileId file, std::int64_t chunk);

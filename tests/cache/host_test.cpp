@@ -123,6 +123,23 @@ TEST_CASE("a file larger than its disk is refused", "[host]") {
   CHECK_THROWS_AS(host.add_file("big", 2000 * MB, disk), ConfigError);
 }
 
+TEST_CASE("a bad read or write request is refused at the call", "[host][errors]") {
+  Simulator sim;
+  FairShare share(sim);
+  Host client(sim, share, small_host());
+  Host server(sim, share, small_host());
+  const FileRef local = client.add_file("local", 100 * MB, client.add_disk("d", 100e6, 100e6));
+  const FileRef exported = server.add_file("exported", 100 * MB, server.add_disk("d", 100e6, 100e6));
+  const Link link(share, "l", 100e6, 0.0);
+  const FileRef remote = client.add_remote_file(server, exported, link);
+  CHECK_THROWS_WITH(client.read_file(local, 0), Catch::Contains("chunk size must be > 0"));
+  CHECK_THROWS_WITH(client.write_file(local, -1), Catch::Contains("chunk size must be > 0"));
+  CHECK_THROWS_WITH(client.read_file(FileRef{7}, 10 * MB), Catch::Contains("unknown file #7"));
+  CHECK_THROWS_WITH(client.read_file(remote, 10 * MB, true), Catch::Contains("direct I/O on a remote file"));
+  CHECK_THROWS_WITH(client.write_file(remote, 10 * MB, true), Catch::Contains("direct I/O on a remote file"));
+  CHECK_THROWS_AS(client.read_file(local, 0), ConfigError);
+}
+
 namespace {
 
 Task<void> random_app(Simulator& sim, Host& host, std::vector<FileRef> files, std::uint64_t seed, int tasks,

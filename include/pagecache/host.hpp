@@ -81,12 +81,13 @@ class Host {
   std::size_t file_count() const noexcept;
 
   /// Reads the whole file in chunks of `chunk_size` bytes; each chunk's copy is kept in
-  /// application memory until release_memory(). `direct`: O_DIRECT, bypassing the page cache.
-  /// Throws ConfigError at the call for a file unknown here, a chunk size <= 0 or direct I/O
-  /// on a remote file; SimulationError from the task when the read cannot proceed.
+  /// application memory until release_memory(). `direct`: O_DIRECT, bypassing this host's page
+  /// cache (an NFS server still serves from, and fills, its own). Throws ConfigError at the
+  /// call for a file unknown here or a chunk size <= 0; SimulationError from the task when the
+  /// read cannot proceed.
   Task<IoResult> read_file(FileRef file, std::int64_t chunk_size, bool direct = false);
-  /// Writes the file's whole size in chunks of `chunk_size` bytes. `direct`: O_DIRECT.
-  /// Errors as read_file's.
+  /// Writes the file's whole size in chunks of `chunk_size` bytes. `direct`: O_DIRECT (on an
+  /// NFS mount the same as without: there is no client write cache). Errors as read_file's.
   Task<IoResult> write_file(FileRef file, std::int64_t chunk_size, bool direct = false);
   /// fsync(2): returns when every dirty byte of the file is on its disk.
   Task<void> fsync(FileRef file);

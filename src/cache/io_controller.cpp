@@ -104,14 +104,19 @@ Task<IoTally> IoController::read_chunk_remote(FileId file, std::int64_t chunk) {
   if (remote_read < 0) remote_read = co_await room_for_read(file, chunk, chunk, "reading");
   const std::int64_t cache_read = chunk - remote_read;
   take_chunk(file, chunk, remote_read);
-  if (remote_read > 0) {
-    FlowSpec client_copy = memory_->write_spec(remote_read);
-    client_copy.bound = std::min(client_copy.bound, memory_->fresh_copy_rate());
-    co_await info.remote.server->serve_read(info.remote.server_file, remote_read, *info.remote.link, client_copy);
-  }
+  if (remote_read > 0) co_await serve_remote(file, remote_read);
   if (cache_read > 0) co_await memory_->read_into_fresh(cache_read);
   // From this host's point of view, data from the server is not from its own cache.
   co_return IoTally{.bytes = chunk, .cache_bytes = cache_read, .disk_bytes = remote_read};
+}
+
+Task<void> IoController::serve_remote(FileId file, std::int64_t bytes) {
+  // The data lands in this host's memory (its cache, or with O_DIRECT the application's
+  // buffer), fresh memory either way.
+  const FileInfo& info = (*files_)[file];
+  FlowSpec client_copy = memory_->write_spec(bytes);
+  client_copy.bound = std::min(client_copy.bound, memory_->fresh_copy_rate());
+  co_await info.remote.server->serve_read(info.remote.server_file, bytes, *info.remote.link, client_copy);
 }
 
 Task<void> IoController::serve_read(FileId file, std::int64_t bytes, const Link& link, FlowSpec client_copy) {
@@ -315,14 +320,12 @@ Task<IoTally> IoController::write_chunk_writethrough(FileId file, std::int64_t c
 }
 
 // Checks the request at the call, as write_file does: the task it hands out is the whole read.
-void IoController::check_request(FileId file, std::int64_t chunk_size, bool direct) const {
+void IoController::check_request(std::int64_t chunk_size) const {
   if (chunk_size <= 0) throw ConfigError(fmt::format("chunk size must be > 0, got {}", chunk_size));
-  const FileInfo& info = (*files_)[file];
-  if (direct && info.is_remote()) throw ConfigError(fmt::format("'{}': direct I/O on a remote file is not modelled", info.name));
 }
 
 Task<IoResult> IoController::read_file(FileId file, std::int64_t chunk_size, bool direct) {
-  check_request(file, chunk_size, direct);
+  check_request(chunk_size);
   return read_whole_file(file, chunk_size, direct);
 }
 
@@ -358,17 +361,23 @@ Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_siz
       total += co_await read_chunk_remote(file, chunk);
       continue;
     }
-    // O_DIRECT: only the application's buffer takes memory; the data comes from the disk.
+    // O_DIRECT: only the application's buffer takes memory; the data comes from the disk, or
+    // over NFS from the server, which serves it as any read: from its cache or its disk, then
+    // cached there (the server does not see the client's O_DIRECT).
     co_await make_room(chunk, kNoFile, file, "reading");
     cache_->allocate_anonymous(chunk);
-    co_await disk->read(chunk, memory_->fresh_copy_rate());
+    if (local) {
+      co_await disk->read(chunk, memory_->fresh_copy_rate());
+    } else {
+      co_await serve_remote(file, chunk);
+    }
     total += IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
   }
   co_return IoResult{.start = start, .end = sim_->now(), .bytes = total.bytes, .cache_bytes = total.cache_bytes, .disk_bytes = total.disk_bytes};
 }
 
 Task<IoResult> IoController::write_file(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool direct) {
-  check_request(file, chunk_size, direct);
+  check_request(chunk_size);
   const FileInfo& info = (*files_)[file];
   if (!direct && !info.is_remote() && cache_->settings().write_mode == WriteMode::Writeback && throttles_writers()) {
     chunks_ += static_cast<std::uint64_t>((bytes + chunk_size - 1) / chunk_size);
@@ -384,7 +393,9 @@ Task<IoResult> IoController::write_file_in_chunks(FileId file, std::int64_t byte
   for (std::int64_t offset = 0; offset < bytes; offset += chunk_size) {
     const std::int64_t chunk = std::min(chunk_size, bytes - offset);
     ++chunks_;
-    if (!direct) {
+    // Over NFS there is no client write cache: O_DIRECT changes nothing, every write goes to
+    // the server (write_chunk).
+    if (!direct || (*files_)[file].is_remote()) {
       total += co_await write_chunk(file, chunk);
       continue;
     }

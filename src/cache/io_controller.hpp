@@ -83,8 +83,10 @@ class IoController {
   std::uint64_t chunk_operations() const noexcept { return chunks_; }
 
  private:
-  /// Throws ConfigError for a chunk size <= 0 or direct I/O on a remote file.
-  void check_request(FileId file, std::int64_t chunk_size, bool direct) const;
+  /// Throws ConfigError for a chunk size <= 0.
+  void check_request(std::int64_t chunk_size) const;
+  /// Reads `bytes` of a remote file from its server into this host's fresh memory.
+  Task<void> serve_remote(FileId file, std::int64_t bytes);
   Task<IoResult> read_whole_file(FileId file, std::int64_t chunk_size, bool direct);
   /// Flushes up to `amount` dirty bytes (skipping `excluded`) and waits for their writes.
   Task<std::int64_t> write_back(std::int64_t amount, FileId excluded);

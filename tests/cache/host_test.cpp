@@ -126,18 +126,48 @@ TEST_CASE("a file larger than its disk is refused", "[host]") {
 TEST_CASE("a bad read or write request is refused at the call", "[host][errors]") {
   Simulator sim;
   FairShare share(sim);
+  Host host(sim, share, small_host());
+  const FileRef file = host.add_file("local", 100 * MB, host.add_disk("d", 100e6, 100e6));
+  CHECK_THROWS_WITH(host.read_file(file, 0), Catch::Contains("chunk size must be > 0"));
+  CHECK_THROWS_WITH(host.write_file(file, -1), Catch::Contains("chunk size must be > 0"));
+  CHECK_THROWS_WITH(host.read_file(FileRef{7}, 10 * MB), Catch::Contains("unknown file #7"));
+  CHECK_THROWS_AS(host.read_file(file, 0), ConfigError);
+}
+
+namespace {
+
+Task<void> read_twice_direct(Simulator& sim, Host& client, FileRef file, std::vector<IoResult>& reads) {
+  for (int i = 0; i < 2; ++i) {
+    reads.push_back(co_await client.read_file(file, 100 * MB, true));
+    client.release_memory(reads.back().bytes);
+  }
+  (void)sim;
+}
+
+}  // namespace
+
+TEST_CASE("direct I/O on an NFS mount bypasses the client's cache, not the server's", "[host][features][nfs]") {
+  // 500 MB on the server's 100 MB/s disk, over a 1000 MB/s link. The first read comes from the
+  // server's disk (5 s) and fills the server's cache; the second comes from that cache, paced
+  // by the copies (memory at 1000 MB/s per host: 0.5 s). The client caches nothing.
+  Simulator sim;
+  FairShare share(sim);
   Host client(sim, share, small_host());
   Host server(sim, share, small_host());
-  const FileRef local = client.add_file("local", 100 * MB, client.add_disk("d", 100e6, 100e6));
-  const FileRef exported = server.add_file("exported", 100 * MB, server.add_disk("d", 100e6, 100e6));
-  const Link link(share, "l", 100e6, 0.0);
+  const FileRef exported = server.add_file("exported", 500 * MB, server.add_disk("d", 100e6, 100e6));
+  const Link link(share, "l", 1000e6, 0.0);
   const FileRef remote = client.add_remote_file(server, exported, link);
-  CHECK_THROWS_WITH(client.read_file(local, 0), Catch::Contains("chunk size must be > 0"));
-  CHECK_THROWS_WITH(client.write_file(local, -1), Catch::Contains("chunk size must be > 0"));
-  CHECK_THROWS_WITH(client.read_file(FileRef{7}, 10 * MB), Catch::Contains("unknown file #7"));
-  CHECK_THROWS_WITH(client.read_file(remote, 10 * MB, true), Catch::Contains("direct I/O on a remote file"));
-  CHECK_THROWS_WITH(client.write_file(remote, 10 * MB, true), Catch::Contains("direct I/O on a remote file"));
-  CHECK_THROWS_AS(client.read_file(local, 0), ConfigError);
+  std::vector<IoResult> reads;
+  sim.spawn(read_twice_direct(sim, client, remote, reads));
+  sim.run_until(100.0);
+  REQUIRE(reads.size() == 2);
+  CHECK(reads[0].end - reads[0].start == Approx(5.0).epsilon(1e-6));
+  CHECK(reads[1].end - reads[1].start == Approx(0.5).epsilon(1e-6));
+  CHECK(reads[0].cache_bytes == 0);
+  CHECK(reads[1].disk_bytes == 500 * MB);  // from the client's side: not from its own cache
+  CHECK(client.cached(remote) == 0);
+  CHECK(server.cached(exported) == 500 * MB);
+  CHECK(client.memory().anonymous == 0);
 }
 
 namespace {

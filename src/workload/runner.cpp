@@ -15,6 +15,7 @@
 #include <map>
 #include <memory>
 #include <span>
+#include <tuple>
 #include <unordered_map>
 
 namespace pagecache {
@@ -27,14 +28,20 @@ struct PlacedFile {
   const std::string* name;
 };
 
-// A task's files, found once before the run: looking names up per I/O phase cost a hashed
-// lookup and the reading of long-cold strings, a few cache misses each with 10^5 applications.
-// Spans of one array, in the order of the task's lists.
-struct TaskFiles {
+// A task as its run reads it, made once before the run, the plans of all tasks side by side:
+// looking file names up per I/O phase cost a hashed lookup and the reading of long-cold
+// strings, and the task's own record is a few cache lines away; with 10^5 applications each
+// is a cache miss per phase. Its files are spans of one array of copies (not pointers into
+// the map: its nodes are scattered), in the order of the task's lists.
+struct TaskPlan {
   std::uint32_t reads = 0;  // first read; the writes follow the reads, the deletes the writes
   std::uint32_t writes = 0;
   std::uint32_t deletes = 0;
   std::uint32_t end = 0;
+  std::int64_t chunk_size = 0;
+  double compute = 0.0;
+  bool fsync = false;
+  bool direct_io = false;
 };
 
 class Runner {
@@ -69,11 +76,11 @@ class Runner {
     }
     for (const AppSpec& app : scenario.apps) {
       host_named(app.host, fmt::format("application '{}'", app.name));
-      for (const TaskSpec& task : app.tasks) plan_files(task);
+      for (const TaskSpec& task : app.tasks) plan_task(task);
     }
     for (const WorkflowSpec& w : scenario.workflows) {
       host_named(w.host, fmt::format("workflow '{}'", w.name));
-      for (const TaskSpec& task : w.tasks) plan_files(task);
+      for (const TaskSpec& task : w.tasks) plan_task(task);
     }
   }
 
@@ -85,7 +92,7 @@ class Runner {
     result_.timeline.reserve(3 * tasks);
     plan_cache_contents(tasks);
     const auto wall_start = std::chrono::steady_clock::now();
-    const TaskFiles* plan = task_files_.data();
+    const TaskPlan* plan = task_plans_.data();
     for (const AppSpec& app : scenario_.apps) {
       ++running_;
       sim_.spawn(run_app(app, plan));
@@ -157,13 +164,13 @@ class Runner {
     return *it->second;
   }
 
-  void plan_files(const TaskSpec& task) {
-    TaskFiles& plan = task_files_.emplace_back();
+  void plan_task(const TaskSpec& task) {
+    TaskPlan& plan = task_plans_.emplace_back();
     const auto add = [&](const std::vector<std::string>& names) {
       for (const std::string& name : names) {
         const auto it = files_.find(name);
         if (it == files_.end()) throw ConfigError(fmt::format("task '{}': no file named '{}'", task.name, name));
-        planned_files_.push_back(&it->second);
+        planned_files_.push_back(it->second);
       }
       return static_cast<std::uint32_t>(planned_files_.size());
     };
@@ -171,9 +178,13 @@ class Runner {
     plan.writes = add(task.reads);
     plan.deletes = add(task.writes);
     plan.end = add(task.deletes);
+    plan.chunk_size = task.chunk_size;
+    plan.compute = task.compute;
+    plan.fsync = task.fsync;
+    plan.direct_io = task.direct_io;
   }
 
-  std::span<const PlacedFile* const> planned(std::uint32_t begin, std::uint32_t end) const {
+  std::span<const PlacedFile> planned(std::uint32_t begin, std::uint32_t end) const {
     return {planned_files_.data() + begin, planned_files_.data() + end};
   }
 
@@ -181,7 +192,7 @@ class Runner {
   // (registered once per host and file, when first used).
   FileRef file_on(Host& client, const PlacedFile& stored) {
     if (stored.host == &client) return stored.ref;
-    const auto key = std::make_pair(&client, &stored);
+    const auto key = std::make_tuple(&client, stored.host, stored.ref.index);
     if (auto it = remote_files_.find(key); it != remote_files_.end()) return it->second;
     const std::string& server = stored.host->name();
     auto link = links_.find({client.name(), server});
@@ -239,13 +250,13 @@ class Runner {
   // coroutine in its frame, and with 10^5 applications every line of a frame is a cache miss
   // when it is made and when it resumes: the frame holds the tallies, not the row and its
   // strings, and one co_await serves reads and writes.
-  Task<std::int64_t> io_phase(const std::string& app, const TaskSpec& task, const TaskFiles& plan, Host& host, bool reading) {
+  Task<std::int64_t> io_phase(const std::string& app, const TaskSpec& task, const TaskPlan& plan, Host& host, bool reading) {
     const double start = sim_.now();
     IoResult sum;
-    for (const PlacedFile* placed : reading ? planned(plan.reads, plan.writes) : planned(plan.writes, plan.deletes)) {
-      const FileRef file = file_on(host, *placed);
-      const IoResult r = co_await transfer(host, file, task, reading);
-      if (!reading && task.fsync) co_await host.fsync(file);
+    for (const PlacedFile& placed : reading ? planned(plan.reads, plan.writes) : planned(plan.writes, plan.deletes)) {
+      const FileRef file = file_on(host, placed);
+      const IoResult r = co_await transfer(host, file, plan, reading);
+      if (!reading && plan.fsync) co_await host.fsync(file);
       sum.bytes += r.bytes;
       sum.cache_bytes += r.cache_bytes;
       sum.disk_bytes += r.disk_bytes;
@@ -255,24 +266,24 @@ class Runner {
     co_return sum.bytes;
   }
 
-  static Task<IoResult> transfer(Host& host, FileRef file, const TaskSpec& task, bool reading) {
-    return reading ? host.read_file(file, task.chunk_size, task.direct_io) : host.write_file(file, task.chunk_size, task.direct_io);
+  static Task<IoResult> transfer(Host& host, FileRef file, const TaskPlan& plan, bool reading) {
+    return reading ? host.read_file(file, plan.chunk_size, plan.direct_io) : host.write_file(file, plan.chunk_size, plan.direct_io);
   }
 
-  Task<void> run_task(const std::string& app, const TaskSpec& task, const TaskFiles& plan, Host& host) {
+  Task<void> run_task(const std::string& app, const TaskSpec& task, const TaskPlan& plan, Host& host) {
     const std::int64_t read_bytes = co_await io_phase(app, task, plan, host, true);
     const double compute_start = sim_.now();
-    if (task.compute > 0.0) co_await host.compute(task.compute);
+    if (plan.compute > 0.0) co_await host.compute(plan.compute);
     result_.timeline.push_back({app, task.name, "compute", compute_start, sim_.now(), 0, 0, 0});
     co_await io_phase(app, task, plan, host, false);
     host.release_memory(read_bytes);  // the task's buffers are freed when it ends
-    for (const PlacedFile* stored : planned(plan.deletes, plan.end)) {
-      co_await host.delete_file(file_on(host, *stored));
-      if (stored->host != &host) co_await stored->host->delete_file(stored->ref);  // on the server too
+    for (const PlacedFile& stored : planned(plan.deletes, plan.end)) {
+      co_await host.delete_file(file_on(host, stored));
+      if (stored.host != &host) co_await stored.host->delete_file(stored.ref);  // on the server too
     }
   }
 
-  Task<void> run_app(const AppSpec& app, const TaskFiles* plan) {
+  Task<void> run_app(const AppSpec& app, const TaskPlan* plan) {
     Host& host = *hosts_.at(app.host);
     for (const TaskSpec& task : app.tasks) co_await run_task(app.name, task, *plan++, host);
     finish_one();
@@ -316,7 +327,7 @@ class Runner {
     return waits;
   }
 
-  Task<void> run_workflow_task(const WorkflowSpec& w, const TaskSpec& task, const TaskFiles& plan, workload::CoreSlots& slots,
+  Task<void> run_workflow_task(const WorkflowSpec& w, const TaskSpec& task, const TaskPlan& plan, workload::CoreSlots& slots,
                                std::vector<Event*> prerequisites, Event& done) {
     for (Event* prerequisite : prerequisites) co_await prerequisite->wait();
     co_await slots.acquire();
@@ -341,9 +352,9 @@ class Runner {
   std::deque<Link> links_storage_;
   std::map<std::pair<std::string, std::string>, const Link*> links_;
   std::unordered_map<std::string, PlacedFile> files_;  // nodes: stable addresses
-  std::vector<TaskFiles> task_files_;                  // per task, apps' then workflows', in order
-  std::vector<const PlacedFile*> planned_files_;
-  std::map<std::pair<const Host*, const PlacedFile*>, FileRef> remote_files_;
+  std::vector<TaskPlan> task_plans_;  // per task, apps' then workflows', in order
+  std::vector<PlacedFile> planned_files_;
+  std::map<std::tuple<const Host*, const Host*, std::uint32_t>, FileRef> remote_files_;  // (client, server, server's file)
   std::vector<const PlacedFile*> file_order_;
   bool record_cache_ = false;
   std::vector<std::unique_ptr<workload::CoreSlots>> slots_;

@@ -65,21 +65,20 @@ class Runner {
     files_.reserve(scenario.files.size());
     file_order_.reserve(scenario.files.size());
     for (const FileSpec& f : scenario.files) {
-      const std::string what = fmt::format("file '{}'", f.name);
-      Host& host = host_named(f.host, what);
+      Host& host = host_named(f.host, "file", f.name);
       const auto disk = disks_.at(f.host).find(f.disk);
-      if (disk == disks_.at(f.host).end()) throw ConfigError(fmt::format("{}: host '{}' has no disk named '{}'", what, f.host, f.disk));
+      if (disk == disks_.at(f.host).end()) throw ConfigError(fmt::format("file '{}': host '{}' has no disk named '{}'", f.name, f.host, f.disk));
       auto [it, added] = files_.try_emplace(f.name, PlacedFile{&host, host.add_file(f.name, f.size, disk->second, f.cached), nullptr});
       if (!added) throw ConfigError(fmt::format("two files named '{}'", f.name));
       it->second.name = &it->first;
       file_order_.push_back(&it->second);
     }
     for (const AppSpec& app : scenario.apps) {
-      host_named(app.host, fmt::format("application '{}'", app.name));
+      host_named(app.host, "application", app.name);
       for (const TaskSpec& task : app.tasks) plan_task(task);
     }
     for (const WorkflowSpec& w : scenario.workflows) {
-      host_named(w.host, fmt::format("workflow '{}'", w.name));
+      host_named(w.host, "workflow", w.name);
       for (const TaskSpec& task : w.tasks) plan_task(task);
     }
   }
@@ -158,9 +157,10 @@ class Runner {
   RunSummary& summary() { return result_.summary; }
 
   // Scenarios built in code skip the loader's checks: what the run relies on is checked here.
-  Host& host_named(const std::string& name, const std::string& what) const {
+  // `kind` and `owner` name what asks for the host (e.g. file 'a'), for the error only.
+  Host& host_named(const std::string& name, const char* kind, const std::string& owner) const {
     const auto it = hosts_.find(name);
-    if (it == hosts_.end()) throw ConfigError(fmt::format("{}: no host named '{}'", what, name));
+    if (it == hosts_.end()) throw ConfigError(fmt::format("{} '{}': no host named '{}'", kind, owner, name));
     return *it->second;
   }
 

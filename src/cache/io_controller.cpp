@@ -10,7 +10,14 @@
 namespace pagecache::cache {
 
 namespace {
+
 constexpr std::int64_t kPageSize = 4096;
+
+// A whole file's read or write as Host reports it: its span and what it moved.
+IoResult file_result(double start, double end, const IoTally& t) {
+  return IoResult{.start = start, .end = end, .bytes = t.bytes, .cache_bytes = t.cache_bytes, .disk_bytes = t.disk_bytes};
+}
+
 }  // namespace
 
 Task<std::int64_t> IoController::write_back(std::int64_t amount, FileId excluded) {
@@ -270,7 +277,7 @@ Task<IoResult> IoController::write_file_throttled(FileId file, std::int64_t byte
     if (throttled) --throttled_writers_;
   }
   if (whole_file) cache_->set_being_written(file, false);
-  co_return IoResult{.start = start, .end = sim_->now(), .bytes = bytes, .cache_bytes = bytes, .disk_bytes = 0};
+  co_return file_result(start, sim_->now(), IoTally{.bytes = bytes, .cache_bytes = bytes, .disk_bytes = 0});
 }
 
 Task<IoTally> IoController::write_chunk_writeback(FileId file, std::int64_t chunk) {
@@ -319,7 +326,7 @@ Task<IoTally> IoController::write_chunk_writethrough(FileId file, std::int64_t c
   co_return IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
 }
 
-// Checks the request at the call, as write_file does: the task it hands out is the whole read.
+// read_file and write_file check their request when called, not when their task is awaited.
 void IoController::check_request(std::int64_t chunk_size) const {
   if (chunk_size <= 0) throw ConfigError(fmt::format("chunk size must be > 0, got {}", chunk_size));
 }
@@ -373,7 +380,7 @@ Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_siz
     }
     total += IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
   }
-  co_return IoResult{.start = start, .end = sim_->now(), .bytes = total.bytes, .cache_bytes = total.cache_bytes, .disk_bytes = total.disk_bytes};
+  co_return file_result(start, sim_->now(), total);
 }
 
 Task<IoResult> IoController::write_file(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool direct) {
@@ -390,20 +397,21 @@ Task<IoResult> IoController::write_file_in_chunks(FileId file, std::int64_t byte
   const double start = sim_->now();
   IoTally total;
   cache_->set_being_written(file, true);
+  // Over NFS there is no client write cache: O_DIRECT changes nothing, every write goes to the
+  // server (write_chunk).
+  const Disk* const direct_to = direct && !(*files_)[file].is_remote() ? (*files_)[file].disk : nullptr;
   for (std::int64_t offset = 0; offset < bytes; offset += chunk_size) {
     const std::int64_t chunk = std::min(chunk_size, bytes - offset);
     ++chunks_;
-    // Over NFS there is no client write cache: O_DIRECT changes nothing, every write goes to
-    // the server (write_chunk).
-    if (!direct || (*files_)[file].is_remote()) {
+    if (direct_to == nullptr) {
       total += co_await write_chunk(file, chunk);
       continue;
     }
-    co_await (*files_)[file].disk->write(chunk);  // O_DIRECT: straight to the disk
+    co_await direct_to->write(chunk);  // O_DIRECT: straight to the disk
     total += IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
   }
   cache_->set_being_written(file, false);
-  co_return IoResult{.start = start, .end = sim_->now(), .bytes = total.bytes, .cache_bytes = total.cache_bytes, .disk_bytes = total.disk_bytes};
+  co_return file_result(start, sim_->now(), total);
 }
 
 Task<void> IoController::fsync(FileId file) {

@@ -238,7 +238,12 @@ void expand_pipelines(const toml::table& table, Scenario& s, const std::string& 
     for (std::int64_t k = 1; k <= tasks + 1; ++k) s.files.push_back({file_name(k), size, files_host, disk, k == 1 && cached});
     AppSpec app{std::to_string(i), host, {}};
     for (std::int64_t k = 1; k <= tasks; ++k) {
-      app.tasks.push_back(TaskSpec{std::to_string(k), {file_name(k)}, cpu, {file_name(k + 1)}, chunk, {}});
+      TaskSpec& task = app.tasks.emplace_back();
+      task.name = std::to_string(k);
+      task.reads = {file_name(k)};
+      task.compute = cpu;
+      task.writes = {file_name(k + 1)};
+      task.chunk_size = chunk;
     }
     s.apps.push_back(std::move(app));
   }

@@ -1,97 +1,77 @@
 #include "cache/lru_list.hpp"
 
-#include "cache/sub_list.hpp"
 #include "engine/check.hpp"
 
 #include <fmt/format.h>
 
 namespace pagecache::cache {
 
-LruList::~LruList() {
-  for (auto& list : by_state_) list.clear();
-  blocks_.clear();
-}
-
-void LruList::link_state(Block& block) {
+void LruList::link_state(BlockId id) {
   // With no other block of its state before it (the one block taken for writeback) it is
   // placed at once.
-  const BlockState state = block.state;
-  link_in_order(blocks_, by_state_[index(state)], block, [state](const Block& b) { return b.state == state; });
+  const BlockState state = (*pool_)[id].state;
+  link_in_order(*pool_, blocks_, by_state_[index(state)], id, [state](const Block& b) { return b.state == state; });
 }
 
-void LruList::push_back(Block& block) {
+void LruList::push_back(BlockId id) {
+  Block& block = (*pool_)[id];
   PC_ASSERT(block.size > 0);
   block.list = kind_;
   block.order = ++last_order_;
-  blocks_.push_back(block);
-  by_state_[index(block.state)].push_back(block);
+  blocks_.push_back(*pool_, id);
+  by_state_[index(block.state)].push_back(*pool_, id);
   bytes_ += block.size;
   state_bytes_[index(block.state)] += block.size;
 }
 
-void LruList::insert_after(Block& position, Block& block) {
-  PC_ASSERT(block.size > 0 && position.list == kind_);
+void LruList::insert_after(BlockId position, BlockId id) {
+  Block& block = (*pool_)[id];
+  const Block& at = (*pool_)[position];
+  PC_ASSERT(block.size > 0 && at.list == kind_);
   block.list = kind_;
-  block.order = position.order;
-  blocks_.insert(std::next(blocks_.iterator_to(position)), block);
-  if (block.state == position.state) {
-    StateOrder& list = by_state_[index(block.state)];
-    list.insert(std::next(list.iterator_to(position)), block);
-  } else {
-    link_state(block);
-  }
+  block.order = at.order;
+  blocks_.insert_after(*pool_, position, id);
+  if (block.state == at.state) by_state_[index(block.state)].insert_after(*pool_, position, id);
+  else link_state(id);
   bytes_ += block.size;
   state_bytes_[index(block.state)] += block.size;
 }
 
-void LruList::erase(Block& block) {
-  PC_ASSERT(block.list == kind_ && block.lru_hook.is_linked());
-  blocks_.erase(blocks_.iterator_to(block));
-  StateOrder& list = by_state_[index(block.state)];
-  list.erase(list.iterator_to(block));
+void LruList::erase(BlockId id) {
+  const Block& block = (*pool_)[id];
+  PC_ASSERT(block.list == kind_);
+  blocks_.erase(*pool_, id);
+  by_state_[index(block.state)].erase(*pool_, id);
   bytes_ -= block.size;
   state_bytes_[index(block.state)] -= block.size;
 }
 
-void LruList::set_state(Block& block, BlockState state) {
+void LruList::set_state(BlockId id, BlockState state) {
+  Block& block = (*pool_)[id];
   if (block.state == state) return;
-  StateOrder& from = by_state_[index(block.state)];
-  from.erase(from.iterator_to(block));
+  by_state_[index(block.state)].erase(*pool_, id);
   state_bytes_[index(block.state)] -= block.size;
   block.state = state;
   state_bytes_[index(state)] += block.size;
-  link_state(block);
+  link_state(id);
 }
 
-void LruList::resize(Block& block, std::int64_t new_size) {
+void LruList::resize(BlockId id, std::int64_t new_size) {
+  Block& block = (*pool_)[id];
   PC_ASSERT(new_size > 0);
   bytes_ += new_size - block.size;
   state_bytes_[index(block.state)] += new_size - block.size;
   block.size = new_size;
 }
 
-Block* LruList::next(Block& block) noexcept {
-  auto it = std::next(blocks_.iterator_to(block));
-  return it == blocks_.end() ? nullptr : &*it;
-}
-
-Block* LruList::front(BlockState state) noexcept {
-  StateOrder& list = by_state_[index(state)];
-  return list.empty() ? nullptr : &list.front();
-}
-
-Block* LruList::next(Block& block, BlockState state) noexcept {
-  StateOrder& list = by_state_[index(state)];
-  auto it = std::next(list.iterator_to(block));
-  return it == list.end() ? nullptr : &*it;
-}
-
 void LruList::check() const {
   std::int64_t total = 0;
   std::array<std::int64_t, 3> per_state{};
   std::array<std::size_t, 3> counts{};
+  std::size_t seen = 0;
   const Block* previous = nullptr;
-  for (const Block& b : blocks_) {
+  for (const Block& b : blocks()) {
+    PC_ASSERT_MSG(seen < blocks_.size(), "the list holds more blocks than it counts (a cycle?)");
     PC_ASSERT(b.size > 0 && b.list == kind_);
     // Order keys never decrease along the list; equal keys are pieces of one file's block.
     PC_ASSERT_MSG(b.order > 0 && b.order <= last_order_, "order key never given");
@@ -103,18 +83,22 @@ void LruList::check() const {
     total += b.size;
     per_state[index(b.state)] += b.size;
     ++counts[index(b.state)];
+    ++seen;
   }
+  PC_ASSERT_MSG(seen == blocks_.size(), fmt::format("list counts {} blocks, holds {}", blocks_.size(), seen));
   PC_ASSERT_MSG(total == bytes_, fmt::format("list bytes {} != block sum {}", bytes_, total));
   for (std::size_t s = 0; s < 3; ++s) {
     PC_ASSERT(per_state[s] == state_bytes_[s]);
     PC_ASSERT(counts[s] == by_state_[s].size());
     // Each sub-list follows the LRU order of the main list.
-    auto sub = by_state_[s].begin();
-    for (const Block& b : blocks_) {
-      if (index(b.state) != s) continue;
-      PC_ASSERT_MSG(&*sub == &b, "state sub-list out of LRU order");
+    auto sub = by_state_[s].range(*pool_).begin();
+    const auto all = blocks();
+    for (auto it = all.begin(); it != all.end(); ++it) {
+      if (index(it->state) != s) continue;
+      PC_ASSERT_MSG(sub.id() == it.id(), "state sub-list out of LRU order");
       ++sub;
     }
+    PC_ASSERT_MSG(sub.id() == kNoBlock, "state sub-list holds a block not in the list");
   }
 }
 

@@ -1,9 +1,12 @@
 #pragma once
 // LruList: one of the page cache's two LRU lists (inactive or active), with O(1) byte
 // counters, and sub-lists of its clean, dirty and writeback blocks kept in the list's own
-// relative order. Front = least recently used.
+// relative order. Front = least recently used. Blocks are named by id in the pool the list
+// was made with.
 
 #include "cache/block.hpp"
+#include "cache/block_list.hpp"
+#include "cache/block_pool.hpp"
 
 #include <array>
 #include <cstddef>
@@ -11,12 +14,14 @@
 
 namespace pagecache::cache {
 
+using LruOrder = BlockList<&Block::lru, true>;
+using StateOrder = BlockList<&Block::by_state, true>;
+
 class LruList {
  public:
-  explicit LruList(ListKind kind) noexcept : kind_(kind) {}
+  LruList(ListKind kind, BlockPool& pool) noexcept : kind_(kind), pool_(&pool) {}
   LruList(const LruList&) = delete;
   LruList& operator=(const LruList&) = delete;
-  ~LruList();
 
   ListKind kind() const noexcept { return kind_; }
   std::int64_t bytes() const noexcept { return bytes_; }
@@ -26,33 +31,37 @@ class LruList {
   bool empty() const noexcept { return blocks_.empty(); }
 
   /// Appends at the most-recently-used end, with an order key above every other's here.
-  void push_back(Block& block);
+  void push_back(BlockId block);
   /// Inserts `block` right after `position` (a block of this list), with its order key: used
   /// when splitting.
-  void insert_after(Block& position, Block& block);
-  void erase(Block& block);
+  void insert_after(BlockId position, BlockId block);
+  void erase(BlockId block);
   /// Changes a block's state, keeping the state sub-lists in LRU order.
-  void set_state(Block& block, BlockState state);
+  void set_state(BlockId block, BlockState state);
   /// Adjusts the byte counters after a block of this list changed size.
-  void resize(Block& block, std::int64_t new_size);
+  void resize(BlockId block, std::int64_t new_size);
 
-  Block* front() noexcept { return blocks_.empty() ? nullptr : &blocks_.front(); }
-  Block* back() noexcept { return blocks_.empty() ? nullptr : &blocks_.back(); }
-  Block* next(Block& block) noexcept;
-  /// Least recently used block in `state`, and the next one in that state.
-  Block* front(BlockState state) noexcept;
-  Block* next(Block& block, BlockState state) noexcept;
+  /// kNoBlock where there is none.
+  BlockId front() const noexcept { return blocks_.front(); }
+  BlockId back() const noexcept { return blocks_.back(); }
+  BlockId next(BlockId block) const noexcept { return LruOrder::next(*pool_, block); }
+  /// Least recently used block in `state`, and the next one in the state of `block`.
+  BlockId front(BlockState state) const noexcept { return by_state_[index(state)].front(); }
+  BlockId next_in_state(BlockId block) const noexcept { return StateOrder::next(*pool_, block); }
 
-  const LruOrder& blocks() const noexcept { return blocks_; }
+  const LruOrder& order() const noexcept { return blocks_; }
+  /// The blocks in LRU order, for checks and tests.
+  LruOrder::Range blocks() const { return blocks_.range(*pool_); }
 
   /// Throws InvariantError if counters or sub-lists disagree with the blocks.
   void check() const;
 
  private:
   static std::size_t index(BlockState state) noexcept { return static_cast<std::size_t>(state); }
-  void link_state(Block& block);
+  void link_state(BlockId block);
 
   ListKind kind_;
+  BlockPool* pool_;
   LruOrder blocks_;
   std::array<StateOrder, 3> by_state_;
   std::int64_t bytes_ = 0;

@@ -15,9 +15,10 @@
 // list, and every file not being written that has clean data there is in reclaimable_.
 
 #include "cache/block.hpp"
+#include "cache/block_list.hpp"
+#include "cache/block_pool.hpp"
 #include "cache/file_heap.hpp"
 #include "cache/lru_list.hpp"
-#include "engine/object_pool.hpp"
 
 #include <pagecache/cache_settings.hpp>
 #include <pagecache/memory_state.hpp>
@@ -163,24 +164,26 @@ class PageCache {
   void check_invariants() const;
 
  private:
-  // What every operation on a file reads and writes lies in its first cache line; the clean
-  // sub-lists, used by eviction only, in the second. With 10^5 applications a file's entry is
+  // A file's lists and counters, in one cache line. With 10^5 applications a file's entry is
   // out of cache whenever it is touched (an entry straddling three lines cost up to three
   // misses each time, and entries were a sixth of the harness's time at 10^5 pipelines).
+  using FileOrder = BlockList<&Block::in_file, false>;  // its block count is the entry's
+  using FileCleanOrder = BlockList<&Block::dirty_or_clean, false>;
   struct alignas(64) FileEntry {
     FileOrder inactive;
     FileOrder active;
+    // With protect_files_being_written: the file's clean blocks in each LRU list, in LRU
+    // order (sub-lists of `inactive` and `active`).
+    FileCleanOrder clean_inactive;
+    FileCleanOrder clean_active;
     std::int64_t inactive_bytes = 0;
     std::int64_t active_bytes = 0;
     std::int64_t dirty_bytes = 0;
     int writers = 0;            // writes in progress
     std::uint32_t blocks = 0;   // in `inactive` and `active`
-    // With protect_files_being_written: the file's clean blocks in each LRU list, in LRU
-    // order (sub-lists of `inactive` and `active`).
-    FileCleanOrder clean_inactive;
-    FileCleanOrder clean_active;
   };
-  static_assert(offsetof(FileEntry, clean_inactive) == 64, "a file's counters and lists fill its first cache line");
+  static_assert(sizeof(FileEntry) == 64, "a file's lists and counters fill one cache line");
+  using DirtyOrder = BlockList<&Block::dirty_or_clean, false>;
 
   FileEntry& file_entry(FileId file);
   LruList& list_of(ListKind kind) noexcept { return kind == ListKind::Inactive ? inactive_ : active_; }
@@ -190,21 +193,24 @@ class PageCache {
   }
   FileHeap& reclaimable(ListKind kind) noexcept { return reclaimable_[static_cast<std::size_t>(kind)]; }
 
-  Block& new_block(FileId file, std::int64_t size, BlockState state, double now);
+  BlockId new_block(FileId file, std::int64_t size, BlockState state, double now);
   /// Adds `bytes` to the clean block at the MRU end of `kind` if it is the file's with the
   /// same referenced mark; false if there is no such block.
   bool extend_tail(ListKind kind, FileId file, std::int64_t bytes, bool referenced);
   /// Puts one dirty block in writeback under a new token.
-  Flushed take_for_writeback(Block& block);
+  Flushed take_for_writeback(BlockId block);
+  /// A dirty block goes into writeback as part of the write `token` (held, while it is
+  /// written, in the links it had on the dirty list).
+  void start_writeback(BlockId block, std::uint64_t token);
   /// New data of `file` at the MRU end of the inactive list, taken from free memory.
   void add_new(FileId file, std::int64_t bytes, BlockState state, double now, bool referenced = false);
-  void append(Block& block, ListKind kind);
-  void unlink(Block& block);
-  void destroy(Block& block);
-  void set_state(Block& block, BlockState state);
-  /// Cuts the first `head_size` bytes of `block` off into a new block placed right before the
-  /// rest, in every list; returns the head.
-  Block& split_front(Block& block, std::int64_t head_size);
+  void append(BlockId block, ListKind kind);
+  void unlink(BlockId block);
+  void destroy(BlockId block);
+  void set_state(BlockId block, BlockState state);
+  /// Cuts the first `head_size` bytes of `block` off into a new block placed right after it,
+  /// in every list, holding the rest; returns `block`, now the head.
+  BlockId split_front(BlockId block, std::int64_t head_size);
   /// On in debug builds, off otherwise; the environment variable PAGECACHE_CHECK_INVARIANTS
   /// (0 or 1) overrides it, e.g. to run large simulations quickly in a debug build.
   static bool checking_by_default();
@@ -212,32 +218,33 @@ class PageCache {
   void settle();
   /// The dirty block after `block` in the order flush_expired_block searches: LRU order,
   /// inactive list then active list.
-  Block* next_dirty(Block& block) noexcept;
+  BlockId next_dirty(BlockId block) const noexcept;
   /// Keeps expiry_scan_ true when a dirty block enters a list or leaves the dirty ones.
-  void on_dirty_linked(const Block& block) noexcept;
-  void on_dirty_unlinked(const Block& block) noexcept;
+  void on_dirty_linked(BlockId block) noexcept;
+  void on_dirty_unlinked(BlockId block) noexcept;
   /// Keep the files' clean lists, and reclaimable_, up to date (with
   /// protect_files_being_written): a clean block was linked in its other lists, or a linked
   /// block became clean; a clean block is about to leave its lists or its state.
-  void on_clean_linked(Block& block) {
+  void on_clean_linked(BlockId block) {
     if (settings_.protect_files_being_written) link_clean(block);
   }
-  void on_clean_unlinked(Block& block) {
+  void on_clean_unlinked(BlockId block) {
     if (settings_.protect_files_being_written) unlink_clean(block);
   }
-  void link_clean(Block& block);
-  void unlink_clean(Block& block);
+  void link_clean(BlockId block);
+  void unlink_clean(BlockId block);
   /// With protect_files_being_written: the least recently used clean block of `kind` whose
-  /// file is neither `excluded` nor being written, or nullptr. If `excluded` comes to the top
+  /// file is neither `excluded` nor being written, or kNoBlock. If `excluded` comes to the top
   /// of reclaimable_ it is taken out and `set_aside` set: the caller puts it back.
-  Block* next_unwritten_clean(ListKind kind, FileId excluded, bool& set_aside);
+  BlockId next_unwritten_clean(ListKind kind, FileId excluded, bool& set_aside);
 
   CacheSettings settings_;
   std::int64_t total_;
   std::int64_t anonymous_ = 0;
   std::int64_t reserved_ = 0;
-  LruList inactive_{ListKind::Inactive};
-  LruList active_{ListKind::Active};
+  BlockPool blocks_;
+  LruList inactive_{ListKind::Inactive, blocks_};
+  LruList active_{ListKind::Active, blocks_};
   DirtyOrder dirty_by_age_;  // dirty blocks, oldest entry time first
   // Where the last search for expired data stopped: every dirty block before `after` in
   // next_dirty's order has an entry time later than `cutoff`. The flusher takes expired blocks
@@ -246,7 +253,7 @@ class PageCache {
   // dirty block of entry time <= cutoff is linked anywhere, or when `after` leaves the dirty
   // blocks.
   struct ExpiryScan {
-    Block* after = nullptr;
+    BlockId after = kNoBlock;
     double cutoff = 0.0;
   };
   ExpiryScan expiry_scan_;
@@ -261,7 +268,6 @@ class PageCache {
   // least recently used clean block of any file not being written. Two files' first clean
   // blocks never share an order key (equal keys are pieces of one file's block).
   std::array<FileHeap, 2> reclaimable_;  // by ListKind
-  detail::ObjectPool<Block> pool_;
   std::uint64_t next_token_ = 1;
   std::int64_t evicted_total_ = 0;
   std::int64_t peak_dirty_ = 0;

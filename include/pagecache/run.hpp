@@ -32,12 +32,11 @@ struct MemoryRow {
   MemoryState state;
 };
 
-/// Bytes of one file in its host's page cache after an I/O phase of a task.
+/// Bytes of one file in its host's page cache after an I/O phase of a task: 16 bytes, for there
+/// is a row per file and I/O phase (1,000 pipelines of four files make 24 million).
 struct CacheRow {
-  std::string app;
-  std::string task;
-  std::string phase;
-  std::string file;
+  std::uint32_t phase = 0;  ///< the I/O phase: its row in RunResult::timeline (app, task, read or write)
+  std::uint32_t file = 0;   ///< the file: its name in RunResult::files
   std::int64_t cached = 0;
 };
 
@@ -65,6 +64,10 @@ struct RunSummary {
 struct RunResult {
   std::vector<PhaseRow> timeline;
   std::vector<MemoryRow> memory;
+  /// The scenario's files, in its order, what CacheRow::file names (empty if the cache contents
+  /// are not recorded).
+  std::vector<std::string> files;
+  /// The cache contents: after each I/O phase, every file, in `files` order.
   std::vector<CacheRow> cache;
   /// Empty if `cache` holds the cache contents; otherwise why they were not recorded.
   std::string cache_not_recorded;

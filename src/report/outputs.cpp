@@ -7,12 +7,14 @@
 #include <fmt/compile.h>
 #include <fmt/format.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
 #include <set>
 #include <unistd.h>
+#include <utility>
 
 namespace pagecache::report {
 
@@ -53,44 +55,88 @@ void write_file(const fs::path& path, const std::string& text) {
 
 }  // namespace
 
-// The CSV writers format each row straight into one fmt::memory_buffer: a string made and
-// appended per row (or fmt writing into a std::string a character at a time) was nearly half
-// the instructions of a whole `pcsim run` of Exp 2 with 32 pipelines, for its cache.csv.
-std::string timeline_csv(const RunResult& r) {
-  fmt::memory_buffer out;
-  auto to = fmt::appender(out);
-  fmt::format_to(to, "app,task,phase,start_s,end_s,bytes,cache_bytes,disk_bytes\n");
-  for (const PhaseRow& p : r.timeline) {
-    fmt::format_to(to, FMT_COMPILE("{},{},{},{:.6f},{:.6f},{},{},{}\n"), p.app, p.task, p.phase, p.start, p.end, p.bytes, p.cache_bytes,
-                   p.disk_bytes);
+// A CSV file written as it is formatted: rows go straight into one small fmt::memory_buffer
+// (a string made and appended per row, or fmt writing into a std::string a character at a
+// time, was nearly half the instructions of a whole `pcsim run` of Exp 2 with 32 pipelines,
+// for its cache.csv), which is written out and reused whenever it fills. The whole file in
+// memory, in a buffer grown by doubling and then copied into a string, touched three times its
+// size in fresh pages: a third of that run's page faults, which on a virtual machine cost
+// microseconds each.
+class CsvFile {
+ public:
+  explicit CsvFile(const fs::path& path) : path_(path), file_(std::fopen(path.c_str(), "wb")) {
+    if (file_ == nullptr) throw Error(fmt::format("cannot write {}", path_.string()));
   }
-  return fmt::to_string(out);
+  CsvFile(const CsvFile&) = delete;
+  CsvFile& operator=(const CsvFile&) = delete;
+  ~CsvFile() {
+    if (file_ != nullptr) std::fclose(file_);
+  }
+
+  fmt::appender out() { return fmt::appender(buffer_); }
+  /// After each row: writes the buffer out once it holds enough.
+  void row_written() {
+    if (buffer_.size() >= kFlushAt) flush();
+  }
+  void close() {
+    flush();
+    const bool failed = std::fclose(std::exchange(file_, nullptr)) != 0;
+    if (failed) throw Error(fmt::format("cannot write {}", path_.string()));
+  }
+
+ private:
+  static constexpr std::size_t kFlushAt = 1 << 16;
+  void flush() {
+    if (std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size()) {
+      throw Error(fmt::format("cannot write {}", path_.string()));
+    }
+    buffer_.clear();
+  }
+
+  fs::path path_;
+  std::FILE* file_;
+  fmt::memory_buffer buffer_;
+};
+
+void write_timeline_csv(const fs::path& path, const RunResult& r) {
+  CsvFile csv(path);
+  fmt::format_to(csv.out(), "app,task,phase,start_s,end_s,bytes,cache_bytes,disk_bytes\n");
+  for (const PhaseRow& p : r.timeline) {
+    fmt::format_to(csv.out(), FMT_COMPILE("{},{},{},{:.6f},{:.6f},{},{},{}\n"), p.app, p.task, p.phase, p.start, p.end, p.bytes,
+                   p.cache_bytes, p.disk_bytes);
+    csv.row_written();
+  }
+  csv.close();
 }
 
-std::string memory_csv(const RunResult& r) {
+void write_memory_csv(const fs::path& path, const RunResult& r) {
   std::set<std::string> hosts;
   for (const MemoryRow& m : r.memory) hosts.insert(m.host);
   const bool with_host = hosts.size() > 1;  // one host: the documented columns exactly
-  fmt::memory_buffer out;
-  auto to = fmt::appender(out);
-  fmt::format_to(to, "{}time_s,total_bytes,free_bytes,anonymous_bytes,cached_bytes,dirty_bytes,writeback_bytes,active_bytes,inactive_bytes\n",
+  CsvFile csv(path);
+  fmt::format_to(csv.out(),
+                 "{}time_s,total_bytes,free_bytes,anonymous_bytes,cached_bytes,dirty_bytes,writeback_bytes,active_bytes,inactive_bytes\n",
                  with_host ? "host," : "");
   for (const MemoryRow& m : r.memory) {
     const MemoryState& s = m.state;
-    if (with_host) fmt::format_to(to, FMT_COMPILE("{},"), m.host);
+    if (with_host) fmt::format_to(csv.out(), FMT_COMPILE("{},"), m.host);
     // Copies in flight hold their pages: counted as cached here, so that the columns add up.
-    fmt::format_to(to, FMT_COMPILE("{:.6f},{},{},{},{},{},{},{},{}\n"), m.time, s.total, s.free, s.anonymous, s.cached + s.reserved, s.dirty,
-                   s.writeback, s.active, s.inactive + s.reserved);
+    fmt::format_to(csv.out(), FMT_COMPILE("{:.6f},{},{},{},{},{},{},{},{}\n"), m.time, s.total, s.free, s.anonymous, s.cached + s.reserved,
+                   s.dirty, s.writeback, s.active, s.inactive + s.reserved);
+    csv.row_written();
   }
-  return fmt::to_string(out);
+  csv.close();
 }
 
-std::string cache_csv(const RunResult& r) {
-  fmt::memory_buffer out;
-  auto to = fmt::appender(out);
-  fmt::format_to(to, "app,task,phase,file,cached_bytes\n");
-  for (const CacheRow& c : r.cache) fmt::format_to(to, FMT_COMPILE("{},{},{},{},{}\n"), c.app, c.task, c.phase, c.file, c.cached);
-  return fmt::to_string(out);
+void write_cache_csv(const fs::path& path, const RunResult& r) {
+  CsvFile csv(path);
+  fmt::format_to(csv.out(), "app,task,phase,file,cached_bytes\n");
+  for (const CacheRow& c : r.cache) {
+    const PhaseRow& p = r.timeline[c.phase];
+    fmt::format_to(csv.out(), FMT_COMPILE("{},{},{},{},{}\n"), p.app, p.task, p.phase, r.files[c.file], c.cached);
+    csv.row_written();
+  }
+  csv.close();
 }
 
 std::string cache_contents_note(const RunResult& r) {
@@ -139,9 +185,9 @@ void write_outputs(const std::string& dir, const Scenario& scenario, const RunRe
   fs::remove_all(staging, ignored);
   try {
     fs::create_directories(staging);
-    write_file(staging / "timeline.csv", timeline_csv(result));
-    write_file(staging / "memory.csv", memory_csv(result));
-    if (result.cache_not_recorded.empty()) write_file(staging / "cache.csv", cache_csv(result));
+    write_timeline_csv(staging / "timeline.csv", result);
+    write_memory_csv(staging / "memory.csv", result);
+    if (result.cache_not_recorded.empty()) write_cache_csv(staging / "cache.csv", result);
     write_file(staging / "summary.json", summary_json(scenario, result));
     write_file(staging / "timing.json", timing_json(result));
     fs::remove_all(target);

@@ -6,6 +6,7 @@
 #include <pagecache/run.hpp>
 #include <pagecache/scenario.hpp>
 
+#include <filesystem>
 #include <string>
 
 namespace pagecache::report {
@@ -14,9 +15,11 @@ namespace pagecache::report {
 /// recorded. Throws Error if a file cannot be written.
 void write_outputs(const std::string& dir, const Scenario& scenario, const RunResult& result);
 
-std::string timeline_csv(const RunResult& result);
-std::string memory_csv(const RunResult& result);
-std::string cache_csv(const RunResult& result);
+/// The CSV files, each written to `path` as it is formatted (see outputs.cpp). Throw Error if
+/// the file cannot be written.
+void write_timeline_csv(const std::filesystem::path& path, const RunResult& result);
+void write_memory_csv(const std::filesystem::path& path, const RunResult& result);
+void write_cache_csv(const std::filesystem::path& path, const RunResult& result);
 /// The run's results: the same for the same scenario, byte for byte.
 std::string summary_json(const Scenario& scenario, const RunResult& result);
 /// The simulator's own speed (wall time, events per second): the one output that varies from

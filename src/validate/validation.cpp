@@ -123,7 +123,10 @@ CaseResult exp1(const Options& o, int size_gb, double cpu_seconds) {
 
   double worst_file = 0.0;
   std::map<std::tuple<std::string, std::string, std::string>, double> sim_cache;
-  for (const CacheRow& r : run.cache) sim_cache[{r.task, r.phase, r.file}] = static_cast<double>(r.cached) / 1e9;
+  for (const CacheRow& r : run.cache) {
+    const PhaseRow& p = run.timeline[r.phase];
+    sim_cache[{p.task, p.phase, run.files[r.file]}] = static_cast<double>(r.cached) / 1e9;
+  }
   for (const Row& r : read_csv(o.data_dir + "/exp1_real_cache_contents.csv")) {
     if (std::stoi(r.at("file_size_gb")) != size_gb) continue;
     const auto it = sim_cache.find({r.at("after_task"), r.at("after_phase"), r.at("file")});

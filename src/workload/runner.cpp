@@ -238,14 +238,20 @@ class Runner {
                                                phases, file_order_.size(), options_.max_cache_rows);
     }
     record_cache_ = result_.cache_not_recorded.empty();
+    if (!record_cache_) return;
+    result_.files.reserve(file_order_.size());
+    for (const PlacedFile* f : file_order_) result_.files.push_back(*f->name);
     // Reserved, as the timeline is: growing by doubling touched (and had the kernel fault in)
     // up to twice the rows' memory, the largest part of a small run's resident set.
-    if (record_cache_) result_.cache.reserve(rows);
+    result_.cache.reserve(rows);
   }
 
-  void record_cache(const std::string& app, const TaskSpec& task, const char* phase) {
+  // After the I/O phase whose row the timeline has just received.
+  void record_cache() {
     if (!record_cache_) return;
-    for (const PlacedFile* f : file_order_) result_.cache.push_back({app, task.name, phase, *f->name, f->host->cached(f->ref)});
+    const auto phase = static_cast<std::uint32_t>(result_.timeline.size() - 1);
+    std::uint32_t file = 0;
+    for (const PlacedFile* f : file_order_) result_.cache.push_back({phase, file++, f->host->cached(f->ref)});
   }
 
   // One I/O phase: every file read (or written) whole, one after the other. Returns the bytes
@@ -265,7 +271,7 @@ class Runner {
       sum.disk_bytes += r.disk_bytes;
     }
     result_.timeline.push_back({app, task.name, reading ? "read" : "write", start, sim_.now(), sum.bytes, sum.cache_bytes, sum.disk_bytes});
-    record_cache(app, task, reading ? "read" : "write");
+    record_cache();
     co_return sum.bytes;
   }
 

@@ -36,6 +36,31 @@ TEST_CASE("run_scenario runs a scenario built in code", "[run]") {
   CHECK(r.timeline.size() == 3);
 }
 
+TEST_CASE("the cache contents name their I/O phase by its timeline row and their file by its index", "[run]") {
+  // One task reads file_1 (300 MB, not cached), computes, writes file_2: after the read, all
+  // of file_1 is cached and none of file_2; after the write, both (4 GB of memory hold them).
+  const RunResult r = run_scenario(one_pipeline());
+  REQUIRE(r.files == std::vector<std::string>{"file_1", "file_2"});
+  REQUIRE(r.cache.size() == 4);  // two files after each of the two I/O phases
+  const auto phase = [&](std::size_t i) { return r.timeline.at(r.cache[i].phase).phase; };
+  CHECK(phase(0) == "read");
+  CHECK(phase(2) == "write");
+  CHECK(r.timeline.at(r.cache[0].phase).task == "1");
+  CHECK(r.cache[0].file == 0);
+  CHECK(r.cache[1].file == 1);
+  CHECK(r.cache[0].cached == 300'000'000);
+  CHECK(r.cache[1].cached == 0);
+  CHECK(r.cache[2].cached == 300'000'000);
+  CHECK(r.cache[3].cached == 300'000'000);
+
+  RunOptions off;
+  off.cache_contents = false;
+  const RunResult none = run_scenario(one_pipeline(), off);
+  CHECK(none.cache.empty());
+  CHECK(none.files.empty());
+  CHECK(none.cache_not_recorded == "switched off");
+}
+
 TEST_CASE("run_scenario rejects two files of one name and a task naming an unknown file", "[run][errors]") {
   Scenario twice = one_pipeline();
   twice.files.push_back(twice.files.front());

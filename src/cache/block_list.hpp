@@ -95,7 +95,6 @@ class BlockList {
     Range(const BlockPool& pool, const BlockList& list) : pool_(&pool), list_(&list) {}
     iterator begin() const { return {pool_, list_->head_}; }
     iterator end() const { return {pool_, kNoBlock}; }
-    bool empty() const noexcept { return list_->empty(); }
     const Block& front() const { return (*pool_)[list_->head_]; }
     std::size_t size() const noexcept
       requires Counted

@@ -49,7 +49,6 @@ class LruList {
   BlockId front(BlockState state) const noexcept { return by_state_[index(state)].front(); }
   BlockId next_in_state(BlockId block) const noexcept { return StateOrder::next(*pool_, block); }
 
-  const LruOrder& order() const noexcept { return blocks_; }
   /// The blocks in LRU order, for checks and tests.
   LruOrder::Range blocks() const { return blocks_.range(*pool_); }
 

@@ -92,7 +92,8 @@ struct Scenario {
   std::string source;  ///< the file it was read from ("<embedded>" for the default)
   std::string title;
   Profile profile = Profile::Linux;
-  /// 0: one memory.csv row per change; else one row per interval (seconds).
+  /// 0: one memory.csv row per change; else a host's row at each tick of this interval
+  /// (seconds) at which its memory differs from its previous row.
   double memory_sample_interval = 1.0;
   std::vector<HostConfig> hosts;
   std::vector<LinkSpec> links;

@@ -257,8 +257,8 @@ class Runner {
       memory_wake_.emplace(sim_);
       co_await memory_wake_->wait();
       memory_wake_.reset();
-      // Back on the cadence: the first tick at or after the change, not the idle tick itself
-      // (a change at its instant came after its row was due).
+      // Back on the cadence: the first tick at or after the change, but not the idle tick
+      // itself, whose row was due before the change came.
       tick += std::max(1.0, std::ceil((sim_.now() - tick) / interval)) * interval;
       co_await sim_.sleep(tick - sim_.now());
     }

@@ -326,7 +326,7 @@ TEST_CASE("every shipped scenario runs", "[cli][scenarios]") {
 
 TEST_CASE("pcsim show prints the resolved scenario, which reads back to the same", "[cli][show]") {
   const fs::path dir = scratch("show");
-  const Outcome first = pcsim("show --set pipelines.count=2");
+  const Outcome first = pcsim("show --set pipelines.count=2 --set pipelines.file_size='\"20 GB\"'");
   REQUIRE(first.status == 0);
   CHECK_THAT(first.output, Catch::Contains("name = \"p2_file_4\"") && Catch::Contains("dirty_ratio = 0.4"));
   std::ofstream(dir / "resolved.toml") << first.output;

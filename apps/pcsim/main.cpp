@@ -8,6 +8,7 @@
 #include <pagecache/scenario.hpp>
 #include <pagecache/version.hpp>
 
+#include "report/output_rules.hpp"
 #include "report/outputs.hpp"
 #include "validate/validation.hpp"
 
@@ -72,6 +73,7 @@ class Progress {
 int run_command(const std::string& path, const std::vector<std::string>& sets, const std::string& profile,
                 const std::string& out_dir, bool quiet, bool cache_contents) {
   const pagecache::Scenario scenario = load(path, sets, profile);
+  pagecache::report::check_output_folder(out_dir, path);  // before simulating, not after
   Progress progress(!quiet);
   pagecache::RunOptions options;
   options.cache_contents = cache_contents;
@@ -84,7 +86,9 @@ int run_command(const std::string& path, const std::vector<std::string>& sets, c
     throw;
   }
   progress.clear();
-  pagecache::report::write_outputs(out_dir, scenario, result);
+  for (const std::string& warning : pagecache::report::write_outputs(out_dir, scenario, result)) {
+    fmt::print(stderr, "pcsim: warning: {}\n", warning);
+  }
   if (!quiet) {
     fmt::print("{}", pagecache::report::readable_summary(scenario, result));
     if (result.cache_not_recorded.empty()) {
@@ -113,7 +117,10 @@ int main(int argc, char** argv) {
 
   auto* run = app.add_subcommand("run", "run a scenario (without one: the embedded default, the paper's Exp 1 at 100 GB)");
   run->add_option("scenario", scenario_path, "scenario file (TOML)");
-  run->add_option("--out", out_dir, "output folder (replaced atomically)")->capture_default_str();
+  run->add_option("--out", out_dir,
+                  "output folder: made if absent; an empty folder or one an earlier run made (marked by .pcsim-output) "
+                  "is replaced whole; anything else is refused and left untouched")
+      ->capture_default_str();
   run->add_option("--profile", profile, "model profile, overriding the scenario's")->check(CLI::IsMember({"paper", "linux"}));
   run->add_option("--set", sets, "override a scenario key: KEY=VALUE (repeatable), e.g. pipelines.count=16");
   run->add_flag("--quiet", quiet, "print nothing but errors");

@@ -10,6 +10,7 @@
 
 #include "report/output_rules.hpp"
 #include "report/outputs.hpp"
+#include "report/replace_file.hpp"
 #include "validate/validation.hpp"
 
 #include <CLI/CLI.hpp>
@@ -17,7 +18,6 @@
 
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <string>
 #include <unistd.h>
 #include <utility>
@@ -165,6 +165,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (validate->parsed()) {
+      if (!json_path.empty()) pagecache::report::check_output_file(json_path);
       std::vector<std::pair<std::string, bool>> forced;
       for (const auto& [name, value] : parse_sets(switches)) {
         if (value != "true" && value != "false") throw pagecache::ConfigError("--switch " + name + ": use true or false");
@@ -172,11 +173,7 @@ int main(int argc, char** argv) {
       }
       const auto report = pagecache::validate::run({data_dir, scenarios_dir, validate_profile, parse_sets(sets), forced});
       fmt::print("{}", report.text());
-      if (!json_path.empty()) {
-        std::ofstream out(json_path);
-        out << report.json();
-        if (!out) throw std::runtime_error("cannot write " + json_path);
-      }
+      if (!json_path.empty()) pagecache::report::replace_file(json_path, report.json());
       return 0;
     }
     if (show->parsed()) {

@@ -213,3 +213,13 @@ TEST_CASE("an empty --out folder receives the outputs and keeps its permissions"
   CHECK(names(out) == kOutputs);
   CHECK((fs::status(out).permissions() & fs::perms::all) == (fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec));
 }
+
+TEST_CASE("pcsim validate --json refuses a folder before validating", "[cli][out]") {
+  const fs::path dir = scratch("out-json-folder");
+  write(dir / "results" / "keep.txt", "mine\n");
+  const Outcome o = pcsim(fmt::format("validate --json '{}'", (dir / "results").string()));
+  INFO(o.output);
+  CHECK(o.status == 2);
+  CHECK_THAT(o.output, Catch::Contains("is a folder") && !Catch::Contains("exp1"));
+  CHECK(slurp(dir / "results" / "keep.txt") == "mine\n");
+}

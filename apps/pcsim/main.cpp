@@ -9,7 +9,9 @@
 #include <pagecache/scenario.hpp>
 #include <pagecache/version.hpp>
 
+#include "report/output_rules.hpp"
 #include "report/outputs.hpp"
+#include "report/replace_file.hpp"
 #include "scenario/closest.hpp"
 #include "validate/validation.hpp"
 
@@ -18,10 +20,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <new>
 #include <stdexcept>
-#include <cstdio>
-#include <fstream>
 #include <string>
 #include <unistd.h>
 #include <utility>
@@ -91,6 +92,7 @@ class Progress {
 int run_command(const std::string& path, const std::vector<std::string>& sets, const std::string& profile,
                 const std::string& out_dir, bool quiet, bool cache_contents, bool force) {
   const pagecache::Scenario scenario = load(path, sets, profile, force);
+  pagecache::report::check_output_folder(out_dir, path);  // before simulating, not after
   Progress progress(!quiet);
   pagecache::RunOptions options;
   options.cache_contents = cache_contents;
@@ -103,7 +105,9 @@ int run_command(const std::string& path, const std::vector<std::string>& sets, c
     throw;
   }
   progress.clear();
-  pagecache::report::write_outputs(out_dir, scenario, result);
+  for (const std::string& warning : pagecache::report::write_outputs(out_dir, scenario, result)) {
+    fmt::print(stderr, "pcsim: warning: {}\n", warning);
+  }
   if (!quiet) {
     fmt::print("{}", pagecache::report::readable_summary(scenario, result));
     if (result.cache_not_recorded.empty()) {
@@ -135,7 +139,10 @@ int main(int argc, char** argv) {
 
   auto* run = app.add_subcommand("run", "run a scenario (without one: the embedded default, the paper's Exp 1 at 100 GB)");
   run->add_option("scenario", scenario_path, "scenario file (TOML)");
-  run->add_option("--out", out_dir, "output folder (replaced atomically)")->capture_default_str();
+  run->add_option("--out", out_dir,
+                  "output folder: made if absent; an empty folder or one an earlier run made (marked by .pcsim-output) "
+                  "is replaced whole; anything else is refused and left untouched")
+      ->capture_default_str();
   run->add_option("--profile", profile, "model profile, overriding the scenario's")->check(CLI::IsMember({"paper", "linux"}));
   run->add_option("--set", sets, "override a scenario key: KEY=VALUE (repeatable), e.g. pipelines.count=16");
   run->add_flag("--quiet", quiet, "print nothing but errors");
@@ -191,6 +198,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (validate->parsed()) {
+      if (!json_path.empty()) pagecache::report::check_output_file(json_path);
       std::vector<std::pair<std::string, bool>> forced;
       for (const auto& [name, value] : parse_sets(switches)) {
         if (value != "true" && value != "false") throw pagecache::ConfigError("--switch " + name + ": use true or false");
@@ -198,11 +206,7 @@ int main(int argc, char** argv) {
       }
       const auto report = pagecache::validate::run({data_dir, scenarios_dir, validate_profile, parse_sets(sets), forced});
       fmt::print("{}", report.text());
-      if (!json_path.empty()) {
-        std::ofstream out(json_path);
-        out << report.json();
-        if (!out) throw std::runtime_error("cannot write " + json_path);
-      }
+      if (!json_path.empty()) pagecache::report::replace_file(json_path, report.json());
       return 0;
     }
     if (show->parsed()) {

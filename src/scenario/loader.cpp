@@ -262,7 +262,7 @@ void expand_pipelines(const toml::table& table, Scenario& s, const std::string& 
   // Checked before anything is made: a count of 10^9 would otherwise fill the memory first.
   // Doubles, so that the products cannot overflow.
   const double task_total = static_cast<double>(count) * static_cast<double>(tasks) + static_cast<double>(s.apps.size());
-  const double file_total = static_cast<double>(count) * static_cast<double>(tasks + 1) + static_cast<double>(s.files.size());
+  const double file_total = static_cast<double>(count) * (static_cast<double>(tasks) + 1.0) + static_cast<double>(s.files.size());
   const char* culprit = tasks > count ? "tasks" : "count";
   if (task_total > static_cast<double>(limits.max_tasks)) {
     r.fail(culprit, fmt::format("{} pipelines of {} tasks are {:.3g} tasks, more than the {} a run may have{}", count, tasks, task_total,

@@ -1,5 +1,7 @@
 #include "report/outputs.hpp"
 
+#include "text/json_string.hpp"
+
 #include <pagecache/error.hpp>
 #include <pagecache/units.hpp>
 #include <pagecache/version.hpp>
@@ -19,6 +21,7 @@
 namespace pagecache::report {
 
 namespace fs = std::filesystem;
+using text::json_string;
 
 namespace {
 
@@ -29,21 +32,6 @@ std::string readable(std::int64_t bytes) {
     if (static_cast<double>(bytes) >= factor) return fmt::format("{:.1f} {}", static_cast<double>(bytes) / factor, name);
   }
   return fmt::format("{} B", bytes);
-}
-
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) out += fmt::format("\\u{:04x}", c);
-        else out += c;
-    }
-  }
-  return out + "\"";
 }
 
 void write_file(const fs::path& path, const std::string& text) {

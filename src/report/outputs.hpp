@@ -15,8 +15,9 @@ namespace pagecache::report {
 /// recorded. Throws Error if a file cannot be written.
 void write_outputs(const std::string& dir, const Scenario& scenario, const RunResult& result);
 
-/// The CSV files, each written to `path` as it is formatted (see outputs.cpp). Throw Error if
-/// the file cannot be written.
+/// The CSV files, each written to `path` as it is formatted (see outputs.cpp), their text
+/// fields quoted and guarded against formulas as csv_field.hpp says. Throw Error if the file
+/// cannot be written.
 void write_timeline_csv(const std::filesystem::path& path, const RunResult& result);
 void write_memory_csv(const std::filesystem::path& path, const RunResult& result);
 void write_cache_csv(const std::filesystem::path& path, const RunResult& result);

@@ -2,6 +2,7 @@
 
 #include "report/csv_field.hpp"
 #include "text/json_string.hpp"
+#include "text/printable.hpp"
 
 #include <pagecache/error.hpp>
 #include <pagecache/units.hpp>
@@ -25,6 +26,7 @@ namespace pagecache::report {
 
 namespace fs = std::filesystem;
 using text::json_string;
+using text::printable;
 
 namespace {
 
@@ -222,8 +224,9 @@ void write_outputs(const std::string& dir, const Scenario& scenario, const RunRe
 
 std::string readable_summary(const Scenario& scenario, const RunResult& r) {
   std::string out;
-  if (!scenario.title.empty()) out += scenario.title + "\n";
-  out += fmt::format("scenario {} (profile {})\n", scenario.source, to_string(scenario.profile));
+  // Names as printable(): a control character in one cannot drive the terminal.
+  if (!scenario.title.empty()) out += printable(scenario.title) + "\n";
+  out += fmt::format("scenario {} (profile {})\n", printable(scenario.source), to_string(scenario.profile));
   std::map<std::string, std::vector<const PhaseRow*>> by_app;
   std::vector<std::string> order;
   for (const PhaseRow& p : r.timeline) {
@@ -232,13 +235,13 @@ std::string readable_summary(const Scenario& scenario, const RunResult& r) {
   }
   constexpr std::size_t kMaxApps = 8;
   for (std::size_t i = 0; i < order.size() && i < kMaxApps; ++i) {
-    out += fmt::format("\napp {}\n{:>10} {:>8} {:>10} {:>10} {:>10} {:>9} {:>9}\n", order[i], "task", "phase", "start_s", "end_s",
-                       "MB/s", "cache_GB", "disk_GB");
+    out += fmt::format("\napp {}\n{:>10} {:>8} {:>10} {:>10} {:>10} {:>9} {:>9}\n", printable(order[i]), "task", "phase", "start_s",
+                       "end_s", "MB/s", "cache_GB", "disk_GB");
     for (const PhaseRow* p : by_app[order[i]]) {
       const double seconds = p->end - p->start;
       const std::string rate = p->bytes > 0 && seconds > 0 ? fmt::format("{:.1f}", static_cast<double>(p->bytes) / seconds / 1e6) : "-";
-      out += fmt::format("{:>10} {:>8} {:>10.2f} {:>10.2f} {:>10} {:>9.2f} {:>9.2f}\n", p->task, p->phase, p->start, p->end, rate,
-                         static_cast<double>(p->cache_bytes) / 1e9, static_cast<double>(p->disk_bytes) / 1e9);
+      out += fmt::format("{:>10} {:>8} {:>10.2f} {:>10.2f} {:>10} {:>9.2f} {:>9.2f}\n", printable(p->task), printable(p->phase), p->start,
+                         p->end, rate, static_cast<double>(p->cache_bytes) / 1e9, static_cast<double>(p->disk_bytes) / 1e9);
     }
   }
   if (order.size() > kMaxApps) out += fmt::format("\n... and {} more applications (see timeline.csv)\n", order.size() - kMaxApps);

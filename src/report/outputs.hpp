@@ -29,7 +29,7 @@ std::string timing_json(const RunResult& result);
 /// Where the cache contents are ("cache.csv") or why they were not recorded.
 std::string cache_contents_note(const RunResult& result);
 
-/// A small table per application and the totals, for a terminal.
+/// A small table per application and the totals, for a terminal (names as text::printable()).
 std::string readable_summary(const Scenario& scenario, const RunResult& result);
 
 }  // namespace pagecache::report

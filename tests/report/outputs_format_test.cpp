@@ -1,7 +1,7 @@
 // The outputs stay readable whatever the names hold: the CSV files read back field for field
-// with an independent RFC 4180 parser and no field starts a spreadsheet formula, and
-// summary.json is valid UTF-8 JSON to an independent parser. The RunResult is built by hand,
-// as an embedding program could.
+// with an independent RFC 4180 parser and no field starts a spreadsheet formula, summary.json
+// is valid UTF-8 JSON to an independent parser, and the terminal summary carries no control
+// character. The RunResult is built by hand, as an embedding program could.
 #include "report/outputs.hpp"
 
 #include <catch2/catch.hpp>
@@ -16,6 +16,7 @@
 #include <vector>
 
 namespace fs = std::filesystem;
+using pagecache::report::readable_summary;
 using pagecache::report::summary_json;
 using pagecache::report::write_cache_csv;
 using pagecache::report::write_memory_csv;
@@ -201,4 +202,19 @@ TEST_CASE("summary.json is valid UTF-8 JSON when the source path holds invalid U
   CHECK_THAT(text, Catch::Contains("\"makespan_s\": 12.500000,"));
   // Control characters are escaped, not written raw (JSON forbids them in strings).
   CHECK_THAT(text, Catch::Contains(R"(/\u0001\u001f\n\t\r\b\f)"));
+}
+
+TEST_CASE("the terminal summary shows control characters in names as escapes", "[report]") {
+  pagecache::Scenario s;
+  s.source = "dir/\x1B]0;title\x07.toml";
+  s.title = "two\nlines";
+  pagecache::RunResult r;
+  r.timeline.push_back({"evil\x1B[2J", "t\r", "read", 0.0, 1.0, 0, 0, 0});
+  const std::string out = readable_summary(s, r);
+  for (char c : out) {
+    INFO(out);
+    REQUIRE((static_cast<unsigned char>(c) >= 0x20 || c == '\n'));
+  }
+  CHECK_THAT(out, Catch::StartsWith("two\\nlines\nscenario dir/\\u001b]0;title\\u0007.toml"));
+  CHECK_THAT(out, Catch::Contains("app evil\\u001b[2J\n") && Catch::Contains("t\\r"));
 }

@@ -6,6 +6,8 @@
 #include <catch2/catch.hpp>
 #include <toml++/toml.h>
 
+#include <algorithm>
+#include <iterator>
 #include <map>
 #include <random>
 #include <string>
@@ -142,28 +144,78 @@ std::vector<std::string> names(const Scenario& s) {
   return out;
 }
 
+// The same names as names(), read from the shown TOML by toml++ alone (the loader refuses
+// some names an embedding program can make, such as those with control characters).
+std::vector<std::string> names_in(const toml::table& t) {
+  std::vector<std::string> out{t["title"].value_or(std::string())};
+  auto str = [](toml::node_view<const toml::node> n) { return n.value<std::string>().value(); };
+  auto list = [&](toml::node_view<const toml::node> n) {
+    for (const auto& item : *n.as_array()) out.push_back(item.value<std::string>().value());
+  };
+  auto tasks = [&](toml::node_view<const toml::node> n, bool with_after) {
+    for (const auto& task : *n.as_array()) {
+      const toml::table& k = *task.as_table();
+      out.push_back(str(k["name"]));
+      list(k["read"]), list(k["write"]), list(k["delete"]);
+      if (with_after) list(k["after"]);
+    }
+  };
+  for (const auto& h : *t["hosts"].as_array()) {
+    out.push_back(str((*h.as_table())["name"]));
+    for (const auto& d : *(*h.as_table())["disks"].as_array()) out.push_back(str((*d.as_table())["name"]));
+  }
+  for (const auto& l : *t["links"].as_array()) out.push_back(str((*l.as_table())["name"])), list((*l.as_table())["hosts"]);
+  for (const auto& f : *t["files"].as_array()) {
+    for (const char* key : {"name", "host", "disk"}) out.push_back(str((*f.as_table())[key]));
+  }
+  for (const auto& a : *t["apps"].as_array()) {
+    out.push_back(str((*a.as_table())["name"])), out.push_back(str((*a.as_table())["host"]));
+    tasks((*a.as_table())["tasks"], false);
+  }
+  out.push_back(str(t["workflow"]["name"])), out.push_back(str(t["workflow"]["host"]));
+  tasks(t["workflow"]["tasks"], true);
+  return out;
+}
+
 }  // namespace
 
 TEST_CASE("a scenario whose names hold control characters, quotes and non-ASCII shows as TOML that reads back the same",
           "[scenario][show]") {
-  Scenario s = parse_scenario(kScenario, "show_test");
+  const Scenario s = parse_scenario(kScenario, "show_test");
   const std::vector<std::string> plain = {"h1", "d1", "h2", "d2", "l", "f1", "f2", "f3", "a", "t1", "w", "w1", "w2"};
-  // Each hostile name in turn in every place, shifted by one per round so that all meet.
-  for (std::size_t round = 0; round < kHostile.size(); ++round) {
-    std::map<std::string, std::string> rename;
-    for (std::size_t i = 0; i < plain.size(); ++i) rename[plain[i]] = kHostile[(round + i) % kHostile.size()] + std::to_string(i);
-    Scenario hostile = s;
-    rename_all(hostile, rename);
-    hostile.title = kHostile[round];
-    const std::string text = to_toml(hostile);
-    INFO("round " << round << ":\n" << text);
-    Scenario back;
-    REQUIRE_NOTHROW(back = parse_scenario(text, "shown"));
-    CHECK(names(back) == names(hostile));
-    // Shown again, the same document (apart from the comment naming the source).
-    const std::string again = to_toml(back);
-    CHECK(again.substr(again.find('\n')) == text.substr(text.find('\n')));
-  }
+  // Each name of `pool` in turn in every place, shifted by one per round so that all meet;
+  // read back by toml++, and by the loader too for the names it accepts.
+  auto show_and_read = [&](const std::vector<std::string>& pool, bool through_loader) {
+    for (std::size_t round = 0; round < pool.size(); ++round) {
+      std::map<std::string, std::string> rename;
+      for (std::size_t i = 0; i < plain.size(); ++i) rename[plain[i]] = pool[(round + i) % pool.size()] + std::to_string(i);
+      Scenario hostile = s;
+      rename_all(hostile, rename);
+      hostile.title = pool[round];
+      const std::string text = to_toml(hostile);
+      INFO("round " << round << ":\n" << text);
+      toml::table table;
+      REQUIRE_NOTHROW(table = toml::parse(text));
+      CHECK(names_in(table) == names(hostile));
+      if (!through_loader) continue;
+      Scenario back;
+      REQUIRE_NOTHROW(back = parse_scenario(text, "shown"));
+      CHECK(names(back) == names(hostile));
+      // Shown again, the same document (apart from the comment naming the source).
+      const std::string again = to_toml(back);
+      CHECK(again.substr(again.find('\n')) == text.substr(text.find('\n')));
+    }
+  };
+  show_and_read(kHostile, false);
+  // Through the loader, the names it accepts: it refuses control characters and a leading
+  // = + - @ from issue 15 on (an embedding program can still make them: the pass above).
+  std::vector<std::string> loadable;
+  std::copy_if(kHostile.begin(), kHostile.end(), std::back_inserter(loadable), [](const std::string& n) {
+    return !n.empty() && std::string("=+-@").find(n.front()) == std::string::npos &&
+           std::none_of(n.begin(), n.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7F; });
+  });
+  REQUIRE(loadable.size() >= 8);
+  show_and_read(loadable, true);
 }
 
 TEST_CASE("any valid UTF-8 string in a name shows as a TOML string that toml++ reads back the same", "[scenario][show]") {

@@ -1,22 +1,28 @@
 // pcsim: the command line. Thin: parse the arguments, load the scenario, run it, report.
 //
 // Exit codes: 0 success; 1 the simulation could not proceed (SimulationError) or an output
-// could not be written; 2 bad input (scenario, --set, options); 3 an internal invariant broke.
+// could not be written; 2 bad input (scenario, --set, options); 3 an internal invariant broke
+// or memory ran out.
 
 #include <pagecache/error.hpp>
 #include <pagecache/run.hpp>
 #include <pagecache/scenario.hpp>
 #include <pagecache/version.hpp>
 
+#include "report/output_rules.hpp"
 #include "report/outputs.hpp"
+#include "report/replace_file.hpp"
+#include "scenario/closest.hpp"
 #include "validate/validation.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
+#include <new>
+#include <stdexcept>
 #include <string>
 #include <unistd.h>
 #include <utility>
@@ -38,9 +44,23 @@ Overrides parse_sets(const std::vector<std::string>& sets) {
   return out;
 }
 
-pagecache::Scenario load(const std::string& path, const std::vector<std::string>& sets, const std::string& profile) {
-  if (path.empty()) return pagecache::parse_scenario(pagecache::default_scenario_text(), "<embedded default>", parse_sets(sets), profile);
-  return pagecache::load_scenario(path, parse_sets(sets), profile);
+pagecache::Scenario load(const std::string& path, const std::vector<std::string>& sets, const std::string& profile, bool force) {
+  const pagecache::ScenarioLimits limits = force ? pagecache::ScenarioLimits::forced() : pagecache::ScenarioLimits{};
+  if (path.empty()) {
+    return pagecache::parse_scenario(pagecache::default_scenario_text(), "<embedded default>", parse_sets(sets), profile, limits);
+  }
+  return pagecache::load_scenario(path, parse_sets(sets), profile, limits);
+}
+
+// The command a user typed that pcsim does not know, with the closest it knows: CLI11 only
+// says an argument was not expected.
+int unknown_command(const std::string& typed, const std::vector<std::string>& commands) {
+  std::string list;
+  for (const std::string& c : commands) list += (list.empty() ? "" : ", ") + c;
+  const std::string meant = pagecache::scenario::closest(typed, {commands.begin(), commands.end()});
+  fmt::print(stderr, "pcsim: unknown command '{}'{} (commands: {}; pcsim help lists them)\n", typed,
+             meant.empty() ? std::string() : fmt::format(", did you mean '{}'?", meant), list);
+  return 2;
 }
 
 // Progress on a terminal only, for runs longer than half a second: simulated time reached and
@@ -70,8 +90,9 @@ class Progress {
 };
 
 int run_command(const std::string& path, const std::vector<std::string>& sets, const std::string& profile,
-                const std::string& out_dir, bool quiet, bool cache_contents) {
-  const pagecache::Scenario scenario = load(path, sets, profile);
+                const std::string& out_dir, bool quiet, bool cache_contents, bool force) {
+  const pagecache::Scenario scenario = load(path, sets, profile, force);
+  pagecache::report::check_output_folder(out_dir, path);  // before simulating, not after
   Progress progress(!quiet);
   pagecache::RunOptions options;
   options.cache_contents = cache_contents;
@@ -84,7 +105,9 @@ int run_command(const std::string& path, const std::vector<std::string>& sets, c
     throw;
   }
   progress.clear();
-  pagecache::report::write_outputs(out_dir, scenario, result);
+  for (const std::string& warning : pagecache::report::write_outputs(out_dir, scenario, result)) {
+    fmt::print(stderr, "pcsim: warning: {}\n", warning);
+  }
   if (!quiet) {
     fmt::print("{}", pagecache::report::readable_summary(scenario, result));
     if (result.cache_not_recorded.empty()) {
@@ -110,19 +133,27 @@ int main(int argc, char** argv) {
   std::vector<std::string> sets;
   bool quiet = false;
   bool no_cache_contents = false;
+  bool force = false;
+  const char* force_help = "load a scenario beyond the limits on its size, events, simulated time and memory profile "
+                           "(what pcsim cannot represent is still refused)";
 
   auto* run = app.add_subcommand("run", "run a scenario (without one: the embedded default, the paper's Exp 1 at 100 GB)");
   run->add_option("scenario", scenario_path, "scenario file (TOML)");
-  run->add_option("--out", out_dir, "output folder (replaced atomically)")->capture_default_str();
+  run->add_option("--out", out_dir,
+                  "output folder: made if absent; an empty folder or one an earlier run made (marked by .pcsim-output) "
+                  "is replaced whole; anything else is refused and left untouched")
+      ->capture_default_str();
   run->add_option("--profile", profile, "model profile, overriding the scenario's")->check(CLI::IsMember({"paper", "linux"}));
   run->add_option("--set", sets, "override a scenario key: KEY=VALUE (repeatable), e.g. pipelines.count=16");
   run->add_flag("--quiet", quiet, "print nothing but errors");
   run->add_flag("--no-cache-contents", no_cache_contents, "do not record cache.csv (large workloads)");
+  run->add_flag("--force", force, force_help);
 
   auto* show = app.add_subcommand("show", "print the fully resolved scenario, defaults included");
   show->add_option("scenario", scenario_path, "scenario file (TOML); the embedded default if omitted");
   show->add_option("--profile", profile, "model profile, overriding the scenario's")->check(CLI::IsMember({"paper", "linux"}));
   show->add_option("--set", sets, "override a scenario key: KEY=VALUE (repeatable)");
+  show->add_flag("--force", force, force_help);
 
   auto* validate = app.add_subcommand("validate", "compare the paper's experiments with the real measurements");
   std::string json_path;
@@ -139,8 +170,15 @@ int main(int argc, char** argv) {
   validate->add_option("--data", data_dir, "the validation data")->capture_default_str();
   validate->add_option("--scenarios", scenarios_dir, "the paper's scenarios")->capture_default_str();
 
-  auto* help = app.add_subcommand("help", "show this help");
+  auto* help = app.add_subcommand("help", "show this help, or a command's: pcsim help run");
+  std::string help_topic;
+  std::vector<std::string> commands;
+  for (const CLI::App* sub : app.get_subcommands({})) commands.push_back(sub->get_name());
+  help->add_option("command", help_topic, "the command to explain")->check(CLI::IsMember(commands));
 
+  if (argc > 1 && argv[1][0] != '-' && std::find(commands.begin(), commands.end(), argv[1]) == commands.end()) {
+    return unknown_command(argv[1], commands);
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -154,10 +192,13 @@ int main(int argc, char** argv) {
 
   try {
     if (help->parsed()) {
-      fmt::print("{}", app.help());
+      // The formatter, not app.help(), which would explain the help command itself.
+      const CLI::App* topic = help_topic.empty() ? &app : app.get_subcommand(help_topic);
+      fmt::print("{}", app.get_formatter()->make_help(topic, help_topic.empty() ? "pcsim" : "pcsim " + help_topic, CLI::AppFormatMode::Normal));
       return 0;
     }
     if (validate->parsed()) {
+      if (!json_path.empty()) pagecache::report::check_output_file(json_path);
       std::vector<std::pair<std::string, bool>> forced;
       for (const auto& [name, value] : parse_sets(switches)) {
         if (value != "true" && value != "false") throw pagecache::ConfigError("--switch " + name + ": use true or false");
@@ -165,18 +206,14 @@ int main(int argc, char** argv) {
       }
       const auto report = pagecache::validate::run({data_dir, scenarios_dir, validate_profile, parse_sets(sets), forced});
       fmt::print("{}", report.text());
-      if (!json_path.empty()) {
-        std::ofstream out(json_path);
-        out << report.json();
-        if (!out) throw std::runtime_error("cannot write " + json_path);
-      }
+      if (!json_path.empty()) pagecache::report::replace_file(json_path, report.json());
       return 0;
     }
     if (show->parsed()) {
-      fmt::print("{}", pagecache::to_toml(load(scenario_path, sets, profile)));
+      fmt::print("{}", pagecache::to_toml(load(scenario_path, sets, profile, force)));
       return 0;
     }
-    return run_command(scenario_path, sets, profile, out_dir, quiet, !no_cache_contents);
+    return run_command(scenario_path, sets, profile, out_dir, quiet, !no_cache_contents, force);
   } catch (const pagecache::ConfigError& e) {
     fmt::print(stderr, "pcsim: {}\n", e.what());
     return 2;
@@ -185,6 +222,12 @@ int main(int argc, char** argv) {
     return 1;
   } catch (const pagecache::InvariantError& e) {
     fmt::print(stderr, "pcsim: internal error (please report): {}\n", e.what());
+    return 3;
+  } catch (const std::bad_alloc&) {
+    fmt::print(stderr, "pcsim: out of memory (a smaller scenario, or --no-cache-contents, needs less)\n");
+    return 3;
+  } catch (const std::length_error& e) {
+    fmt::print(stderr, "pcsim: out of memory ({})\n", e.what());
     return 3;
   } catch (const std::exception& e) {
     fmt::print(stderr, "pcsim: {}\n", e.what());

@@ -83,6 +83,9 @@ struct RunOptions {
   std::size_t max_cache_rows = 1'000'000;
   /// Called now and then during the run with the simulated time and the events so far.
   std::function<void(double, std::uint64_t)> progress;
+  /// The run stops with a SimulationError once its clock passes this many seconds (checked
+  /// every few thousand events): beyond, double-precision time loses the microsecond.
+  double max_simulated_time = 1e10;
 };
 
 /// Runs the scenario to the end. Throws SimulationError (with the simulated time) if the

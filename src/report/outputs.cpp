@@ -1,6 +1,7 @@
 #include "report/outputs.hpp"
 
 #include "report/csv_field.hpp"
+#include "report/output_folder.hpp"
 #include "text/json_string.hpp"
 #include "text/printable.hpp"
 
@@ -19,7 +20,6 @@
 #include <map>
 #include <set>
 #include <string_view>
-#include <unistd.h>
 #include <utility>
 
 namespace pagecache::report {
@@ -198,28 +198,15 @@ std::string timing_json(const RunResult& r) {
                      s.events, s.events_per_second);
 }
 
-void write_outputs(const std::string& dir, const Scenario& scenario, const RunResult& result) {
-  const fs::path target = fs::absolute(dir);
-  // A sibling temporary folder, unique to this process, renamed over the target at the end.
-  const fs::path staging = target.parent_path() / fmt::format(".{}.tmp-{}", target.filename().string(), ::getpid());
-  std::error_code ignored;
-  fs::remove_all(staging, ignored);
-  try {
-    fs::create_directories(staging);
-    write_timeline_csv(staging / "timeline.csv", result);
-    write_memory_csv(staging / "memory.csv", result);
-    if (result.cache_not_recorded.empty()) write_cache_csv(staging / "cache.csv", result);
-    write_file(staging / "summary.json", summary_json(scenario, result));
-    write_file(staging / "timing.json", timing_json(result));
-    fs::remove_all(target);
-    fs::rename(staging, target);
-  } catch (const fs::filesystem_error& e) {
-    fs::remove_all(staging, ignored);
-    throw Error(fmt::format("cannot write the outputs to {}: {}", target.string(), e.code().message()));
-  } catch (...) {
-    fs::remove_all(staging, ignored);
-    throw;
-  }
+std::vector<std::string> write_outputs(const std::string& dir, const Scenario& scenario, const RunResult& result) {
+  OutputFolder folder(dir);
+  const fs::path& staging = folder.staging();
+  write_timeline_csv(staging / "timeline.csv", result);
+  write_memory_csv(staging / "memory.csv", result);
+  if (result.cache_not_recorded.empty()) write_cache_csv(staging / "cache.csv", result);
+  write_file(staging / "summary.json", summary_json(scenario, result));
+  write_file(staging / "timing.json", timing_json(result));
+  return folder.commit();
 }
 
 std::string readable_summary(const Scenario& scenario, const RunResult& r) {

@@ -1,19 +1,21 @@
 #pragma once
 // Writing a run's outputs: timeline.csv, memory.csv, cache.csv, summary.json and timing.json in
-// one folder, written to a temporary sibling folder first and renamed into place, so that a
-// failed run never leaves a half-written result. Also the readable summary printed to stdout.
+// one folder, marked as pcsim's and put in place whole (output_folder.hpp), so that a failed
+// run never leaves a half-written result. Also the readable summary printed to stdout.
 
 #include <pagecache/run.hpp>
 #include <pagecache/scenario.hpp>
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace pagecache::report {
 
-/// Writes every output into `dir` (replacing it); cache.csv only if the cache contents were
-/// recorded. Throws Error if a file cannot be written.
-void write_outputs(const std::string& dir, const Scenario& scenario, const RunResult& result);
+/// Writes every output into `dir`, replacing it if it is pcsim's (output_rules.hpp); cache.csv
+/// only if the cache contents were recorded. Throws ConfigError if `dir` may not be replaced,
+/// Error if a file cannot be written. Returns warnings for the user (see OutputFolder::commit).
+std::vector<std::string> write_outputs(const std::string& dir, const Scenario& scenario, const RunResult& result);
 
 /// The CSV files, each written to `path` as it is formatted (see outputs.cpp), their text
 /// fields quoted and guarded against formulas as csv_field.hpp says. Throw Error if the file

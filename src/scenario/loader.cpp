@@ -3,17 +3,23 @@
 
 #include <pagecache/scenario.hpp>
 
+#include "scenario/limits.hpp"
+#include "scenario/origins.hpp"
+#include "scenario/text_file.hpp"
 #include "scenario/toml_reader.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
 #include <filesystem>
-#include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
+#include <string_view>
+#include <unordered_set>
 
 namespace pagecache {
 
@@ -32,6 +38,8 @@ const LinkSpec* find_link(const Scenario& scenario, const std::string& a, const 
 
 namespace {
 
+using scenario::Origin;
+using scenario::Origins;
 using scenario::TomlReader;
 using Overrides = std::vector<std::pair<std::string, std::string>>;
 
@@ -42,13 +50,29 @@ Profile parse_profile(const std::string& name, const std::function<void(const st
   return Profile::Linux;
 }
 
+// An index into an array for --set: digits only ("-1" or "+1" is no index), below `size`.
+std::size_t array_index(const std::string& part, std::size_t size, const std::string& key, const std::string& source) {
+  std::size_t index = 0;
+  const char* end = part.data() + part.size();
+  const auto [stop, error] = std::from_chars(part.data(), end, index);
+  if (part.empty() || error != std::errc() || stop != end) {
+    throw ConfigError(fmt::format("{}: --set '{}': '{}' is not an index into an array of {} (0 to {})", source, key, part, size,
+                                  size == 0 ? std::string("none") : std::to_string(size - 1)));
+  }
+  if (index >= size) {
+    throw ConfigError(fmt::format("{}: --set '{}': index {} is out of range (the array has {} element{})", source, key, index, size,
+                                  size == 1 ? "" : "s"));
+  }
+  return index;
+}
+
 // --set KEY=VALUE: VALUE is read as a TOML value (16, 0.4, true, "50 GB"); anything that is not
 // valid TOML is taken as a string, so --set pipelines.file_size=50GB works too.
 toml::node_view<toml::node> ensure_path(toml::table& root, const std::string& key, const std::string& source) {
   std::vector<std::string> parts;
   std::stringstream ss(key);
   for (std::string part; std::getline(ss, part, '.');) parts.push_back(part);
-  if (parts.empty() || std::any_of(parts.begin(), parts.end(), [](const std::string& p) { return p.empty(); })) {
+  if (parts.empty() || key.back() == '.' || std::any_of(parts.begin(), parts.end(), [](const std::string& p) { return p.empty(); })) {
     throw ConfigError(fmt::format("{}: --set '{}': not a dotted key such as pipelines.count", source, key));
   }
   toml::node* node = &root;
@@ -58,14 +82,7 @@ toml::node_view<toml::node> ensure_path(toml::table& root, const std::string& ke
       if (!table->contains(part)) table->insert(part, toml::table{});
       node = table->get(part);
     } else if (auto* array = node->as_array()) {
-      std::size_t index = 0;
-      try {
-        index = std::stoul(part);
-      } catch (const std::exception&) {
-        throw ConfigError(fmt::format("{}: --set '{}': '{}' is an array: use an index, e.g. hosts.0.memory", source, key, part));
-      }
-      if (index >= array->size()) throw ConfigError(fmt::format("{}: --set '{}': index {} out of range", source, key, index));
-      node = array->get(index);
+      node = array->get(array_index(part, array->size(), key, source));
     } else {
       throw ConfigError(fmt::format("{}: --set '{}': '{}' is not a table", source, key, part));
     }
@@ -76,23 +93,31 @@ toml::node_view<toml::node> ensure_path(toml::table& root, const std::string& ke
 void apply_override(toml::table& root, const std::string& key, const std::string& value, const std::string& source) {
   auto parent = ensure_path(root, key, source);
   const std::string last = key.substr(key.rfind('.') == std::string::npos ? 0 : key.rfind('.') + 1);
+  // Parsed with the option as its source, so that a problem with the value names the option.
+  const std::string option = fmt::format("--set {}={}", key, value);
   toml::table parsed;
   try {
-    parsed = toml::parse("v = " + value);
+    parsed = toml::parse("v = " + value, option);
   } catch (const toml::parse_error&) {
-    parsed = toml::table{};
-    parsed.insert("v", value);
+    // Not a TOML value: a string, written as a TOML string so that it has the option as its
+    // source too.
+    std::string quoted = "v = \"";
+    for (const char c : value) {
+      const auto byte = static_cast<unsigned char>(c);
+      if (c == '"' || c == '\\') quoted += '\\';
+      if (byte < 0x20 || byte == 0x7f) quoted += fmt::format("\\u{:04X}", byte);
+      else quoted += c;
+    }
+    try {
+      parsed = toml::parse(quoted + "\"", option);
+    } catch (const toml::parse_error& e) {
+      throw ConfigError(fmt::format("{}: the value is not a TOML value, nor text ({})", option, e.description()));
+    }
   }
   if (auto* table = parent.as_table()) {
     table->insert_or_assign(last, std::move(*parsed.get("v")));
   } else if (auto* array = parent.as_array()) {
-    std::size_t index = 0;
-    try {
-      index = std::stoul(last);
-    } catch (const std::exception&) {
-      throw ConfigError(fmt::format("{}: --set '{}': use an index into the array", source, key));
-    }
-    if (index >= array->size()) throw ConfigError(fmt::format("{}: --set '{}': index {} out of range", source, key, index));
+    const std::size_t index = array_index(last, array->size(), key, source);
     array->replace(array->begin() + static_cast<std::ptrdiff_t>(index), std::move(*parsed.get("v")));
   } else {
     throw ConfigError(fmt::format("{}: --set '{}': cannot set a key there", source, key));
@@ -133,6 +158,14 @@ CacheSettings read_page_cache(const toml::table* table, const TomlReader& parent
   };
   ratio("dirty_ratio", s.dirty_ratio);
   ratio("dirty_background_ratio", s.dirty_background_ratio);
+  // Background writeback starting above the point where writers are stopped is a mistake
+  // (the kernel quietly halves it); the key the scenario set is named.
+  if (s.dirty_background_ratio > s.dirty_ratio) {
+    const bool background_set = r.has("dirty_background_ratio");
+    r.fail(background_set ? "dirty_background_ratio" : "dirty_ratio",
+           fmt::format("dirty_background_ratio ({}{}) must not be above dirty_ratio ({}{})", s.dirty_background_ratio,
+                       background_set ? "" : ", the profile's default", s.dirty_ratio, r.has("dirty_ratio") ? "" : ", the profile's default"));
+  }
   if (auto v = r.optional_duration("dirty_expire")) s.dirty_expire = *v;
   if (auto v = r.optional_duration("writeback_interval")) {
     if (*v <= 0.0) r.fail("writeback_interval", "must be > 0");
@@ -146,13 +179,14 @@ CacheSettings read_page_cache(const toml::table* table, const TomlReader& parent
   return s;
 }
 
-HostConfig read_host(const toml::table& table, std::string path, std::size_t index, Profile profile, const std::string& file) {
+HostConfig read_host(const toml::table& table, std::string path, std::size_t index, Profile profile, const std::string& file,
+                     Origins& origins) {
   TomlReader r(table, std::move(path), file);
+  origins.hosts.push_back({&table, r.path(), &file});
   HostConfig h;
-  h.name = r.string("name", fmt::format("host{}", index + 1));
-  h.cores = static_cast<int>(r.optional_integer("cores").value_or(1));
+  h.name = r.name("name", fmt::format("host{}", index + 1));
+  h.cores = static_cast<int>(r.optional_integer("cores", 1, 1'000'000).value_or(1));
   h.memory_in_use = r.optional_size("memory_in_use").value_or(0);
-  if (h.cores < 1) r.fail("cores", "must be >= 1");
   h.memory = r.required_size("memory");
   if (h.memory <= 0) r.fail("memory", "must be > 0");
   if (h.memory_in_use >= h.memory) r.fail("memory_in_use", "must be less than the memory");
@@ -160,26 +194,27 @@ HostConfig read_host(const toml::table& table, std::string path, std::size_t ind
   h.memory_bandwidth.write = r.required_bandwidth("memory_write_bw");
   h.memory_bandwidth.aggregate_read = r.optional_bandwidth("memory_aggregate_read_bw").value_or(h.memory_bandwidth.read);
   h.memory_bandwidth.aggregate_write = r.optional_bandwidth("memory_aggregate_write_bw").value_or(h.memory_bandwidth.write);
-  const std::pair<const char*, double> bandwidths[] = {{"memory_read_bw", h.memory_bandwidth.read},
-                                                       {"memory_write_bw", h.memory_bandwidth.write},
-                                                       {"memory_aggregate_read_bw", h.memory_bandwidth.aggregate_read},
-                                                       {"memory_aggregate_write_bw", h.memory_bandwidth.aggregate_write}};
-  for (const auto& [key, bw] : bandwidths) {
-    if (bw <= 0.0) r.fail(key, "must be > 0");
+  for (const auto& [key, bw] : {std::pair{"memory_aggregate_read_bw", h.memory_bandwidth.aggregate_read},
+                                 std::pair{"memory_aggregate_write_bw", h.memory_bandwidth.aggregate_write}}) {
+    if (bw < units::kMinBandwidth) r.fail(key, fmt::format("must be at least 1 B/s, got {} B/s", bw));
   }
   // Absent or "0 MB/s": first touch of fresh memory costs nothing.
   h.memory_bandwidth.first_touch = r.optional_bandwidth("memory_first_touch_bw").value_or(0.0);
-  if (h.memory_bandwidth.first_touch < 0.0) r.fail("memory_first_touch_bw", "must be >= 0 (0: free)");
-  h.cache = read_page_cache(r.optional_table("page_cache"), r, profile, file);
+  if (h.memory_bandwidth.first_touch > 0.0 && h.memory_bandwidth.first_touch < units::kMinBandwidth) {
+    r.fail("memory_first_touch_bw", fmt::format("must be 0 (free) or at least 1 B/s, got {} B/s", h.memory_bandwidth.first_touch));
+  }
+  const toml::table* page_cache = r.optional_table("page_cache");
+  h.cache = read_page_cache(page_cache, r, profile, file);
+  origins.page_caches.push_back(page_cache != nullptr ? Origin{page_cache, r.child_path("page_cache"), &file} : origins.hosts.back());
   const auto disks = r.tables("disks");
+  std::vector<Origin>& disk_origins = origins.disks.emplace_back();
   for (std::size_t i = 0; i < disks.size(); ++i) {
     TomlReader d(*disks[i], r.child_path("disks", i), file);
+    disk_origins.push_back({disks[i], d.path(), &file});
     DiskSpec disk;
-    disk.name = d.string("name", fmt::format("disk{}", i + 1));
+    disk.name = d.name("name", fmt::format("disk{}", i + 1));
     disk.read_bw = d.required_bandwidth("read_bw");
     disk.write_bw = d.required_bandwidth("write_bw");
-    if (disk.read_bw <= 0.0) d.fail("read_bw", "must be > 0");
-    if (disk.write_bw <= 0.0) d.fail("write_bw", "must be > 0");
     disk.capacity = d.optional_size("capacity").value_or(0);
     for (const DiskSpec& other : h.disks) {
       if (other.name == disk.name) d.fail("name", fmt::format("host '{}' has two disks named '{}'", h.name, disk.name));
@@ -196,32 +231,47 @@ TaskSpec read_task(const toml::table& table, std::string path, std::size_t index
                    const std::string& file, bool with_after) {
   TomlReader r(table, std::move(path), file);
   TaskSpec t;
-  t.name = r.string("name", std::to_string(index + 1));
-  t.reads = r.strings("read");
+  t.name = r.name("name", std::to_string(index + 1));
+  t.reads = r.names("read");
   t.compute = r.optional_duration("compute").value_or(0.0);
-  t.writes = r.strings("write");
+  t.writes = r.names("write");
   t.chunk_size = r.optional_size("chunk_size").value_or(default_chunk);
   if (t.chunk_size <= 0) r.fail("chunk_size", "must be > 0");
-  if (with_after) t.after = r.strings("after");
+  if (with_after) t.after = r.names("after");
   t.fsync = r.optional_bool("fsync").value_or(false);
   t.direct_io = r.optional_bool("direct_io").value_or(false);
-  t.deletes = r.strings("delete");
+  t.deletes = r.names("delete");
   r.finish();
   return t;
 }
 
 // [pipelines]: N identical concurrent pipelines of T tasks; task k of pipeline i reads
 // file k and writes file k+1 of that pipeline ("file_k" when N = 1, else "p<i>_file_k").
-void expand_pipelines(const toml::table& table, Scenario& s, const std::string& file) {
+void expand_pipelines(const toml::table& table, Scenario& s, const std::string& file, const ScenarioLimits& limits,
+                      Origins& origins) {
   TomlReader r(table, "pipelines", file);
+  origins.pipelines = Origin{&table, "pipelines", &file};
   const std::int64_t count = r.optional_integer("count").value_or(1);
   if (count < 1) r.fail("count", "must be >= 1");
-  const std::string host = r.string("host", s.hosts.empty() ? std::string() : s.hosts.front().name);
-  const std::string files_host = r.string("files_host", host);
-  std::string disk = r.string("disk", "");
+  const std::string host = r.name("host", s.hosts.empty() ? std::string() : s.hosts.front().name);
+  const std::string files_host = r.name("files_host", host);
+  std::string disk = r.name("disk", "");
   const std::int64_t size = r.required_size("file_size");
   const std::int64_t tasks = r.optional_integer("tasks").value_or(3);
   if (tasks < 1) r.fail("tasks", "must be >= 1");
+  // Checked before anything is made: a count of 10^9 would otherwise fill the memory first.
+  // Doubles, so that the products cannot overflow.
+  const double task_total = static_cast<double>(count) * static_cast<double>(tasks) + static_cast<double>(s.apps.size());
+  const double file_total = static_cast<double>(count) * (static_cast<double>(tasks) + 1.0) + static_cast<double>(s.files.size());
+  const char* culprit = tasks > count ? "tasks" : "count";
+  if (task_total > static_cast<double>(limits.max_tasks)) {
+    r.fail(culprit, fmt::format("{} pipelines of {} tasks are {:.3g} tasks, more than the {} a run may have{}", count, tasks, task_total,
+                                limits.max_tasks, scenario::limits_hint(limits)));
+  }
+  if (file_total > static_cast<double>(limits.max_files)) {
+    r.fail(culprit, fmt::format("{} pipelines of {} tasks use {:.3g} files, more than the {} a run may have{}", count, tasks, file_total,
+                                limits.max_files, scenario::limits_hint(limits)));
+  }
   const double cpu = r.optional_duration("cpu_time").value_or(0.0);
   const std::int64_t chunk = r.optional_size("chunk_size").value_or(100'000'000);
   if (chunk <= 0) r.fail("chunk_size", "must be > 0");
@@ -233,10 +283,13 @@ void expand_pipelines(const toml::table& table, Scenario& s, const std::string& 
   const auto h = std::find_if(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == files_host; });
   if (h == s.hosts.end()) r.fail("files_host", fmt::format("no host named '{}'", files_host));
   if (disk.empty()) disk = h->disks.front().name;
+  s.files.reserve(s.files.size() + static_cast<std::size_t>(count * (tasks + 1)));
+  s.apps.reserve(s.apps.size() + static_cast<std::size_t>(count));
   for (std::int64_t i = 1; i <= count; ++i) {
     auto file_name = [&](std::int64_t k) { return count == 1 ? fmt::format("file_{}", k) : fmt::format("p{}_file_{}", i, k); };
     for (std::int64_t k = 1; k <= tasks + 1; ++k) s.files.push_back({file_name(k), size, files_host, disk, k == 1 && cached});
     AppSpec app{std::to_string(i), host, {}};
+    app.tasks.reserve(static_cast<std::size_t>(tasks));
     for (std::int64_t k = 1; k <= tasks; ++k) {
       TaskSpec& task = app.tasks.emplace_back();
       task.name = std::to_string(k);
@@ -247,8 +300,11 @@ void expand_pipelines(const toml::table& table, Scenario& s, const std::string& 
     }
     s.apps.push_back(std::move(app));
   }
+  origins.pipeline_apps = static_cast<std::size_t>(count);
 }
 
+// A cycle of dependencies, reported with its tasks. Iterative: a workflow may be a chain of
+// 10^5 tasks, deeper than the stack a recursive search would need.
 void check_workflow_acyclic(const WorkflowSpec& w, const TomlReader& r) {
   std::map<std::string, std::size_t> by_name;
   std::map<std::string, std::size_t> producer;
@@ -269,32 +325,40 @@ void check_workflow_acyclic(const WorkflowSpec& w, const TomlReader& r) {
       if (auto it = producer.find(f); it != producer.end()) deps[i].push_back(it->second);
     }
   }
-  // Depth-first search for a cycle, reporting its tasks.
-  std::vector<int> state(w.tasks.size(), 0);
-  std::vector<std::size_t> stack;
-  std::function<void(std::size_t)> visit = [&](std::size_t t) {
-    state[t] = 1;
-    stack.push_back(t);
-    for (std::size_t d : deps[t]) {
-      if (state[d] == 1) {
+  enum : char { Unseen, OnPath, Done };
+  std::vector<char> state(w.tasks.size(), Unseen);
+  std::vector<std::pair<std::size_t, std::size_t>> path;  // (task, next dependency to visit)
+  for (std::size_t root = 0; root < w.tasks.size(); ++root) {
+    if (state[root] != Unseen) continue;
+    state[root] = OnPath;
+    path.emplace_back(root, 0);
+    while (!path.empty()) {
+      auto& [task, next] = path.back();
+      if (next == deps[task].size()) {
+        state[task] = Done;
+        path.pop_back();
+        continue;
+      }
+      const std::size_t d = deps[task][next++];
+      if (state[d] == OnPath) {
         std::string cycle;
-        for (auto it = std::find(stack.begin(), stack.end(), d); it != stack.end(); ++it) cycle += w.tasks[*it].name + " -> ";
+        auto it = std::find_if(path.begin(), path.end(), [&](const auto& p) { return p.first == d; });
+        for (; it != path.end(); ++it) cycle += w.tasks[it->first].name + " -> ";
         r.fail("tasks", fmt::format("dependency cycle: {}{}", cycle, w.tasks[d].name));
       }
-      if (state[d] == 0) visit(d);
+      if (state[d] == Unseen) {
+        state[d] = OnPath;
+        path.emplace_back(d, 0);
+      }
     }
-    stack.pop_back();
-    state[t] = 2;
-  };
-  for (std::size_t t = 0; t < w.tasks.size(); ++t)
-    if (state[t] == 0) visit(t);
+  }
 }
 
 // The platform part of a scenario or of a platform file: [[hosts]] and [[links]].
-void read_platform(TomlReader& r, Scenario& s, const std::string& file) {
+void read_platform(TomlReader& r, Scenario& s, const std::string& file, Origins& origins) {
   const auto hosts = r.tables("hosts");
   for (std::size_t i = 0; i < hosts.size(); ++i) {
-    HostConfig host = read_host(*hosts[i], r.child_path("hosts", i), s.hosts.size(), s.profile, file);
+    HostConfig host = read_host(*hosts[i], r.child_path("hosts", i), s.hosts.size(), s.profile, file, origins);
     for (const HostConfig& other : s.hosts) {
       if (other.name == host.name) TomlReader(*hosts[i], r.child_path("hosts", i), file).fail("name", "two hosts share this name");
     }
@@ -303,12 +367,12 @@ void read_platform(TomlReader& r, Scenario& s, const std::string& file) {
   const auto links = r.tables("links");
   for (std::size_t i = 0; i < links.size(); ++i) {
     TomlReader l(*links[i], r.child_path("links", i), file);
+    origins.links.push_back({links[i], l.path(), &file});
     LinkSpec link;
-    link.name = l.string("name", fmt::format("link{}", s.links.size() + 1));
+    link.name = l.name("name", fmt::format("link{}", s.links.size() + 1));
     link.bandwidth = l.required_bandwidth("bandwidth");
-    if (link.bandwidth <= 0.0) l.fail("bandwidth", "must be > 0");
     link.latency = l.optional_duration("latency").value_or(0.0);
-    const std::vector<std::string> ends = l.strings("hosts");
+    const std::vector<std::string> ends = l.names("hosts");
     if (ends.size() != 2 || ends[0] == ends[1]) l.fail("hosts", "a link joins two different hosts: hosts = [\"a\", \"b\"]");
     for (const std::string& end : ends) {
       if (std::none_of(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == end; })) {
@@ -323,8 +387,50 @@ void read_platform(TomlReader& r, Scenario& s, const std::string& file) {
   }
 }
 
-Scenario resolve(const toml::table& root, const std::string& file, const std::string& profile_override) {
+// What the files on each disk take at the start (those no task writes) and at the end (those no
+// task deletes): both must fit its capacity. Files written and deleted meanwhile may need more.
+void check_disk_space(const Scenario& s, const Origins& origins) {
+  const bool any_capacity = std::any_of(s.hosts.begin(), s.hosts.end(), [](const HostConfig& h) {
+    return std::any_of(h.disks.begin(), h.disks.end(), [](const DiskSpec& d) { return d.capacity > 0; });
+  });
+  if (!any_capacity) return;
+  std::unordered_set<std::string_view> written, deleted;
+  auto note = [&](const std::vector<TaskSpec>& tasks) {
+    for (const TaskSpec& t : tasks) {
+      written.insert(t.writes.begin(), t.writes.end());
+      deleted.insert(t.deletes.begin(), t.deletes.end());
+    }
+  };
+  for (const AppSpec& a : s.apps) note(a.tasks);
+  for (const WorkflowSpec& w : s.workflows) note(w.tasks);
+  for (std::size_t h = 0; h < s.hosts.size(); ++h) {
+    for (std::size_t d = 0; d < s.hosts[h].disks.size(); ++d) {
+      const DiskSpec& disk = s.hosts[h].disks[d];
+      if (disk.capacity <= 0) continue;
+      std::int64_t at_start = 0, at_end = 0;  // at most 2^60 each, summed while below 2^62
+      for (const FileSpec& f : s.files) {
+        if (f.host != s.hosts[h].name || f.disk != disk.name) continue;
+        if (written.count(f.name) == 0) at_start = std::min(at_start + f.size, units::kMaxBytes * 2);
+        if (deleted.count(f.name) == 0) at_end = std::min(at_end + f.size, units::kMaxBytes * 2);
+      }
+      const bool start = at_start >= at_end;
+      const std::int64_t needed = std::max(at_start, at_end);
+      if (needed > disk.capacity) {
+        origins.disks[h][d].fail(origins.disks[h][d].has("capacity") ? "capacity" : "name",
+                                 fmt::format("the files on disk '{}' of host '{}' take {} {}, more than its capacity of {}", disk.name,
+                                             s.hosts[h].name, units::format_size(needed),
+                                             start ? "when the run starts (the files no task writes)"
+                                                   : "when the run ends (the files no task deletes)",
+                                             units::format_size(disk.capacity)));
+      }
+    }
+  }
+}
+
+Scenario resolve(const toml::table& root, const std::string& file, const std::string& profile_override, const ScenarioLimits& limits) {
   TomlReader r(root, "", file);
+  Origins origins;
+  origins.root = {&root, "", &file};
   Scenario s;
   s.source = file;
   s.title = r.string("title", "");
@@ -337,6 +443,8 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
   s.memory_sample_interval = r.optional_duration("memory_sample_interval").value_or(1.0);
 
   // platform = "file.toml", or one per profile: platform = { paper = "a.toml", linux = "b.toml" }
+  std::string platform_file;  // outlives the platform's origins
+  toml::table platform_root;
   if (const toml::node* platform = r.raw("platform")) {
     std::string path;
     if (platform->is_string()) {
@@ -349,23 +457,24 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
       r.fail("platform", "expected a file name, or a table of file names per profile");
     }
     const std::filesystem::path relative_to = std::filesystem::path(file).parent_path();
-    const std::string resolved = std::filesystem::path(path).is_absolute() ? path : (relative_to / path).lexically_normal().string();
-    std::ifstream in(resolved);
-    if (!in) r.fail("platform", fmt::format("cannot open the platform file {}", resolved));
-    std::stringstream text;
-    text << in.rdbuf();
-    toml::table platform_root;
+    platform_file = std::filesystem::path(path).is_absolute() ? path : (relative_to / path).lexically_normal().string();
+    std::string text;
     try {
-      platform_root = toml::parse(text.str(), resolved);
-    } catch (const toml::parse_error& e) {
-      throw ConfigError(fmt::format("{}:{}:{}: {}", resolved, e.source().begin.line, e.source().begin.column, e.description()));
+      text = scenario::read_text_file(platform_file, "platform file");
+    } catch (const ConfigError& e) {
+      r.fail("platform", e.what());
     }
-    TomlReader p(platform_root, "", resolved);
+    try {
+      platform_root = toml::parse(text, platform_file);
+    } catch (const toml::parse_error& e) {
+      throw ConfigError(fmt::format("{}:{}:{}: {}", platform_file, e.source().begin.line, e.source().begin.column, e.description()));
+    }
+    TomlReader p(platform_root, "", platform_file);
     p.string("title", "");
-    read_platform(p, s, resolved);
+    read_platform(p, s, platform_file, origins);
     p.finish();
   }
-  read_platform(r, s, file);
+  read_platform(r, s, file, origins);
   if (s.hosts.empty()) r.fail_table("no host: add a [[hosts]] table, or a platform file");
 
   // [start.memory_in_use]: host name -> memory in use when this run starts (what a measured
@@ -389,11 +498,12 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
   const auto files = r.tables("files");
   for (std::size_t i = 0; i < files.size(); ++i) {
     TomlReader f(*files[i], r.child_path("files", i), file);
+    origins.files.push_back({files[i], f.path(), &file});
     FileSpec spec;
-    spec.name = f.required_string("name");
+    spec.name = f.required_name("name");
     spec.size = f.required_size("size");
-    spec.host = f.string("host", s.hosts.front().name);
-    spec.disk = f.string("disk", "");
+    spec.host = f.name("host", s.hosts.front().name);
+    spec.disk = f.name("disk", "");
     spec.cached = f.optional_bool("cached").value_or(false);
     const auto h = std::find_if(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == spec.host; });
     if (h == s.hosts.end()) f.fail("host", fmt::format("no host named '{}'", spec.host));
@@ -401,31 +511,41 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
     f.finish();
     s.files.push_back(std::move(spec));
   }
-  if (const toml::table* p = r.optional_table("pipelines")) expand_pipelines(*p, s, file);
+  if (const toml::table* p = r.optional_table("pipelines")) expand_pipelines(*p, s, file, limits, origins);
 
   const auto apps = r.tables("apps");
   for (std::size_t i = 0; i < apps.size(); ++i) {
     TomlReader a(*apps[i], r.child_path("apps", i), file);
+    origins.apps.push_back({apps[i], a.path(), &file});
+    std::vector<Origin>& task_origins = origins.app_tasks.emplace_back();
     AppSpec app;
-    app.name = a.string("name", fmt::format("app{}", i + 1));
-    app.host = a.string("host", s.hosts.front().name);
+    app.name = a.name("name", fmt::format("app{}", i + 1));
+    app.host = a.name("host", s.hosts.front().name);
     const std::int64_t chunk = a.optional_size("chunk_size").value_or(100'000'000);
+    if (chunk <= 0) a.fail("chunk_size", "must be > 0");
     const auto tasks = a.tables("tasks");
     if (tasks.empty()) a.fail_table("an application needs at least one [[" + a.path() + ".tasks]]");
-    for (std::size_t t = 0; t < tasks.size(); ++t) app.tasks.push_back(read_task(*tasks[t], a.child_path("tasks", t), t, chunk, file, false));
+    for (std::size_t t = 0; t < tasks.size(); ++t) {
+      task_origins.push_back({tasks[t], a.child_path("tasks", t), &file});
+      app.tasks.push_back(read_task(*tasks[t], a.child_path("tasks", t), t, chunk, file, false));
+    }
     a.finish();
     s.apps.push_back(std::move(app));
   }
 
   if (const toml::table* w = r.optional_table("workflow")) {
     TomlReader wr(*w, "workflow", file);
+    origins.workflows.push_back({w, "workflow", &file});
+    std::vector<Origin>& task_origins = origins.workflow_tasks.emplace_back();
     WorkflowSpec workflow;
-    workflow.name = wr.string("name", "workflow");
-    workflow.host = wr.string("host", s.hosts.front().name);
+    workflow.name = wr.name("name", "workflow");
+    workflow.host = wr.name("host", s.hosts.front().name);
     const std::int64_t chunk = wr.optional_size("chunk_size").value_or(100'000'000);
+    if (chunk <= 0) wr.fail("chunk_size", "must be > 0");
     const auto tasks = wr.tables("tasks");
     if (tasks.empty()) wr.fail_table("a workflow needs at least one [[workflow.tasks]]");
     for (std::size_t t = 0; t < tasks.size(); ++t) {
+      task_origins.push_back({tasks[t], wr.child_path("tasks", t), &file});
       workflow.tasks.push_back(read_task(*tasks[t], wr.child_path("tasks", t), t, chunk, file, true));
     }
     check_workflow_acyclic(workflow, wr);
@@ -437,16 +557,19 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
 
   // References: every file a task names exists on the task's host; files fit their disks.
   std::map<std::string, const FileSpec*> by_name;
-  for (const FileSpec& f : s.files) {
-    if (!by_name.emplace(f.name, &f).second) throw ConfigError(fmt::format("{}: two files named '{}'", file, f.name));
+  for (std::size_t i = 0; i < s.files.size(); ++i) {
+    const FileSpec& f = s.files[i];
+    if (!by_name.emplace(f.name, &f).second) origins.file(i).fail("name", fmt::format("two files named '{}'", f.name));
     const HostConfig& h = *std::find_if(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == f.host; });
     const auto d = std::find_if(h.disks.begin(), h.disks.end(), [&](const DiskSpec& x) { return x.name == f.disk; });
-    if (d == h.disks.end()) throw ConfigError(fmt::format("{}: file '{}': host '{}' has no disk '{}'", file, f.name, h.name, f.disk));
+    if (d == h.disks.end()) origins.file(i).fail("disk", fmt::format("file '{}': host '{}' has no disk '{}'", f.name, h.name, f.disk));
     if (d->capacity > 0 && f.size > d->capacity) {
-      throw ConfigError(fmt::format("{}: file '{}' ({}) does not fit on disk '{}' ({})", file, f.name, units::format_size(f.size),
-                                    d->name, units::format_size(d->capacity)));
+      origins.file(i).fail(i < origins.files.size() ? "size" : "file_size",
+                           fmt::format("file '{}' ({}) does not fit on disk '{}' ({})", f.name, units::format_size(f.size), d->name,
+                                       units::format_size(d->capacity)));
     }
   }
+  check_disk_space(s, origins);
   auto check_tasks = [&](const std::string& owner, const std::string& host, const std::vector<TaskSpec>& tasks) {
     if (std::none_of(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == host; })) {
       throw ConfigError(fmt::format("{}: {}: no host named '{}'", file, owner, host));
@@ -466,13 +589,24 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
   };
   for (const AppSpec& a : s.apps) check_tasks("application '" + a.name + "'", a.host, a.tasks);
   for (const WorkflowSpec& w : s.workflows) check_tasks("workflow '" + w.name + "'", w.host, w.tasks);
+  scenario::check_limits(s, origins, limits);
   return s;
 }
 
 }  // namespace
 
+ScenarioLimits ScenarioLimits::forced() {
+  ScenarioLimits l;
+  l.max_tasks = 500'000'000;  // three timeline rows each, indexed by 32 bits
+  l.max_files = 1'000'000'000;
+  l.max_events = std::numeric_limits<double>::infinity();
+  l.max_simulated_time = units::kMaxSeconds;
+  l.max_memory_rows = std::numeric_limits<double>::infinity();
+  return l;
+}
+
 Scenario parse_scenario(const std::string& toml_text, const std::string& source_name, const Overrides& overrides,
-                        const std::string& profile_override) {
+                        const std::string& profile_override, const ScenarioLimits& limits) {
   toml::table root;
   try {
     root = toml::parse(toml_text, source_name);
@@ -480,15 +614,12 @@ Scenario parse_scenario(const std::string& toml_text, const std::string& source_
     throw ConfigError(fmt::format("{}:{}:{}: {}", source_name, e.source().begin.line, e.source().begin.column, e.description()));
   }
   for (const auto& [key, value] : overrides) apply_override(root, key, value, source_name);
-  return resolve(root, source_name, profile_override);
+  return resolve(root, source_name, profile_override, limits);
 }
 
-Scenario load_scenario(const std::string& path, const Overrides& overrides, const std::string& profile_override) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError(fmt::format("{}: cannot open the scenario file", path));
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_scenario(text.str(), path, overrides, profile_override);
+Scenario load_scenario(const std::string& path, const Overrides& overrides, const std::string& profile_override,
+                       const ScenarioLimits& limits) {
+  return parse_scenario(scenario::read_text_file(path, "scenario file"), path, overrides, profile_override, limits);
 }
 
 }  // namespace pagecache

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <cmath>
@@ -17,18 +18,32 @@ struct Unit {
   double factor;
 };
 
-constexpr std::array<Unit, 10> kSizeUnits{{{"B", 1.0},
+constexpr std::array<Unit, 14> kSizeUnits{{{"B", 1.0},
                                             {"kB", 1e3},
                                             {"KB", 1e3},
                                             {"MB", 1e6},
                                             {"GB", 1e9},
                                             {"TB", 1e12},
+                                            {"PB", 1e15},
+                                            {"EB", 1e18},
                                             {"KiB", 1024.0},
                                             {"MiB", 1024.0 * 1024},
                                             {"GiB", 1024.0 * 1024 * 1024},
-                                            {"TiB", 1024.0 * 1024 * 1024 * 1024}}};
+                                            {"TiB", 1024.0 * 1024 * 1024 * 1024},
+                                            {"PiB", 1024.0 * 1024 * 1024 * 1024 * 1024},
+                                            {"EiB", 1024.0 * 1024 * 1024 * 1024 * 1024 * 1024}}};
+
+// Network bandwidths are quoted in bits per second.
+constexpr std::array<Unit, 5> kBitUnits{{{"bit", 1.0 / 8}, {"kbit", 1e3 / 8}, {"Mbit", 1e6 / 8}, {"Gbit", 1e9 / 8}, {"Tbit", 1e12 / 8}}};
 
 constexpr std::array<Unit, 7> kTimeUnits{{{"ns", 1e-9}, {"us", 1e-6}, {"ms", 1e-3}, {"s", 1.0}, {"sec", 1.0}, {"min", 60.0}, {"h", 3600.0}}};
+
+using Misspellings = std::array<std::pair<std::string_view, std::string_view>, 8>;
+// Spellings people type for a unit we know under another: suggested, never accepted.
+constexpr Misspellings kBandwidthMisspellings{
+    {{"bps", "bit/s"}, {"kbps", "kbit/s"}, {"Kbps", "kbit/s"}, {"Mbps", "Mbit/s"}, {"Gbps", "Gbit/s"}, {"Tbps", "Tbit/s"}, {"MBps", "MB/s"}, {"GBps", "GB/s"}}};
+constexpr Misspellings kTimeMisspellings{
+    {{"m", "min"}, {"secs", "s"}, {"second", "s"}, {"seconds", "s"}, {"minute", "min"}, {"minutes", "min"}, {"hour", "h"}, {"hours", "h"}}};
 
 std::string_view trim(std::string_view s) {
   while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
@@ -63,38 +78,98 @@ std::pair<double, std::string_view> split_number(std::string_view text, const ch
   return {value, trim(s.substr(end))};
 }
 
+bool same_ignoring_case(std::string_view a, std::string_view b) {
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+           return std::tolower(static_cast<unsigned char>(x)) == std::tolower(static_cast<unsigned char>(y));
+         });
+}
+
 template <std::size_t N>
-double factor_of(std::string_view unit, const std::array<Unit, N>& table, std::string_view text, const char* what,
-                 const char* examples) {
+const Unit* find_unit(std::string_view name, const std::array<Unit, N>& table) {
   for (const Unit& u : table) {
-    if (u.name == unit) return u.factor;
+    if (u.name == name) return &u;
   }
+  return nullptr;
+}
+
+// The unit someone typing `unit` meant, if it is a common spelling of one ("Gbps"); else "".
+std::string misspelt(std::string_view unit, const Misspellings& misspellings) {
+  for (const auto& [typed, meant] : misspellings) {
+    if (unit == typed) return std::string(meant);
+  }
+  return {};
+}
+
+// The unit someone typing `unit` meant, if it is one of `table` in other letter case ("gib");
+// else "". `suffix` follows it.
+template <std::size_t N>
+std::string meant_unit(std::string_view unit, const std::array<Unit, N>& table, std::string_view suffix = {}) {
+  for (const Unit& u : table) {
+    if (same_ignoring_case(unit, u.name)) return std::string(u.name) + std::string(suffix);
+  }
+  return {};
+}
+
+[[noreturn]] void unknown_unit(std::string_view text, const char* what, std::string_view unit, const std::string& meant, const char* examples) {
+  if (!meant.empty()) throw ConfigError(fmt::format("'{}': unknown {} unit '{}' (did you mean '{}'?)", text, what, unit, meant));
   throw ConfigError(fmt::format("'{}': unknown {} unit '{}' (use {})", text, what, unit, examples));
+}
+
+// value * factor, which must be finite ("1e308 h" is not).
+double scaled(double value, double factor, std::string_view text, const char* what) {
+  const double result = value * factor;
+  if (!std::isfinite(result)) throw ConfigError(fmt::format("'{}': {} too large", text, what));
+  return result;
 }
 
 }  // namespace
 
 std::int64_t parse_size(std::string_view text) {
   const auto [value, unit] = split_number(text, "size");
-  const double factor = unit.empty() ? 1.0 : factor_of(unit, kSizeUnits, text, "size", "B, kB, MB, GB, TB, KiB, MiB, GiB, TiB");
+  double factor = 1.0;
+  if (!unit.empty()) {
+    const Unit* u = find_unit(unit, kSizeUnits);
+    if (u == nullptr) unknown_unit(text, "size", unit, meant_unit(unit, kSizeUnits), "B, kB, MB, GB, TB, PB, EB, KiB, MiB, GiB, TiB, PiB, EiB");
+    factor = u->factor;
+  }
   const double bytes = std::round(value * factor);
-  if (bytes > 9.2e18) throw ConfigError(fmt::format("'{}': size too large", text));
+  if (!(bytes <= static_cast<double>(kMaxBytes))) throw ConfigError(fmt::format("'{}': size too large (at most 1 EiB)", text));
   return static_cast<std::int64_t>(bytes);
 }
 
 double parse_bandwidth(std::string_view text) {
   const auto [value, unit] = split_number(text, "bandwidth");
   if (unit.empty()) return value;
-  if (unit.size() < 3 || unit.substr(unit.size() - 2) != "/s") {
-    throw ConfigError(fmt::format("'{}': a bandwidth is a size per second, e.g. \"465 MB/s\"", text));
+  const bool per_second = unit.size() > 2 && unit.substr(unit.size() - 2) == "/s";
+  if (per_second) {
+    const std::string_view per = unit.substr(0, unit.size() - 2);
+    if (const Unit* u = find_unit(per, kSizeUnits)) return scaled(value, u->factor, text, "bandwidth");
+    if (const Unit* u = find_unit(per, kBitUnits)) return scaled(value, u->factor, text, "bandwidth");
   }
-  return value * factor_of(unit.substr(0, unit.size() - 2), kSizeUnits, text, "bandwidth", "B/s, MB/s, GB/s, MiB/s, GiB/s");
+  std::string_view base = unit;
+  if (unit.size() > 2 && same_ignoring_case(unit.substr(unit.size() - 2), "/s")) base = unit.substr(0, unit.size() - 2);
+  std::string meant = misspelt(unit, kBandwidthMisspellings);
+  if (meant.empty()) meant = meant_unit(base, kSizeUnits, "/s");
+  // A lower-case b is a bit ("Mb/s"): the size and the bit unit are both offered.
+  const std::string bits = !base.empty() && base.back() == 'b' ? meant_unit(std::string(base.substr(0, base.size() - 1)) + "bit", kBitUnits, "/s")
+                                                               : meant_unit(base, kBitUnits, "/s");
+  if (meant.empty()) meant = bits;
+  else if (!bits.empty() && bits != meant) meant += "' or '" + bits;
+  if (!per_second && !meant.empty() && meant.substr(0, base.size()) == base) {
+    throw ConfigError(fmt::format("'{}': a bandwidth is a size per second (did you mean '{}'?)", text, meant));
+  }
+  unknown_unit(text, "bandwidth", unit, meant, "B/s, MB/s, GB/s, MiB/s, GiB/s, Mbit/s, Gbit/s");
 }
 
 double parse_duration(std::string_view text) {
   const auto [value, unit] = split_number(text, "duration");
   if (unit.empty()) return value;
-  return value * factor_of(unit, kTimeUnits, text, "duration", "ns, us, ms, s, min, h");
+  const Unit* u = find_unit(unit, kTimeUnits);
+  if (u == nullptr) {
+    const std::string meant = misspelt(unit, kTimeMisspellings);
+    unknown_unit(text, "duration", unit, meant.empty() ? meant_unit(unit, kTimeUnits) : meant, "ns, us, ms, s, min, h");
+  }
+  return scaled(value, u->factor, text, "duration");
 }
 
 std::string format_size(std::int64_t bytes) {

@@ -88,10 +88,15 @@ CaseResult exp1(const Options& o, int size_gb, double cpu_seconds) {
       if (std::abs(num(r, "time_s") - t) < std::abs(num(*best, "time_s") - t)) best = &r;
     return std::pair{(num(*best, "cached_mb") - num(*best, "shmem_mb")) * 1e6, num(*best, "dirty_mb") * 1e6};
   };
+  // Simulated memory at an instant: the compute node's at the sampling tick nearest in time,
+  // which is its last row at or before that tick (a row is written only when it changed).
+  const std::string& node = scenario.hosts.front().name;
   auto sim_memory_at = [&](double t) {
-    const MemoryRow* best = &run.memory.front();
+    const double interval = scenario.memory_sample_interval;
+    const double tick = interval > 0.0 ? std::round(t / interval) * interval : t;
+    const MemoryRow* best = nullptr;
     for (const MemoryRow& m : run.memory)
-      if (std::abs(m.time - t) < std::abs(best->time - t)) best = &m;
+      if (m.host == node && (best == nullptr || m.time <= tick)) best = &m;
     return std::pair{static_cast<double>(best->state.cached + best->state.reserved), static_cast<double>(best->state.dirty)};
   };
   const double total = static_cast<double>(scenario.hosts.front().memory);

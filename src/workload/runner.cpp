@@ -11,9 +11,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <deque>
 #include <map>
 #include <memory>
+#include <optional>
 #include <span>
 #include <tuple>
 #include <unordered_map>
@@ -54,12 +56,16 @@ class Runner {
       for (const DiskSpec& d : config.disks) disks[d.name] = host->add_disk(d.name, d.read_bw, d.write_bw, d.capacity);
       disks_[config.name] = std::move(disks);
       // A profile of every change is recorded as the changes happen; sampled profiles are
-      // taken by sample_memory().
+      // taken by sample_memory(), which only needs to know that something changed.
+      const std::size_t index = host_order_.size();
       if (scenario_.memory_sample_interval <= 0.0) {
-        host->set_memory_observer([this, name = config.name](double now, const MemoryState& m) { record_memory(now, name, m); });
+        host->set_memory_observer([this, index](double now, const MemoryState& m) { record_memory(now, index, m); });
+      } else {
+        host->set_memory_observer([this](double, const MemoryState&) { memory_changed(); });
       }
       hosts_[config.name] = std::move(host);
       host_order_.push_back(config.name);
+      host_list_.push_back(hosts_[config.name].get());
     }
     for (const LinkSpec& l : scenario.links) links_[{l.host_a, l.host_b}] = &links_storage_.emplace_back(share_, l.name, l.bandwidth, l.latency);
     files_.reserve(scenario.files.size());
@@ -114,6 +120,12 @@ class Runner {
     try {
       std::uint64_t next_progress = 1 << 12;
       while (sim_.step()) {
+        // The loader refuses scenarios estimated to run this long; this catches what the
+        // estimate missed, before the clock loses its precision.
+        if (sim_.now() > options_.max_simulated_time) {
+          throw SimulationError(fmt::format("the simulated time passed {:g} s, the most a run may take (RunOptions::max_simulated_time)",
+                                            options_.max_simulated_time));
+        }
         if (options_.progress && sim_.events_processed() >= next_progress) {
           options_.progress(sim_.now(), sim_.events_processed());
           next_progress += 1 << 12;
@@ -211,19 +223,44 @@ class Runner {
     return 1;
   }
 
-  void record_memory(double now, const std::string& host, const MemoryState& m) {
-    if (!result_.memory.empty() && result_.memory.back().host == host && result_.memory.back().state == m) return;
-    result_.memory.push_back({now, host, m});
+  // A host's row only when its memory differs from its previous row.
+  void record_memory(double now, std::size_t host, const MemoryState& m) {
+    if (last_memory_.size() < host_order_.size()) last_memory_.resize(host_order_.size());
+    std::optional<MemoryState>& last = last_memory_[host];
+    if (last && *last == m) return;
+    last = m;
+    result_.memory.push_back({now, host_order_[host], m});
   }
 
   void record_all_memory() {
-    for (const std::string& name : host_order_) record_memory(sim_.now(), name, hosts_.at(name)->memory());
+    for (std::size_t i = 0; i < host_list_.size(); ++i) record_memory(sim_.now(), i, host_list_[i]->memory());
   }
 
+  void memory_changed() {
+    memory_changed_ = true;
+    if (memory_wake_ && !memory_wake_->triggered()) memory_wake_->trigger();
+  }
+
+  // A row per host at every tick of memory_sample_interval at which its memory differs from its
+  // previous row. Ticks after which nothing changed are skipped, not slept through one by one:
+  // the run's events follow its work, not its simulated length (a "1e300 s" compute, or a
+  // "1 ns" interval through an idle stretch, took one event per tick for ever).
   Task<void> sample_memory() {
+    const double interval = scenario_.memory_sample_interval;
+    double tick = sim_.now();
     while (running_ > 0) {
       record_all_memory();
-      co_await sim_.sleep(scenario_.memory_sample_interval);
+      memory_changed_ = false;
+      tick += interval;
+      co_await sim_.sleep(tick - sim_.now());
+      if (memory_changed_) continue;
+      memory_wake_.emplace(sim_);
+      co_await memory_wake_->wait();
+      memory_wake_.reset();
+      // Back on the cadence: the first tick at or after the change, but not the idle tick
+      // itself, whose row was due before the change came.
+      tick += std::max(1.0, std::ceil((sim_.now() - tick) / interval)) * interval;
+      co_await sim_.sleep(tick - sim_.now());
     }
   }
 
@@ -358,6 +395,10 @@ class Runner {
   std::map<std::string, std::unique_ptr<Host>> hosts_;
   std::map<std::string, std::map<std::string, DiskRef>> disks_;
   std::vector<std::string> host_order_;
+  std::vector<Host*> host_list_;                      // in host_order_
+  std::vector<std::optional<MemoryState>> last_memory_;  // per host, its last memory row
+  bool memory_changed_ = false;                       // since the sampler's last tick
+  std::optional<Event> memory_wake_;                  // the sampler, waiting for a change
   std::deque<Link> links_storage_;
   std::map<std::pair<std::string, std::string>, const Link*> links_;
   std::unordered_map<std::string, PlacedFile> files_;  // nodes: stable addresses

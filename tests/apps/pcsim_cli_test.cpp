@@ -1,50 +1,29 @@
 // The pcsim command line, run as a user would: bad inputs, golden outputs, determinism, the
 // paper's Exp 1 through the command line, and every shipped scenario.
 #include "support/csv.hpp"
+#include "support/pcsim_cli.hpp"
 
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 
-#include <array>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
-#include <sys/wait.h>
 
 namespace fs = std::filesystem;
 using pagecache::testing::CsvRow;
+using pagecache::testing::kPlatform;
+using pagecache::testing::kWorkload;
+using pagecache::testing::Outcome;
+using pagecache::testing::pcsim;
 using pagecache::testing::read_csv;
+using pagecache::testing::scratch;
+using pagecache::testing::slurp;
 using pagecache::testing::validation_file;
 
 namespace {
-
-struct Outcome {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
-
-Outcome pcsim(const std::string& args) {
-  const std::string command = fmt::format("'{}' {} 2>&1 < /dev/null", PCSIM_BINARY, args);
-  Outcome out;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  std::array<char, 4096> buffer{};
-  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) out.output.append(buffer.data(), n);
-  const int raw = ::pclose(pipe);
-  out.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return out;
-}
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // The number under `key` in the entry of `case_name` of pcsim validate's JSON.
 double json_field(const std::string& json, const std::string& case_name, const std::string& key) {
@@ -55,37 +34,6 @@ double json_field(const std::string& json, const std::string& case_name, const s
   REQUIRE(k < json.find('}', at));
   return std::stod(json.substr(k + key.size() + 4));
 }
-
-// A fresh scratch folder per test.
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / fmt::format("pcsim-cli-test-{}-{}", ::getpid(), name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-const char* kPlatform = R"(profile = "paper"
-[[hosts]]
-name = "h"
-memory = "8 GB"
-memory_read_bw = "1 GB/s"
-memory_write_bw = "1 GB/s"
-[[hosts.disks]]
-name = "d"
-read_bw = "100 MB/s"
-write_bw = "100 MB/s"
-capacity = "10 GB"
-)";
-
-const char* kWorkload = R"(
-[[files]]
-name = "in"
-size = "1 GB"
-[[apps]]
-name = "a"
-[[apps.tasks]]
-read = "in"
-)";
 
 // Writes `text` to a scenario file, runs it, and checks the failure: exit status, message
 // fragments, and that no output folder was left behind.
@@ -326,7 +274,7 @@ TEST_CASE("every shipped scenario runs", "[cli][scenarios]") {
 
 TEST_CASE("pcsim show prints the resolved scenario, which reads back to the same", "[cli][show]") {
   const fs::path dir = scratch("show");
-  const Outcome first = pcsim("show --set pipelines.count=2");
+  const Outcome first = pcsim("show --set pipelines.count=2 --set pipelines.file_size='\"20 GB\"'");
   REQUIRE(first.status == 0);
   CHECK_THAT(first.output, Catch::Contains("name = \"p2_file_4\"") && Catch::Contains("dirty_ratio = 0.4"));
   std::ofstream(dir / "resolved.toml") << first.output;

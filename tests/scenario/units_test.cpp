@@ -43,3 +43,36 @@ TEST_CASE("formatted sizes read back exactly", "[units]") {
   CHECK(units::format_size(3LL << 30) == "3 GiB");
   CHECK(units::parse_bandwidth(units::format_bandwidth(465e6)) == 465e6);
 }
+
+TEST_CASE("sizes run up to exabytes and no further than 1 EiB", "[units]") {
+  CHECK(units::parse_size("2 PB") == 2'000'000'000'000'000);
+  CHECK(units::parse_size("1 EB") == 1'000'000'000'000'000'000);
+  CHECK(units::parse_size("1 PiB") == 1LL << 50);
+  CHECK(units::parse_size("1 EiB") == units::kMaxBytes);
+  CHECK(units::parse_size("3.7") == 4);  // whole bytes, rounded
+  CHECK_THROWS_WITH(units::parse_size("2 EB"), Catch::Contains("too large"));
+  CHECK_THROWS_WITH(units::parse_size("1e300 TB"), Catch::Contains("too large"));
+}
+
+TEST_CASE("network bandwidths read in bits per second", "[units]") {
+  CHECK(units::parse_bandwidth("10 Gbit/s") == 1.25e9);
+  CHECK(units::parse_bandwidth("100 Mbit/s") == 12.5e6);
+  CHECK(units::parse_bandwidth("8 kbit/s") == 1e3);
+  CHECK_THROWS_WITH(units::parse_bandwidth("1e300 TB/s"), Catch::Contains("too large"));
+  CHECK_THROWS_WITH(units::parse_duration("1e307 h"), Catch::Contains("too large"));
+}
+
+TEST_CASE("a unit in the wrong case or a common misspelling is named with the right one", "[units]") {
+  CHECK_THROWS_WITH(units::parse_size("8 gb"), Catch::Contains("unknown size unit 'gb' (did you mean 'GB'?)"));
+  CHECK_THROWS_WITH(units::parse_size("8 gib"), Catch::Contains("(did you mean 'GiB'?)"));
+  CHECK_THROWS_WITH(units::parse_size("8 kb"), Catch::Contains("(did you mean 'kB'?)"));
+  CHECK_THROWS_WITH(units::parse_bandwidth("1 Gbps"), Catch::Contains("(did you mean 'Gbit/s'?)"));
+  CHECK_THROWS_WITH(units::parse_bandwidth("1 gbit/s"), Catch::Contains("(did you mean 'Gbit/s'?)"));
+  CHECK_THROWS_WITH(units::parse_bandwidth("1 mib/s"), Catch::Contains("(did you mean 'MiB/s'?)"));
+  // A lower-case b is a bit: both readings are offered.
+  CHECK_THROWS_WITH(units::parse_bandwidth("1 Mb/s"), Catch::Contains("(did you mean 'MB/s' or 'Mbit/s'?)"));
+  CHECK_THROWS_WITH(units::parse_bandwidth("465 MB"), Catch::Contains("a bandwidth is a size per second (did you mean 'MB/s'?)"));
+  CHECK_THROWS_WITH(units::parse_duration("3 m"), Catch::Contains("(did you mean 'min'?)"));
+  CHECK_THROWS_WITH(units::parse_duration("3 seconds"), Catch::Contains("(did you mean 's'?)"));
+  CHECK_THROWS_WITH(units::parse_duration("3 parsecs"), Catch::Contains("(use ns, us, ms, s, min, h)"));
+}

@@ -6,6 +6,10 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <string>
+#include <vector>
+
 namespace pagecache {
 namespace {
 
@@ -112,6 +116,94 @@ TEST_CASE("run_scenario rejects a workflow with two tasks of one name or an unkn
   unknown.workflows.push_back(w);
   unknown.workflows.back().tasks.back().after = {"z"};
   CHECK_THROWS_WITH(run_scenario(unknown), Catch::Contains("task 'b' comes after an unknown task 'z'"));
+}
+
+// One pipeline on a node whose files are on a server across a link, so that two hosts' memory
+// is sampled: 300 MB read from the server (0.6 s at its disk's 500 MB/s), `compute` seconds of
+// CPU, 300 MB written back over the link, in 10 MB chunks. Times are not multiples of the
+// 0.25 s interval.
+Scenario remote_pipeline(const std::string& compute, const std::string& interval) {
+  return parse_scenario(R"(
+memory_sample_interval = ")" + interval + R"("
+[[hosts]]
+name = "node"
+memory = "4 GB"
+memory_read_bw = "6 GB/s"
+memory_write_bw = "3 GB/s"
+[[hosts.disks]]
+name = "disk"
+read_bw = "500 MB/s"
+write_bw = "400 MB/s"
+[[hosts]]
+name = "server"
+memory = "4 GB"
+memory_read_bw = "6 GB/s"
+memory_write_bw = "3 GB/s"
+[[hosts.disks]]
+name = "disk"
+read_bw = "500 MB/s"
+write_bw = "400 MB/s"
+[[links]]
+bandwidth = "700 MB/s"
+hosts = ["node", "server"]
+[pipelines]
+files_host = "server"
+file_size = "300 MB"
+tasks = 1
+chunk_size = "10 MB"
+cpu_time = ")" + compute + R"("
+)",
+                        "<test>");
+}
+
+TEST_CASE("memory samples skip the ticks after which nothing changed", "[run][memory]") {
+  // A 10^7 s compute with a 0.25 s interval: a sampler ticking through it took 4 * 10^7
+  // events. The run's events follow its work.
+  const RunResult r = run_scenario(remote_pipeline("1e7 s", "0.25 s"));
+  CHECK(r.summary.makespan > 1e7);
+  CHECK(r.summary.events < 2'000);
+  CHECK(r.memory.size() < 200);
+}
+
+TEST_CASE("sampled memory rows are the tick-time states of the every-change profile", "[run][memory]") {
+  // The reference: the profile of every change ("0 s"), read at every tick 0, 0.25, ... before
+  // the makespan, keeping a host's row when it differs from that host's previous one. The
+  // sampler must give exactly those rows (the last rows, after the makespan, aside).
+  const RunResult every = run_scenario(remote_pipeline("3000 s", "0 s"));
+  const RunResult sampled = run_scenario(remote_pipeline("3000 s", "0.25 s"));
+  REQUIRE(every.summary.makespan == sampled.summary.makespan);
+  std::vector<MemoryRow> expected;
+  for (const std::string host : {"node", "server"}) {
+    std::vector<const MemoryRow*> changes;
+    for (const MemoryRow& m : every.memory)
+      if (m.host == host) changes.push_back(&m);
+    REQUIRE(changes.size() > 10);
+    const MemoryState* last = nullptr;
+    std::size_t next = 0;
+    for (double tick = 0.0; tick < every.summary.makespan; tick += 0.25) {
+      while (next < changes.size() && changes[next]->time <= tick) ++next;
+      const MemoryState& state = changes[next - 1]->state;
+      if (last == nullptr || !(*last == state)) expected.push_back({tick, host, state});
+      last = &state;
+    }
+  }
+  std::vector<MemoryRow> got;
+  for (const MemoryRow& m : sampled.memory)
+    if (m.time < sampled.summary.makespan) got.push_back(m);
+  std::stable_sort(expected.begin(), expected.end(), [](const MemoryRow& a, const MemoryRow& b) { return a.time < b.time; });
+  REQUIRE(got.size() == expected.size());
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    INFO("row " << i << " at " << expected[i].time << " s, " << expected[i].host);
+    CHECK(got[i].time == expected[i].time);
+    CHECK(got[i].host == expected[i].host);
+    CHECK(got[i].state == expected[i].state);
+  }
+}
+
+TEST_CASE("a run stops with a SimulationError once its clock passes the limit", "[run][errors]") {
+  RunOptions options;
+  options.max_simulated_time = 1e5;
+  CHECK_THROWS_WITH(run_scenario(remote_pipeline("1e6 s", "0.25 s"), options), Catch::Contains("passed 100000 s"));
 }
 
 }  // namespace

@@ -1,0 +1,98 @@
+#include "report/output_rules.hpp"
+
+#include <pagecache/error.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <sys/stat.h>
+#include <system_error>
+#include <vector>
+
+namespace pagecache::report {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+bool same_file(const struct stat& a, const struct stat& b) { return a.st_dev == b.st_dev && a.st_ino == b.st_ino; }
+
+// Compared by device and inode, so that a path through a link or a bind mount is recognised.
+bool is_current_or_above(const struct stat& folder) {
+  std::error_code ec;
+  fs::path p = fs::current_path(ec);
+  for (; !ec && !p.empty(); p = p.parent_path()) {
+    struct stat st{};
+    if (::stat(p.c_str(), &st) == 0 && same_file(st, folder)) return true;
+    if (p == p.root_path()) break;
+  }
+  return false;
+}
+
+bool is_mount_point(const fs::path& folder, const struct stat& st) {
+  struct stat parent{};
+  return ::stat((folder / "..").c_str(), &parent) == 0 && parent.st_dev != st.st_dev;
+}
+
+bool is_within(const fs::path& path, const fs::path& folder) {
+  return std::mismatch(folder.begin(), folder.end(), path.begin(), path.end()).first == folder.end();
+}
+
+bool is_output_name(const std::string& name) {
+  return std::find(std::begin(kOutputNames), std::end(kOutputNames), name) != std::end(kOutputNames);
+}
+
+}  // namespace
+
+fs::path output_folder_path(const std::string& dir) {
+  if (dir.empty()) throw ConfigError("--out is empty: name the output folder (the default is pcsim-out)");
+  fs::path path = fs::absolute(dir);
+  while (!path.has_filename() && path != path.root_path()) path = path.parent_path();  // "out/" names out
+  const fs::path name = path.filename();
+  if (name.empty() || name == "." || name == "..") return fs::weakly_canonical(path);
+  return fs::weakly_canonical(path.parent_path()) / name;
+}
+
+std::optional<std::string> refusal(const fs::path& path, const std::string& scenario_file) {
+  struct stat st{};
+  if (::lstat(path.c_str(), &st) != 0) {
+    if (errno == ENOENT) return std::nullopt;
+    return fmt::format("cannot be examined ({})", std::generic_category().message(errno));
+  }
+  if (S_ISLNK(st.st_mode)) return "is a symbolic link (pcsim neither replaces a link nor writes through one)";
+  if (!S_ISDIR(st.st_mode)) return "is not a folder";
+  if (is_current_or_above(st)) return "is the current folder or one above it";
+  // A mount point cannot be renamed, which replacing a folder needs.
+  if (is_mount_point(path, st)) return "is a mount point (name a folder inside it)";
+  std::error_code ec;
+  if (!scenario_file.empty() && is_within(fs::weakly_canonical(scenario_file, ec), path)) {
+    return fmt::format("holds the scenario file {}", scenario_file);
+  }
+  std::vector<std::string> names;
+  for (fs::directory_iterator it(path, ec), end; !ec && it != end; it.increment(ec)) names.push_back(it->path().filename().string());
+  if (ec) return fmt::format("cannot be listed ({})", ec.message());
+  std::sort(names.begin(), names.end());
+  for (const std::string& name : names) {
+    struct stat entry{};
+    const bool regular = ::lstat((path / name).c_str(), &entry) == 0 && S_ISREG(entry.st_mode);
+    if (!regular || !is_output_name(name)) return fmt::format("holds '{}', which pcsim did not write", name);
+  }
+  if (!names.empty() && !std::binary_search(names.begin(), names.end(), kMarkerName)) {
+    return fmt::format("holds no {} marker, so pcsim did not make it (older versions did not mark their folders)", kMarkerName);
+  }
+  return std::nullopt;
+}
+
+void refuse(const std::string& dir, const fs::path& path, const std::string& reason) {
+  throw ConfigError(fmt::format("--out {}: will not replace {}: it {}. pcsim replaces only an empty folder or one it made (marked by "
+                                "{}) that holds nothing else; nothing was removed",
+                                dir, path.string(), reason, kMarkerName));
+}
+
+void check_output_folder(const std::string& dir, const std::string& scenario_file) {
+  const fs::path path = output_folder_path(dir);
+  if (const auto why = refusal(path, scenario_file)) refuse(dir, path, *why);
+}
+
+}  // namespace pagecache::report

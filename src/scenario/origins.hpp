@@ -1,0 +1,49 @@
+#pragma once
+// Where each element of a resolved scenario was written (its table, the table's key path and
+// its file), so that checks made on the whole scenario can still name a file, line and key.
+
+#include "scenario/toml_reader.hpp"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace pagecache::scenario {
+
+struct Origin {
+  const toml::table* table = nullptr;
+  std::string path;
+  const std::string* file = nullptr;
+
+  bool has(const std::string& key) const { return table->contains(key); }
+  /// "file:line:col: key 'path.key': message" (see TomlReader::fail).
+  [[noreturn]] void fail(const std::string& key, const std::string& message) const { TomlReader(*table, path, *file).fail(key, message); }
+  [[noreturn]] void fail_table(const std::string& message) const { TomlReader(*table, path, *file).fail_table(message); }
+};
+
+/// The origins of a scenario's elements, in the Scenario's order. The applications and files
+/// a [pipelines] table makes are all that table's: the first `pipeline_apps` applications and
+/// the files after the [[files]] tables'.
+struct Origins {
+  Origin root;
+  std::vector<Origin> hosts;
+  std::vector<Origin> page_caches;  ///< per host: its [hosts.page_cache], else the host's table
+  std::vector<std::vector<Origin>> disks;  ///< per host
+  std::vector<Origin> links;
+  std::vector<Origin> files;  ///< the [[files]] tables
+  std::optional<Origin> pipelines;
+  std::size_t pipeline_apps = 0;
+  std::vector<Origin> apps;  ///< the [[apps]] tables, after the pipelines' applications
+  std::vector<std::vector<Origin>> app_tasks;
+  std::vector<Origin> workflows;
+  std::vector<std::vector<Origin>> workflow_tasks;
+
+  const Origin& file(std::size_t i) const { return i < files.size() ? files[i] : *pipelines; }
+  bool from_pipelines(std::size_t app) const { return app < pipeline_apps; }
+  const Origin& app(std::size_t i) const { return from_pipelines(i) ? *pipelines : apps[i - pipeline_apps]; }
+  const Origin& app_task(std::size_t app, std::size_t task) const {
+    return from_pipelines(app) ? *pipelines : app_tasks[app - pipeline_apps][task];
+  }
+};
+
+}  // namespace pagecache::scenario

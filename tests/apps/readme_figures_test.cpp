@@ -1,0 +1,197 @@
+// Every figure the README quotes from pcsim's results, recomputed by running pcsim as a user
+// would: the README cannot drift from what the commands print. A figure is compared at the
+// precision the README writes it ("12.2" to one decimal, "209" to the unit). Measured speeds
+// are not in the README: they measure the machine (docs/performance.md keeps them, dated).
+
+#include "support/child_process.hpp"
+#include "support/csv.hpp"
+
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+namespace fs = std::filesystem;
+using pagecache::testing::read_csv;
+using pagecache::testing::run_child;
+using pagecache::testing::validation_file;
+
+namespace {
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The README's prose with every run of white space made one space (lines wrap anywhere).
+std::string readme() {
+  return std::regex_replace(slurp(fs::path(PCSIM_SOURCE_DIR) / "README.md"), std::regex(R"(\s+)"), " ");
+}
+
+// The figures `pattern`'s groups capture in the README; the pattern must match once.
+std::vector<std::string> figures(const std::string& pattern) {
+  const std::string text = readme();
+  std::smatch m;
+  INFO("README pattern: " << pattern);
+  REQUIRE(std::regex_search(text, m, std::regex(pattern)));
+  std::vector<std::string> out;
+  for (std::size_t i = 1; i < m.size(); ++i) out.push_back(m[i].str());
+  return out;
+}
+
+// `value` written at the precision of `quoted` equals `quoted`.
+void check_figure(const std::string& what, const std::string& quoted, double value) {
+  const auto dot = quoted.find('.');
+  const int decimals = dot == std::string::npos ? 0 : static_cast<int>(quoted.size() - dot - 1);
+  INFO(what << ": the README says " << quoted << ", pcsim gives " << value);
+  CHECK(fmt::format("{:.{}f}", value, decimals) == quoted);
+}
+
+std::string run_pcsim(const std::vector<std::string>& args) {
+  std::vector<std::string> argv{PCSIM_BINARY};
+  argv.insert(argv.end(), args.begin(), args.end());
+  const auto r = run_child(argv, 600.0);
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  return r.output;
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / fmt::format("pcsim-readme-{}-{}", ::getpid(), name);
+  fs::remove_all(dir);
+  return dir;
+}
+
+// The number under `key` in the entry of `case_name` of pcsim validate's JSON.
+double json_field(const std::string& json, const std::string& case_name, const std::string& key) {
+  const auto at = json.find("\"case\": \"" + case_name + "\"");
+  REQUIRE(at != std::string::npos);
+  const auto k = json.find("\"" + key + "\": ", at);
+  REQUIRE(k != std::string::npos);
+  return std::stod(json.substr(k + key.size() + 4));
+}
+
+double duration(const pagecache::testing::CsvRow& row) { return std::stod(row.at("end_s")) - std::stod(row.at("start_s")); }
+
+}  // namespace
+
+TEST_CASE("the README's validation figures are what pcsim validate prints", "[cli][docs][validate]") {
+  const fs::path dir = scratch("validate");
+  fs::create_directories(dir);
+  run_pcsim({"validate", "--json", (dir / "v.json").string()});
+  const std::string json = slurp(dir / "v.json");
+  const auto f = figures(
+      R"(mean error \(WRENCH-cache's in brackets\): Exp 1 20 GB ([0-9.]+) % \(([0-9.]+) %\), 100 GB ([0-9.]+) % \(([0-9.]+) %\); )"
+      R"(Exp 2 read ([0-9.]+) % \(([0-9.]+) %\), write ([0-9.]+) % \(([0-9.]+) %\); Exp 3 read ([0-9.]+) % \(([0-9.]+) %\), )"
+      R"(write ([0-9.]+) % \(([0-9.]+) %\)\. Exp 1's dirty memory at every phase end is within ([0-9.]+) % of memory of the real )"
+      R"(runs', its cached memory within ([0-9.]+) %\.)");
+  REQUIRE(f.size() == 14);
+  auto field = [&](const char* c, const char* key) { return json_field(json, c, key); };
+  check_figure("Exp 1 20 GB", f[0], field("exp1_20gb", "mean_error_pct"));
+  check_figure("Exp 1 20 GB, WRENCH-cache", f[1], field("exp1_20gb", "wrench_cache_mean_error_pct"));
+  check_figure("Exp 1 100 GB", f[2], field("exp1_100gb", "mean_error_pct"));
+  check_figure("Exp 1 100 GB, WRENCH-cache", f[3], field("exp1_100gb", "wrench_cache_mean_error_pct"));
+  check_figure("Exp 2 read", f[4], field("exp2_local", "read_mean_error_pct"));
+  check_figure("Exp 2 read, WRENCH-cache", f[5], field("exp2_local", "wrench_cache_read_mean_error_pct"));
+  check_figure("Exp 2 write", f[6], field("exp2_local", "write_mean_error_pct"));
+  check_figure("Exp 2 write, WRENCH-cache", f[7], field("exp2_local", "wrench_cache_write_mean_error_pct"));
+  check_figure("Exp 3 read", f[8], field("exp3_nfs", "read_mean_error_pct"));
+  check_figure("Exp 3 read, WRENCH-cache", f[9], field("exp3_nfs", "wrench_cache_read_mean_error_pct"));
+  check_figure("Exp 3 write", f[10], field("exp3_nfs", "write_mean_error_pct"));
+  check_figure("Exp 3 write, WRENCH-cache", f[11], field("exp3_nfs", "wrench_cache_write_mean_error_pct"));
+  check_figure("Exp 1 dirty memory", f[12],
+               std::max(field("exp1_20gb", "max_dirty_diff_pct_of_memory"), field("exp1_100gb", "max_dirty_diff_pct_of_memory")));
+  check_figure("Exp 1 cached memory", f[13],
+               std::max(field("exp1_20gb", "max_cached_diff_pct_of_memory"), field("exp1_100gb", "max_cached_diff_pct_of_memory")));
+}
+
+TEST_CASE("the README's embedded default: its real run and pcsim's makespan", "[cli][docs]") {
+  const auto f = figures(R"(\(its real run took ([0-9.]+) s; pcsim: ([0-9.]+) s\))");
+  double real = 0.0;
+  for (const auto& row : read_csv(validation_file("exp1_real_phase_times.csv"))) {
+    if (row.at("file_size_gb") == "100") real = std::max(real, std::stod(row.at("end_s")));
+  }
+  check_figure("the real Exp 1 at 100 GB", f[0], real);
+  const fs::path out = scratch("default");
+  const std::string printed = run_pcsim({"run", "--out", out.string()});
+  std::smatch m;
+  REQUIRE(std::regex_search(printed, m, std::regex(R"(makespan ([0-9.]+) s)")));
+  check_figure("pcsim run's makespan", f[1], std::stod(m[1].str()));
+}
+
+TEST_CASE("the README's paper-profile figures are pcsim's against WRENCH-cache's published outputs", "[cli][docs][paper]") {
+  // Exp 1: every phase of the four sizes within the first figure, but the one named, whose
+  // error is the second.
+  const auto exp1 = figures(R"(every phase of the four file sizes is within ([0-9.]+) % of WRENCH-cache's published times but one )"
+                            R"(\(75 GB, task 3 write: ([0-9.]+) %)");
+  std::map<std::tuple<std::string, std::string, std::string>, double> wrench;
+  for (const auto& row : read_csv(validation_file("exp1_wrench_cache_phase_times.csv"))) {
+    wrench[{row.at("file_size_gb"), row.at("task"), row.at("phase")}] = std::stod(row.at("duration_s"));
+  }
+  double worst_other = 0.0, named = -1.0;
+  const std::string scenario = (fs::path(PCSIM_SOURCE_DIR) / "scenarios/paper/exp1.toml").string();
+  for (const auto& [size, cpu] : std::map<std::string, std::string>{{"20", "28"}, {"50", "75"}, {"75", "110"}, {"100", "155"}}) {
+    const fs::path out = scratch("exp1-" + size);
+    run_pcsim({"run", scenario, "--profile", "paper", "--set", "pipelines.file_size=\"" + size + " GB\"", "--set",
+               "pipelines.cpu_time=\"" + cpu + " s\"", "--out", out.string(), "--quiet"});
+    for (const auto& row : read_csv((out / "timeline.csv").string())) {
+      const double want = wrench.at({size, row.at("task"), row.at("phase")});
+      const double error = 100.0 * std::abs(duration(row) - want) / want;
+      if (size == "75" && row.at("task") == "3" && row.at("phase") == "write") named = error;
+      else worst_other = std::max(worst_other, error);
+    }
+  }
+  INFO("worst other phase: " << worst_other << " %");
+  CHECK(worst_other <= std::stod(exp1[0]));
+  check_figure("Exp 1 75 GB task 3 write", exp1[1], named);
+
+  // Exp 2: sorted per-task durations within the first figure up to the pipelines named; the
+  // mean over n of the per-n error of the mean read and write times.
+  const auto exp2 = figures(R"(per-task times agree within ([0-9.]+) % up to ([0-9]+) pipelines; beyond, the mean read and write times )"
+                            R"(per pipeline differ from WRENCH-cache's by ([0-9.]+) % and ([0-9.]+) % on average over n)");
+  std::map<std::pair<int, std::string>, std::vector<double>> theirs;
+  for (const auto& row : read_csv(validation_file("exp2_wrench_cache_phase_times.csv"))) {
+    theirs[{std::stoi(row.at("n_pipelines")), row.at("phase")}].push_back(std::stod(row.at("duration_s")));
+  }
+  const int agree_up_to = std::stoi(exp2[1]);
+  double worst_task = 0.0;
+  std::map<std::string, double> error_sum;
+  for (int n = 1; n <= 32; ++n) {
+    const fs::path out = scratch("exp2");
+    run_pcsim({"run", (fs::path(PCSIM_SOURCE_DIR) / "scenarios/paper/exp2.toml").string(), "--profile", "paper", "--set",
+               fmt::format("pipelines.count={}", n), "--out", out.string(), "--quiet", "--no-cache-contents"});
+    std::map<std::string, std::vector<double>> ours;
+    for (const auto& row : read_csv((out / "timeline.csv").string())) ours[row.at("phase")].push_back(duration(row));
+    for (const std::string phase : {"read", "write"}) {
+      std::vector<double> a = ours.at(phase), b = theirs.at({n, phase});
+      REQUIRE(a.size() == b.size());
+      std::sort(a.begin(), a.end());
+      std::sort(b.begin(), b.end());
+      if (n <= agree_up_to) {
+        for (std::size_t i = 0; i < a.size(); ++i) worst_task = std::max(worst_task, 100.0 * std::abs(a[i] - b[i]) / b[i]);
+      }
+      double mean_a = 0.0, mean_b = 0.0;
+      for (std::size_t i = 0; i < a.size(); ++i) {
+        mean_a += a[i] / static_cast<double>(a.size());
+        mean_b += b[i] / static_cast<double>(b.size());
+      }
+      error_sum[phase] += 100.0 * std::abs(mean_a - mean_b) / mean_b;
+    }
+    fs::remove_all(out);
+  }
+  INFO("worst task up to n = " << agree_up_to << ": " << worst_task << " %");
+  CHECK(worst_task <= std::stod(exp2[0]));
+  check_figure("Exp 2 mean read, paper profile vs WRENCH-cache", exp2[2], error_sum["read"] / 32);
+  check_figure("Exp 2 mean write, paper profile vs WRENCH-cache", exp2[3], error_sum["write"] / 32);
+}

@@ -1,4 +1,5 @@
-# The source tree is layered: engine <- storage <- cache <- workload <- scenario/report <- apps.
+# The source tree is layered: engine <- storage <- cache <- workload <- scenario/report <- apps,
+# with text (the outputs' escaping) below the layers that write text.
 # Each layer's target sees, as include root, a folder of the build tree that holds links to its
 # own sources and to the layers below it only; an include of a higher layer fails to compile.
 #

@@ -1,6 +1,9 @@
 #include "report/outputs.hpp"
 
+#include "report/csv_field.hpp"
 #include "report/output_folder.hpp"
+#include "text/json_string.hpp"
+#include "text/printable.hpp"
 
 #include <pagecache/error.hpp>
 #include <pagecache/units.hpp>
@@ -12,14 +15,18 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <iterator>
 #include <map>
 #include <set>
+#include <string_view>
 #include <utility>
 
 namespace pagecache::report {
 
 namespace fs = std::filesystem;
+using text::json_string;
+using text::printable;
 
 namespace {
 
@@ -30,21 +37,6 @@ std::string readable(std::int64_t bytes) {
     if (static_cast<double>(bytes) >= factor) return fmt::format("{:.1f} {}", static_cast<double>(bytes) / factor, name);
   }
   return fmt::format("{} B", bytes);
-}
-
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) out += fmt::format("\\u{:04x}", c);
-        else out += c;
-    }
-  }
-  return out + "\"";
 }
 
 void write_file(const fs::path& path, const std::string& text) {
@@ -75,6 +67,13 @@ class CsvFile {
   }
 
   fmt::appender out() { return fmt::appender(buffer_); }
+  /// A text field and the comma after it (see csv_field.hpp); numbers go through out().
+  void field(std::string_view text) {
+    append_csv_field(buffer_, text);
+    buffer_.push_back(',');
+  }
+  /// Fields already escaped, by csv_fields().
+  void escaped(std::string_view fields) { buffer_.append(fields.data(), fields.data() + fields.size()); }
   /// After each row: writes the buffer out once it holds enough.
   void row_written() {
     if (buffer_.size() >= kFlushAt) flush();
@@ -99,12 +98,24 @@ class CsvFile {
   fmt::memory_buffer buffer_;
 };
 
+// Text fields, each escaped and followed by a comma, as one string.
+std::string csv_fields(std::initializer_list<std::string_view> texts) {
+  fmt::memory_buffer out;
+  for (std::string_view text : texts) {
+    append_csv_field(out, text);
+    out.push_back(',');
+  }
+  return fmt::to_string(out);
+}
+
 void write_timeline_csv(const fs::path& path, const RunResult& r) {
   CsvFile csv(path);
   fmt::format_to(csv.out(), "app,task,phase,start_s,end_s,bytes,cache_bytes,disk_bytes\n");
   for (const PhaseRow& p : r.timeline) {
-    fmt::format_to(csv.out(), FMT_COMPILE("{},{},{},{:.6f},{:.6f},{},{},{}\n"), p.app, p.task, p.phase, p.start, p.end, p.bytes,
-                   p.cache_bytes, p.disk_bytes);
+    csv.field(p.app);
+    csv.field(p.task);
+    csv.field(p.phase);
+    fmt::format_to(csv.out(), FMT_COMPILE("{:.6f},{:.6f},{},{},{}\n"), p.start, p.end, p.bytes, p.cache_bytes, p.disk_bytes);
     csv.row_written();
   }
   csv.close();
@@ -120,7 +131,7 @@ void write_memory_csv(const fs::path& path, const RunResult& r) {
                  with_host ? "host," : "");
   for (const MemoryRow& m : r.memory) {
     const MemoryState& s = m.state;
-    if (with_host) fmt::format_to(csv.out(), FMT_COMPILE("{},"), m.host);
+    if (with_host) csv.field(m.host);
     // Copies in flight hold their pages: counted as cached here, so that the columns add up.
     fmt::format_to(csv.out(), FMT_COMPILE("{:.6f},{},{},{},{},{},{},{},{}\n"), m.time, s.total, s.free, s.anonymous, s.cached + s.reserved,
                    s.dirty, s.writeback, s.active, s.inactive + s.reserved);
@@ -130,11 +141,20 @@ void write_memory_csv(const fs::path& path, const RunResult& r) {
 }
 
 void write_cache_csv(const fs::path& path, const RunResult& r) {
+  // Every row repeats a phase's app, task and phase and a file's name: each is escaped once
+  // here, not once per row (scanning them on every row cost a quarter more instructions).
+  std::vector<std::string> phase_fields;
+  phase_fields.reserve(r.timeline.size());
+  for (const PhaseRow& p : r.timeline) phase_fields.push_back(csv_fields({p.app, p.task, p.phase}));
+  std::vector<std::string> file_fields;
+  file_fields.reserve(r.files.size());
+  for (const std::string& file : r.files) file_fields.push_back(csv_fields({file}));
   CsvFile csv(path);
   fmt::format_to(csv.out(), "app,task,phase,file,cached_bytes\n");
   for (const CacheRow& c : r.cache) {
-    const PhaseRow& p = r.timeline[c.phase];
-    fmt::format_to(csv.out(), FMT_COMPILE("{},{},{},{},{}\n"), p.app, p.task, p.phase, r.files[c.file], c.cached);
+    csv.escaped(phase_fields[c.phase]);
+    csv.escaped(file_fields[c.file]);
+    fmt::format_to(csv.out(), FMT_COMPILE("{}\n"), c.cached);
     csv.row_written();
   }
   csv.close();
@@ -191,8 +211,9 @@ std::vector<std::string> write_outputs(const std::string& dir, const Scenario& s
 
 std::string readable_summary(const Scenario& scenario, const RunResult& r) {
   std::string out;
-  if (!scenario.title.empty()) out += scenario.title + "\n";
-  out += fmt::format("scenario {} (profile {})\n", scenario.source, to_string(scenario.profile));
+  // Names as printable(): a control character in one cannot drive the terminal.
+  if (!scenario.title.empty()) out += printable(scenario.title) + "\n";
+  out += fmt::format("scenario {} (profile {})\n", printable(scenario.source), to_string(scenario.profile));
   std::map<std::string, std::vector<const PhaseRow*>> by_app;
   std::vector<std::string> order;
   for (const PhaseRow& p : r.timeline) {
@@ -201,13 +222,13 @@ std::string readable_summary(const Scenario& scenario, const RunResult& r) {
   }
   constexpr std::size_t kMaxApps = 8;
   for (std::size_t i = 0; i < order.size() && i < kMaxApps; ++i) {
-    out += fmt::format("\napp {}\n{:>10} {:>8} {:>10} {:>10} {:>10} {:>9} {:>9}\n", order[i], "task", "phase", "start_s", "end_s",
-                       "MB/s", "cache_GB", "disk_GB");
+    out += fmt::format("\napp {}\n{:>10} {:>8} {:>10} {:>10} {:>10} {:>9} {:>9}\n", printable(order[i]), "task", "phase", "start_s",
+                       "end_s", "MB/s", "cache_GB", "disk_GB");
     for (const PhaseRow* p : by_app[order[i]]) {
       const double seconds = p->end - p->start;
       const std::string rate = p->bytes > 0 && seconds > 0 ? fmt::format("{:.1f}", static_cast<double>(p->bytes) / seconds / 1e6) : "-";
-      out += fmt::format("{:>10} {:>8} {:>10.2f} {:>10.2f} {:>10} {:>9.2f} {:>9.2f}\n", p->task, p->phase, p->start, p->end, rate,
-                         static_cast<double>(p->cache_bytes) / 1e9, static_cast<double>(p->disk_bytes) / 1e9);
+      out += fmt::format("{:>10} {:>8} {:>10.2f} {:>10.2f} {:>10} {:>9.2f} {:>9.2f}\n", printable(p->task), printable(p->phase), p->start,
+                         p->end, rate, static_cast<double>(p->cache_bytes) / 1e9, static_cast<double>(p->disk_bytes) / 1e9);
     }
   }
   if (order.size() > kMaxApps) out += fmt::format("\n... and {} more applications (see timeline.csv)\n", order.size() - kMaxApps);

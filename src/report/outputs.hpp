@@ -17,8 +17,9 @@ namespace pagecache::report {
 /// Error if a file cannot be written. Returns warnings for the user (see OutputFolder::commit).
 std::vector<std::string> write_outputs(const std::string& dir, const Scenario& scenario, const RunResult& result);
 
-/// The CSV files, each written to `path` as it is formatted (see outputs.cpp). Throw Error if
-/// the file cannot be written.
+/// The CSV files, each written to `path` as it is formatted (see outputs.cpp), their text
+/// fields quoted and guarded against formulas as csv_field.hpp says. Throw Error if the file
+/// cannot be written.
 void write_timeline_csv(const std::filesystem::path& path, const RunResult& result);
 void write_memory_csv(const std::filesystem::path& path, const RunResult& result);
 void write_cache_csv(const std::filesystem::path& path, const RunResult& result);
@@ -30,7 +31,7 @@ std::string timing_json(const RunResult& result);
 /// Where the cache contents are ("cache.csv") or why they were not recorded.
 std::string cache_contents_note(const RunResult& result);
 
-/// A small table per application and the totals, for a terminal.
+/// A small table per application and the totals, for a terminal (names as text::printable()).
 std::string readable_summary(const Scenario& scenario, const RunResult& result);
 
 }  // namespace pagecache::report

@@ -4,27 +4,35 @@
 #include <pagecache/scenario.hpp>
 #include <pagecache/units.hpp>
 
-#include <fmt/format.h>
+#include "text/printable.hpp"
+#include "text/utf8.hpp"
 
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include <sstream>
 #include <string>
 
 namespace pagecache {
 
 namespace {
 
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  return out + "\"";
+// Strings and lists are written by toml++, as basic strings ("..." with escapes, as before):
+// its literal and multi-line forms drop a leading line break and end early at ''' (toml++ 3.3).
+std::string toml_text(const toml::node& value) {
+  std::ostringstream out;
+  out << toml::toml_formatter(value, toml::format_flags::allow_unicode_strings | toml::format_flags::indent_array_elements);
+  return out.str();
 }
 
+// TOML strings are Unicode: a name that is not valid UTF-8 (only an embedding program can make
+// one) is shown with U+FFFD in place of each ill-formed part, as in the JSON outputs.
+std::string quoted(const std::string& s) { return toml_text(toml::value<std::string>(text::valid_utf8(s))); }
+
 std::string list(const std::vector<std::string>& items) {
-  std::string out = "[";
-  for (std::size_t i = 0; i < items.size(); ++i) out += (i ? ", " : "") + quoted(items[i]);
-  return out + "]";
+  toml::array array;
+  for (const std::string& item : items) array.push_back(text::valid_utf8(item));
+  return toml_text(array);
 }
 
 void write_task(std::string& out, const std::string& table, const TaskSpec& t, bool with_after) {
@@ -38,7 +46,8 @@ void write_task(std::string& out, const std::string& table, const TaskSpec& t, b
 }  // namespace
 
 std::string to_toml(const Scenario& s) {
-  std::string out = fmt::format("# resolved from {}\n", s.source);
+  // A comment ends at a line break and may hold no control character: the path is printable().
+  std::string out = fmt::format("# resolved from {}\n", text::printable(s.source));
   if (!s.title.empty()) out += fmt::format("title = {}\n", quoted(s.title));
   out += fmt::format("profile = {}\nmemory_sample_interval = {}\n", quoted(to_string(s.profile)),
                      quoted(units::format_duration(s.memory_sample_interval)));

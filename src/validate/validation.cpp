@@ -1,5 +1,6 @@
 #include "validate/validation.hpp"
 
+#include "text/json_string.hpp"
 #include "validate/csv.hpp"
 
 #include <pagecache/error.hpp>
@@ -249,15 +250,15 @@ std::string Report::json() const {
   std::string out = "[\n";
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const CaseResult& c = cases[i];
-    out += fmt::format("  {{\"case\": \"{}\", \"profile\": \"{}\", \"mean_error_pct\": {:.4f}, \"wrench_cache_mean_error_pct\": {:.4f}",
-                       c.name, profile, c.mean_error_pct, c.wrench_mean_error_pct);
+    out += fmt::format("  {{\"case\": {}, \"profile\": {}, \"mean_error_pct\": {:.4f}, \"wrench_cache_mean_error_pct\": {:.4f}",
+                       text::json_string(c.name), text::json_string(profile), c.mean_error_pct, c.wrench_mean_error_pct);
     if (c.read_mean_error_pct >= 0) {
       out += fmt::format(
           ", \"read_mean_error_pct\": {:.4f}, \"write_mean_error_pct\": {:.4f}, \"wrench_cache_read_mean_error_pct\": {:.4f}, "
           "\"wrench_cache_write_mean_error_pct\": {:.4f}",
           c.read_mean_error_pct, c.write_mean_error_pct, c.wrench_read_mean_error_pct, c.wrench_write_mean_error_pct);
     }
-    for (const auto& [key, value] : c.extra) out += fmt::format(", \"{}\": {:.4f}", key, value);
+    for (const auto& [key, value] : c.extra) out += fmt::format(", {}: {:.4f}", text::json_string(key), value);
     out += i + 1 < cases.size() ? "},\n" : "}\n";
   }
   return out + "]\n";

@@ -1,5 +1,6 @@
 #include "scenario/toml_reader.hpp"
 
+#include "text/utf8.hpp"
 
 namespace pagecache::scenario {
 
@@ -19,22 +20,9 @@ std::string name_problem(std::string_view name) {
   for (std::size_t i = 0; i < name.size();) {
     const auto c = static_cast<unsigned char>(name[i]);
     if (c < 0x20 || c == 0x7f) return fmt::format("a name cannot hold a control character (U+{:04X} at byte {})", c, i);
-    // UTF-8: the length of the sequence from its first byte, then its continuation bytes, no
-    // overlong forms, no surrogates, nothing above U+10FFFF.
-    std::size_t length = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xe ? 3 : (c >> 3) == 0x1e ? 4 : 0;
-    bool valid = length != 0 && i + length <= name.size();
-    std::uint32_t code = length == 1 ? c : length == 2 ? c & 0x1fu : length == 3 ? c & 0x0fu : c & 0x07u;
-    for (std::size_t k = 1; valid && k < length; ++k) {
-      const auto next = static_cast<unsigned char>(name[i + k]);
-      valid = (next >> 6) == 0x2;
-      code = (code << 6) | (next & 0x3fu);
-    }
-    if (valid && length > 1) {
-      static constexpr std::uint32_t kSmallest[] = {0, 0, 0x80, 0x800, 0x10000};
-      valid = code >= kSmallest[length] && code <= 0x10ffff && !(code >= 0xd800 && code <= 0xdfff);
-    }
-    if (!valid) return fmt::format("a name must be UTF-8 text (byte {} is not)", i);
-    i += length;
+    const text::Utf8Char next = text::next_utf8_char(name.substr(i));
+    if (!next.valid) return fmt::format("a name must be UTF-8 text (byte {} is not)", i);
+    i += next.length;
   }
   switch (name.front()) {
     case '=':

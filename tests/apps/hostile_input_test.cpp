@@ -4,6 +4,8 @@
 // the --set option), or, where the value is deliberate, run quickly to the end.
 
 #include "support/child_process.hpp"
+#include "support/files.hpp"
+#include "support/pcsim_cli.hpp"
 
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
@@ -18,33 +20,16 @@
 namespace fs = std::filesystem;
 using pagecache::testing::ChildResult;
 using pagecache::testing::run_child;
+using pagecache::testing::scratch;
 
 namespace {
 
 // Two tasks of one pipeline, 1 GB files, a 100 MB/s disk of 10 GB: two seconds of work.
-const char* kBase = R"(profile = "paper"
-[[hosts]]
-name = "h"
-memory = "8 GB"
-memory_read_bw = "1 GB/s"
-memory_write_bw = "1 GB/s"
-[[hosts.disks]]
-name = "d"
-read_bw = "100 MB/s"
-write_bw = "100 MB/s"
-capacity = "10 GB"
-[pipelines]
+const std::string kBase = std::string(pagecache::testing::kPlatform) + R"([pipelines]
 file_size = "1 GB"
 tasks = 2
 cpu_time = "1 s"
 )";
-
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / fmt::format("pcsim-hostile-{}-{}", ::getpid(), name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 // pcsim with `args`, checked to have ended within 5 s and 200 MB.
 ChildResult pcsim(std::vector<std::string> args, const std::string& cwd = {}) {

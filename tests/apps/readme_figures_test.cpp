@@ -5,6 +5,7 @@
 
 #include "support/child_process.hpp"
 #include "support/csv.hpp"
+#include "support/files.hpp"
 
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
@@ -22,17 +23,11 @@
 
 namespace fs = std::filesystem;
 using pagecache::testing::read_csv;
+using pagecache::testing::slurp;
 using pagecache::testing::run_child;
 using pagecache::testing::validation_file;
 
 namespace {
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // The README's prose with every run of white space made one space (lines wrap anywhere).
 std::string readme() {
@@ -67,9 +62,10 @@ std::string run_pcsim(const std::vector<std::string>& args) {
   return r.output;
 }
 
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / fmt::format("pcsim-readme-{}-{}", ::getpid(), name);
-  fs::remove_all(dir);
+// A path for outputs that does not exist yet.
+fs::path fresh(const std::string& name) {
+  const fs::path dir = pagecache::testing::scratch(name);
+  fs::remove(dir);
   return dir;
 }
 
@@ -87,8 +83,7 @@ double duration(const pagecache::testing::CsvRow& row) { return std::stod(row.at
 }  // namespace
 
 TEST_CASE("the README's validation figures are what pcsim validate prints", "[cli][docs][validate]") {
-  const fs::path dir = scratch("validate");
-  fs::create_directories(dir);
+  const fs::path dir = pagecache::testing::scratch("validate");
   run_pcsim({"validate", "--json", (dir / "v.json").string()});
   const std::string json = slurp(dir / "v.json");
   const auto f = figures(
@@ -123,7 +118,7 @@ TEST_CASE("the README's embedded default: its real run and pcsim's makespan", "[
     if (row.at("file_size_gb") == "100") real = std::max(real, std::stod(row.at("end_s")));
   }
   check_figure("the real Exp 1 at 100 GB", f[0], real);
-  const fs::path out = scratch("default");
+  const fs::path out = fresh("default");
   const std::string printed = run_pcsim({"run", "--out", out.string()});
   std::smatch m;
   REQUIRE(std::regex_search(printed, m, std::regex(R"(makespan ([0-9.]+) s)")));
@@ -142,7 +137,7 @@ TEST_CASE("the README's paper-profile figures are pcsim's against WRENCH-cache's
   double worst_other = 0.0, named = -1.0;
   const std::string scenario = (fs::path(PCSIM_SOURCE_DIR) / "scenarios/paper/exp1.toml").string();
   for (const auto& [size, cpu] : std::map<std::string, std::string>{{"20", "28"}, {"50", "75"}, {"75", "110"}, {"100", "155"}}) {
-    const fs::path out = scratch("exp1-" + size);
+    const fs::path out = fresh("exp1-" + size);
     run_pcsim({"run", scenario, "--profile", "paper", "--set", "pipelines.file_size=\"" + size + " GB\"", "--set",
                "pipelines.cpu_time=\"" + cpu + " s\"", "--out", out.string(), "--quiet"});
     for (const auto& row : read_csv((out / "timeline.csv").string())) {
@@ -168,7 +163,7 @@ TEST_CASE("the README's paper-profile figures are pcsim's against WRENCH-cache's
   double worst_task = 0.0;
   std::map<std::string, double> error_sum;
   for (int n = 1; n <= 32; ++n) {
-    const fs::path out = scratch("exp2");
+    const fs::path out = fresh("exp2");
     run_pcsim({"run", (fs::path(PCSIM_SOURCE_DIR) / "scenarios/paper/exp2.toml").string(), "--profile", "paper", "--set",
                fmt::format("pipelines.count={}", n), "--out", out.string(), "--quiet", "--no-cache-contents"});
     std::map<std::string, std::vector<double>> ours;

@@ -6,7 +6,7 @@ void append_special_csv_field(fmt::memory_buffer& out, std::string_view text) {
   bool quoted = text.front() == ' ' || text.back() == ' ';
   for (char c : text) quoted = quoted || kQuotedByte[static_cast<unsigned char>(c)];
   if (quoted) out.push_back('"');
-  if (kFormulaStart[static_cast<unsigned char>(text.front())]) out.push_back('\'');
+  if (text::starts_formula(text)) out.push_back('\'');
   for (char c : text) {
     if (c == '"') out.push_back('"');
     out.push_back(c);

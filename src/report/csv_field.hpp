@@ -2,6 +2,8 @@
 // One text field of the CSV outputs (app, task, phase, host and file names). Numbers are
 // written by the writers themselves and never pass through here.
 
+#include "text/formula.hpp"
+
 #include <fmt/format.h>
 
 #include <array>
@@ -11,16 +13,10 @@ namespace pagecache::report {
 
 namespace detail {
 
-// Bytes that make a field quoted (RFC 4180: comma, quote, CR, LF), and those that make it a
-// spreadsheet formula when first (OWASP "CSV injection": = + - @ TAB CR).
+// Bytes that make a field quoted (RFC 4180: comma, quote, CR, LF).
 inline constexpr auto kQuotedByte = [] {
   std::array<bool, 256> t{};
   for (unsigned char c : {',', '"', '\r', '\n'}) t[c] = true;
-  return t;
-}();
-inline constexpr auto kFormulaStart = [] {
-  std::array<bool, 256> t{};
-  for (unsigned char c : {'=', '+', '-', '@', '\t', '\r'}) t[c] = true;
   return t;
 }();
 
@@ -36,8 +32,7 @@ void append_special_csv_field(fmt::memory_buffer& out, std::string_view text);
 /// that itself starts with `'` is written as is, so a reader cannot tell the two apart).
 inline void append_csv_field(fmt::memory_buffer& out, std::string_view text) {
   // The common case, checked in one pass: a plain append.
-  bool plain = text.empty() || (!detail::kFormulaStart[static_cast<unsigned char>(text.front())] && text.front() != ' ' &&
-                                text.back() != ' ');
+  bool plain = text.empty() || (!text::starts_formula(text) && text.front() != ' ' && text.back() != ' ');
   for (std::size_t i = 0; plain && i < text.size(); ++i) plain = !detail::kQuotedByte[static_cast<unsigned char>(text[i])];
   if (plain) out.append(text.data(), text.data() + text.size());
   else detail::append_special_csv_field(out, text);

@@ -6,8 +6,23 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string_view>
 #include <unordered_map>
+
+namespace pagecache {
+
+ScenarioLimits ScenarioLimits::forced() {
+  ScenarioLimits l;
+  l.max_tasks = 500'000'000;  // three timeline rows each, indexed by 32 bits
+  l.max_files = 1'000'000'000;
+  l.max_events = std::numeric_limits<double>::infinity();
+  l.max_simulated_time = units::kMaxSeconds;
+  l.max_memory_rows = std::numeric_limits<double>::infinity();
+  return l;
+}
+
+}  // namespace pagecache
 
 namespace pagecache::scenario {
 

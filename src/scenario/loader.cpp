@@ -14,7 +14,6 @@
 #include <charconv>
 #include <filesystem>
 #include <functional>
-#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -594,16 +593,6 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
 }
 
 }  // namespace
-
-ScenarioLimits ScenarioLimits::forced() {
-  ScenarioLimits l;
-  l.max_tasks = 500'000'000;  // three timeline rows each, indexed by 32 bits
-  l.max_files = 1'000'000'000;
-  l.max_events = std::numeric_limits<double>::infinity();
-  l.max_simulated_time = units::kMaxSeconds;
-  l.max_memory_rows = std::numeric_limits<double>::infinity();
-  return l;
-}
 
 Scenario parse_scenario(const std::string& toml_text, const std::string& source_name, const Overrides& overrides,
                         const std::string& profile_override, const ScenarioLimits& limits) {

@@ -1,5 +1,6 @@
 #include "scenario/toml_reader.hpp"
 
+#include "text/formula.hpp"
 #include "text/utf8.hpp"
 
 namespace pagecache::scenario {
@@ -24,15 +25,11 @@ std::string name_problem(std::string_view name) {
     if (!next.valid) return fmt::format("a name must be UTF-8 text (byte {} is not)", i);
     i += next.length;
   }
-  switch (name.front()) {
-    case '=':
-    case '+':
-    case '-':
-    case '@':
-      return fmt::format("a name cannot start with '{}': a spreadsheet opening the CSV outputs would run it as a formula", name.front());
-    default:
-      return {};
+  // Control characters are refused above, so this is = + - or @.
+  if (text::starts_formula(name)) {
+    return fmt::format("a name cannot start with '{}': a spreadsheet opening the CSV outputs would run it as a formula", name.front());
   }
+  return {};
 }
 
 }  // namespace pagecache::scenario

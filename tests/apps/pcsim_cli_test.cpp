@@ -14,6 +14,7 @@
 
 namespace fs = std::filesystem;
 using pagecache::testing::CsvRow;
+using pagecache::testing::json_field;
 using pagecache::testing::kPlatform;
 using pagecache::testing::kWorkload;
 using pagecache::testing::Outcome;
@@ -24,16 +25,6 @@ using pagecache::testing::slurp;
 using pagecache::testing::validation_file;
 
 namespace {
-
-// The number under `key` in the entry of `case_name` of pcsim validate's JSON.
-double json_field(const std::string& json, const std::string& case_name, const std::string& key) {
-  const auto at = json.find("\"case\": \"" + case_name + "\"");
-  REQUIRE(at != std::string::npos);
-  const auto k = json.find("\"" + key + "\": ", at);
-  REQUIRE(k != std::string::npos);
-  REQUIRE(k < json.find('}', at));
-  return std::stod(json.substr(k + key.size() + 4));
-}
 
 // Writes `text` to a scenario file, runs it, and checks the failure: exit status, message
 // fragments, and that no output folder was left behind.

@@ -6,6 +6,7 @@
 #include "support/child_process.hpp"
 #include "support/csv.hpp"
 #include "support/files.hpp"
+#include "support/pcsim_cli.hpp"
 
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
@@ -22,6 +23,7 @@
 #include <vector>
 
 namespace fs = std::filesystem;
+using pagecache::testing::json_field;
 using pagecache::testing::read_csv;
 using pagecache::testing::slurp;
 using pagecache::testing::run_child;
@@ -69,14 +71,6 @@ fs::path fresh(const std::string& name) {
   return dir;
 }
 
-// The number under `key` in the entry of `case_name` of pcsim validate's JSON.
-double json_field(const std::string& json, const std::string& case_name, const std::string& key) {
-  const auto at = json.find("\"case\": \"" + case_name + "\"");
-  REQUIRE(at != std::string::npos);
-  const auto k = json.find("\"" + key + "\": ", at);
-  REQUIRE(k != std::string::npos);
-  return std::stod(json.substr(k + key.size() + 4));
-}
 
 double duration(const pagecache::testing::CsvRow& row) { return std::stod(row.at("end_s")) - std::stod(row.at("start_s")); }
 

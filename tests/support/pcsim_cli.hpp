@@ -34,6 +34,16 @@ inline Outcome pcsim(const std::string& args, const std::filesystem::path& cwd =
   return out;
 }
 
+/// The number under `key` in the entry of `case_name` of pcsim validate's JSON.
+inline double json_field(const std::string& json, const std::string& case_name, const std::string& key) {
+  const auto at = json.find("\"case\": \"" + case_name + "\"");
+  REQUIRE(at != std::string::npos);
+  const auto k = json.find("\"" + key + "\": ", at);
+  REQUIRE(k != std::string::npos);
+  REQUIRE(k < json.find('}', at));
+  return std::stod(json.substr(k + key.size() + 4));
+}
+
 /// One host with one disk, and one application reading one file: a run of a few milliseconds.
 inline constexpr const char* kPlatform = R"(profile = "paper"
 [[hosts]]

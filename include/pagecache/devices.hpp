@@ -6,7 +6,9 @@
 //           uses r / read_bw of the disk, a write r / write_bw.
 //   Memory  an aggregate resource (what all cores together can move, read and write
 //           bandwidths) plus a per-flow bound (what one thread can copy).
-//   Link    a network link: bandwidth, plus a latency paid once per transfer.
+//   Link    a network link: bandwidth, plus a latency paid once per transfer; shared by its
+//           flows, or a fatpipe (each flow may take the whole bandwidth, as SimGrid's FATPIPE).
+//   Route   the links between two hosts, crossed in order by every transfer between them.
 //   Cpu     c cores shared by runnable tasks: n tasks each progress at min(1, c / n) of a core.
 //
 // A transfer through several resources (a remote read: server disk then link) is one flow
@@ -17,6 +19,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace pagecache {
 
@@ -87,26 +90,58 @@ class Memory {
   MemoryBandwidth bandwidth_;
 };
 
+enum class LinkSharing {
+  Shared,   ///< the flows crossing it share its bandwidth
+  Fatpipe,  ///< every flow may take its whole bandwidth (a backbone no flow can saturate)
+};
+
 class Link {
  public:
-  Link(FairShare& share, std::string name, double bandwidth, double latency);
+  Link(FairShare& share, std::string name, double bandwidth, double latency, LinkSharing sharing = LinkSharing::Shared);
 
   /// Sends `bytes` over the link alone: latency, then the transfer.
   Task<void> send(std::int64_t bytes) const;
   /// Sends `spec` (whose other resources are already listed) across the link too: latency,
   /// then one flow through all of them.
   Task<void> send_through(FlowSpec spec) const;
+  /// Adds the link to a flow: a shared link as a resource it crosses, a fatpipe as a bound.
+  FlowSpec& carry(FlowSpec& spec) const;
   Usage usage() const noexcept { return {resource_, 1.0 / bandwidth_}; }
 
   ResourceId resource() const noexcept { return resource_; }
   double bandwidth() const noexcept { return bandwidth_; }
   double latency() const noexcept { return latency_; }
+  LinkSharing sharing() const noexcept { return sharing_; }
+  FairShare& share() const noexcept { return *share_; }
 
  private:
   FairShare* share_;
   ResourceId resource_;
   double bandwidth_;
   double latency_;
+  LinkSharing sharing_;
+};
+
+/// The links between two hosts, in the order a transfer crosses them (SimGrid's route). A
+/// transfer pays the sum of their latencies once, then is one flow through all of them, so the
+/// most loaded sets its pace. The links must outlive the route.
+class Route {
+ public:
+  /// At least one link. A flow crosses at most kMaxResourcesPerFlow resources, its ends (a
+  /// disk, the memories) included: a route of more shared links fails when it is used.
+  explicit Route(std::vector<const Link*> links);
+
+  /// Sends `bytes` over the route alone.
+  Task<void> send(std::int64_t bytes) const;
+  /// Sends `spec` (whose other resources are already listed) along the route too.
+  Task<void> send_through(FlowSpec spec) const;
+
+  double latency() const noexcept { return latency_; }
+  const std::vector<const Link*>& links() const noexcept { return links_; }
+
+ private:
+  std::vector<const Link*> links_;
+  double latency_ = 0.0;
 };
 
 class Cpu {

@@ -51,7 +51,9 @@ struct Usage {
   double cost = 0.0;
 };
 
-inline constexpr std::size_t kMaxResourcesPerFlow = 4;
+/// A flow through a route of several network links crosses them all, its ends (a disk, the
+/// two hosts' memories) too.
+inline constexpr std::size_t kMaxResourcesPerFlow = 8;
 inline constexpr double kUnbounded = std::numeric_limits<double>::infinity();
 
 /// What a flow transfers and through what.

@@ -72,9 +72,12 @@ class Host {
   /// A file of `size` bytes on `disk`; `cached_at_start` puts it in the page cache (clean,
   /// inactive) at time 0.
   FileRef add_file(std::string name, std::int64_t size, DiskRef disk, bool cached_at_start = false);
-  /// A file of `server` (one of its files), reached from this host over `link`, as through an
+  /// A file of `server` (one of its files), reached from this host over `route`, as through an
   /// NFS mount: reads fill this host's cache from the server's cache or disk; writes go to the
-  /// server (no client write cache), which handles them as its own cache mode says.
+  /// server (no client write cache), which handles them as its own cache mode says. The route
+  /// must outlive the host.
+  FileRef add_remote_file(Host& server, FileRef server_file, const Route& route);
+  /// The same over one link.
   FileRef add_remote_file(Host& server, FileRef server_file, const Link& link);
   const std::string& file_name(FileRef file) const;
   std::int64_t file_size(FileRef file) const;
@@ -95,6 +98,10 @@ class Host {
   Task<void> delete_file(FileRef file);
   /// Runs `core_seconds` of computation on one core's worth of the host's CPU at most.
   Task<void> compute(double core_seconds);
+  /// Takes `bytes` of application memory (a task's working memory), writing back and evicting
+  /// cached data to make room; give it back with release_memory(). SimulationError from the
+  /// task when the host cannot free enough.
+  Task<void> hold_memory(std::int64_t bytes);
   /// Frees application memory (a task's buffers at its end).
   void release_memory(std::int64_t bytes);
 

@@ -42,14 +42,24 @@ struct HostConfig {
   std::vector<DiskSpec> disks;
 };
 
-/// A network link between two hosts; a task on one host may use the other's files through it
-/// (as over an NFS mount).
+/// A network link. Given its two hosts, it is also the route between them: a task on one may
+/// use the other's files through it (as over an NFS mount). Without, it is crossed only by the
+/// routes that name it (a platform file's links).
 struct LinkSpec {
   std::string name;
   double bandwidth = 0.0;
   double latency = 0.0;
   std::string host_a;
   std::string host_b;
+  LinkSharing sharing = LinkSharing::Shared;
+};
+
+/// The links between two hosts, in the order a transfer from host_a to host_b crosses them
+/// (SimGrid's route; the same links serve the other direction).
+struct RouteSpec {
+  std::string host_a;
+  std::string host_b;
+  std::vector<std::string> links;
 };
 
 struct FileSpec {
@@ -63,6 +73,13 @@ struct FileSpec {
 /// One task: read files, compute, write files, then release its buffers.
 struct TaskSpec {
   std::string name;
+  /// Where a workflow task runs; empty: on a host of its workflow's (WorkflowSpec::hosts).
+  std::string host;
+  /// Cores it holds while it runs (workflow tasks: it waits until its host has them free).
+  int cores = 1;
+  /// Application memory it holds from its start to its end, the buffers of what it reads
+  /// included: a task reading more holds what it reads (bytes; 0: only its buffers).
+  std::int64_t memory = 0;
   std::vector<std::string> reads;
   double compute = 0.0;  ///< CPU seconds (on one core)
   std::vector<std::string> writes;
@@ -80,12 +97,17 @@ struct AppSpec {
   std::vector<TaskSpec> tasks;
 };
 
-/// A workflow: a DAG of tasks on one host, each started when its inputs are ready (the tasks
-/// that write them, and those named in `after`, have ended) and a core is free.
+/// A workflow: a DAG of tasks, each started when its inputs are ready (the tasks that write
+/// them, and those named in `after`, have ended) and its host has the cores it needs free.
+/// A task without a host of its own goes to the first of `hosts` with enough free cores the
+/// moment it is ready; tasks waiting for cores are served in the order they became ready,
+/// each as soon as some host has room for it.
 struct WorkflowSpec {
   std::string name = "workflow";
-  std::string host;
+  std::vector<std::string> hosts;  ///< at least one
   std::vector<TaskSpec> tasks;
+  /// Where it was read from, if not from the scenario itself (a WfFormat file), for `show`.
+  std::string source;
 };
 
 struct Scenario {
@@ -97,6 +119,7 @@ struct Scenario {
   double memory_sample_interval = 1.0;
   std::vector<HostConfig> hosts;
   std::vector<LinkSpec> links;
+  std::vector<RouteSpec> routes;
   std::vector<FileSpec> files;
   std::vector<AppSpec> apps;
   std::vector<WorkflowSpec> workflows;
@@ -126,8 +149,9 @@ struct ScenarioLimits {
   static ScenarioLimits forced();
 };
 
-/// The link between two hosts, or nullptr.
-const LinkSpec* find_link(const Scenario& scenario, const std::string& a, const std::string& b);
+/// The links a transfer between two different hosts crosses: their route's, or the link
+/// joining them; empty if none.
+std::vector<const LinkSpec*> route_between(const Scenario& scenario, const std::string& a, const std::string& b);
 
 /// Reads and resolves a scenario file (a regular file of at most 64 MiB). `overrides` are
 /// (dotted key, TOML value) pairs applied to the file's contents before anything is checked,

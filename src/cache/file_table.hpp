@@ -16,12 +16,12 @@ namespace pagecache::cache {
 
 class IoController;
 
-/// A file stored on another host and reached over a network link (an NFS mount): reads go to
+/// A file stored on another host and reached over a network route (an NFS mount): reads go to
 /// that host's I/O controller, which serves them from its page cache or its disk.
 struct RemoteFile {
   IoController* server = nullptr;
   FileId server_file = 0;
-  const Link* link = nullptr;
+  const Route* route = nullptr;
 };
 
 struct FileInfo {

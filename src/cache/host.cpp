@@ -32,6 +32,7 @@ struct Host::Impl {
   cache::PageCache cache;
   cache::Flusher flusher;
   cache::IoController io;
+  std::deque<Route> one_link_routes;  // of add_remote_file over a link: stable addresses
 
   cache::FileId id(FileRef file) const {
     if (file.index >= files.size()) throw ConfigError(fmt::format("host '{}': unknown file #{}", spec.name, file.index));
@@ -72,9 +73,13 @@ FileRef Host::add_file(std::string name, std::int64_t size, DiskRef disk_ref, bo
 }
 
 FileRef Host::add_remote_file(Host& server, FileRef server_file, const Link& link) {
+  return add_remote_file(server, server_file, impl_->one_link_routes.emplace_back(std::vector<const Link*>{&link}));
+}
+
+FileRef Host::add_remote_file(Host& server, FileRef server_file, const Route& route) {
   const cache::FileId id = server.impl_->id(server_file);
   const cache::FileInfo& info = server.impl_->files[id];
-  const cache::FileId client_id = impl_->files.add_remote(info.name, info.size, cache::RemoteFile{&server.impl_->io, id, &link});
+  const cache::FileId client_id = impl_->files.add_remote(info.name, info.size, cache::RemoteFile{&server.impl_->io, id, &route});
   impl_->cache.add_file(client_id);
   return FileRef{client_id};
 }
@@ -99,6 +104,8 @@ Task<void> Host::fsync(FileRef file) { co_await impl_->io.fsync(impl_->id(file))
 Task<void> Host::delete_file(FileRef file) { co_await impl_->io.drop(impl_->id(file)); }
 
 Task<void> Host::compute(double core_seconds) { co_await impl_->cpu.compute(core_seconds); }
+
+Task<void> Host::hold_memory(std::int64_t bytes) { co_await impl_->io.hold_memory(bytes); }
 
 void Host::release_memory(std::int64_t bytes) { impl_->cache.release_anonymous(bytes); }
 

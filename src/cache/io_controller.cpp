@@ -65,12 +65,22 @@ Task<void> IoController::make_room(std::int64_t required, FileId spared, FileId 
     cache_->evict(required - cache_->free(), spared);
     if (required <= cache_->free()) co_return;
     if (cache_->writeback() == 0 && cache_->reserved() == 0) {
+      if (subject == kNoFile) {
+        throw SimulationError(fmt::format("t = {:.6f} s: {} needs {} bytes of memory, only {} can be freed", sim_->now(), verb, required,
+                                          cache_->free()));
+      }
       throw SimulationError(fmt::format("t = {:.6f} s: {} '{}' needs {} bytes of memory, only {} can be freed", sim_->now(), verb,
                                         (*files_)[subject].name,
                                         required, cache_->free()));
     }
     co_await wait_for_progress();
   }
+}
+
+Task<void> IoController::hold_memory(std::int64_t bytes) {
+  if (bytes <= 0) co_return;
+  co_await make_room(bytes, kNoFile, kNoFile, "the task's memory");
+  cache_->allocate_anonymous(bytes);
 }
 
 std::int64_t IoController::room_for_read_at_once(FileId file, std::int64_t file_size, std::int64_t bytes, std::int64_t anonymous) {
@@ -123,10 +133,10 @@ Task<void> IoController::serve_remote(FileId file, std::int64_t bytes) {
   const FileInfo& info = (*files_)[file];
   FlowSpec client_copy = memory_->write_spec(bytes);
   client_copy.bound = std::min(client_copy.bound, memory_->fresh_copy_rate());
-  co_await info.remote.server->serve_read(info.remote.server_file, bytes, *info.remote.link, client_copy);
+  co_await info.remote.server->serve_read(info.remote.server_file, bytes, *info.remote.route, client_copy);
 }
 
-Task<void> IoController::serve_read(FileId file, std::int64_t bytes, const Link& link, FlowSpec client_copy) {
+Task<void> IoController::serve_read(FileId file, std::int64_t bytes, const Route& route, FlowSpec client_copy) {
   const FileInfo& info = (*files_)[file];
   std::int64_t disk_read = room_for_read_at_once(file, info.size, bytes, 0);
   if (disk_read < 0) disk_read = co_await room_for_read(file, bytes, 0, "serving");
@@ -138,26 +148,26 @@ Task<void> IoController::serve_read(FileId file, std::int64_t bytes, const Link&
   if (disk_read > 0) {
     FlowSpec spec = client_copy;
     spec.work = static_cast<double>(disk_read);
-    co_await link.send_through(spec.through(info.disk->read_usage()));
+    co_await route.send_through(spec.through(info.disk->read_usage()));
   }
   if (cache_read > 0) {
     const FlowSpec server_copy = memory_->read_spec(cache_read);
     FlowSpec spec = client_copy;
     spec.work = static_cast<double>(cache_read);
     spec.bound = std::min(spec.bound, server_copy.bound);
-    co_await link.send_through(spec.through(server_copy.usages[0]));
+    co_await route.send_through(spec.through(server_copy.usages[0]));
   }
 }
 
-Task<void> IoController::serve_write(FileId file, std::int64_t bytes, const Link& link) {
+Task<void> IoController::serve_write(FileId file, std::int64_t bytes, const Route& route) {
   const FileInfo& info = (*files_)[file];
   if (cache_->settings().write_mode == WriteMode::Writethrough) {
-    co_await link.send_through(FlowSpec{.work = static_cast<double>(bytes)}.through(info.disk->write_usage()));
+    co_await route.send_through(FlowSpec{.work = static_cast<double>(bytes)}.through(info.disk->write_usage()));
     cache_->evict(bytes - cache_->free(), file);
     cache_->add_clean(file, std::min(bytes, cache_->free()), sim_->now());
     co_return;
   }
-  co_await link.send(bytes);
+  co_await route.send(bytes);
   co_await write_chunk_writeback(file, bytes);
 }
 
@@ -165,7 +175,7 @@ Task<IoTally> IoController::write_chunk(FileId file, std::int64_t chunk) {
   const FileInfo& info = (*files_)[file];
   if (info.is_remote()) {
     // No client write cache (the paper's NFS setting): every write goes to the server.
-    co_await info.remote.server->serve_write(info.remote.server_file, chunk, *info.remote.link);
+    co_await info.remote.server->serve_write(info.remote.server_file, chunk, *info.remote.route);
     co_return IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
   }
   if (cache_->settings().write_mode == WriteMode::Writethrough) co_return co_await write_chunk_writethrough(file, chunk);

@@ -56,6 +56,9 @@ class IoController {
   /// Not a coroutine itself: it checks the request as read_file does and hands out the task
   /// that writes the file (throttled or not).
   Task<IoResult> write_file(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool direct = false);
+  /// Takes `bytes` of application memory (a task's working memory), writing back and
+  /// evicting cached data to make room. Throws SimulationError when nothing can free enough.
+  Task<void> hold_memory(std::int64_t bytes);
   /// fsync: writes back every dirty byte of `file` and waits for it, and for writebacks of it
   /// already in progress.
   Task<void> fsync(FileId file);
@@ -67,10 +70,10 @@ class IoController {
   /// from this host's page cache or, for what is not cached, from its disk (then cached).
   /// `client_copy` is the client's side of the transfer (its copy into its own page cache):
   /// each part is one flow through the source device, the link and the client's memory.
-  Task<void> serve_read(FileId file, std::int64_t bytes, const Link& link, FlowSpec client_copy);
+  Task<void> serve_read(FileId file, std::int64_t bytes, const Route& route, FlowSpec client_copy);
   /// Receives `bytes` of `file` over `link` and writes them as this host's cache mode says
   /// (writethrough: to disk, then cached clean; writeback: into the cache, dirty).
-  Task<void> serve_write(FileId file, std::int64_t bytes, const Link& link);
+  Task<void> serve_write(FileId file, std::int64_t bytes, const Route& route);
 
   /// The machine as it starts, before any run (memory in use set, files cached): the dirty
   /// throttling limit is the dirty threshold of that state (DirtyLimit::reset).
@@ -119,7 +122,7 @@ class IoController {
   /// Makes room for `required` bytes (flush, then evict), sparing `spared`; if that is not
   /// enough while other transfers still hold memory (writebacks, copies in flight), waits for
   /// them and tries again. Throws SimulationError when nothing can ever free enough, naming
-  /// what `verb` (e.g. "reading") was being done to `subject`.
+  /// what `verb` (e.g. "reading") was being done to `subject` (kNoFile: `verb` names what needs it).
   Task<void> make_room(std::int64_t required, FileId spared, FileId subject, const char* verb);
   /// Makes room to read `bytes` of `file` (the part not cached is new cache data) plus
   /// `anonymous` bytes of application memory, and returns how many bytes are not cached: the

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <string_view>
 #include <unordered_map>
 
@@ -81,7 +82,9 @@ class Demand {
         const auto [fh, fd] = place_[f];
         (writing ? disk_write_ : disk_read_)[fh][fd] += bytes;
         (writing ? memory_write_ : memory_read_)[h] += bytes;
-        if (fh != h) link_[link_of(h, fh)] += bytes;
+        if (fh != h) {
+          for (const std::size_t l : route_of(h, fh)) link_[l] += bytes;
+        }
         operations += std::ceil(bytes / static_cast<double>(t.chunk_size));
       }
     }
@@ -127,13 +130,15 @@ class Demand {
     const auto& disks = s_.hosts[host].disks;
     return static_cast<std::size_t>(std::find_if(disks.begin(), disks.end(), [&](const DiskSpec& d) { return d.name == disk; }) - disks.begin());
   }
-  std::size_t link_of(std::size_t a, std::size_t b) const {
-    const auto& links = s_.links;
-    return static_cast<std::size_t>(std::find_if(links.begin(), links.end(), [&](const LinkSpec& l) {
-                                      return (l.host_a == s_.hosts[a].name && l.host_b == s_.hosts[b].name) ||
-                                             (l.host_a == s_.hosts[b].name && l.host_b == s_.hosts[a].name);
-                                    }) -
-                                    links.begin());
+  // The links between two hosts, by index, looked up once per pair.
+  const std::vector<std::size_t>& route_of(std::size_t a, std::size_t b) {
+    auto [it, added] = routes_.try_emplace({a, b});
+    if (added) {
+      for (const LinkSpec* l : route_between(s_, s_.hosts[a].name, s_.hosts[b].name)) {
+        it->second.push_back(static_cast<std::size_t>(l - s_.links.data()));
+      }
+    }
+    return it->second;
   }
 
   const Scenario& s_;
@@ -142,6 +147,7 @@ class Demand {
   std::vector<std::vector<double>> disk_read_, disk_write_;
   std::vector<double> memory_read_, memory_write_;
   std::vector<double> link_;
+  std::map<std::pair<std::size_t, std::size_t>, std::vector<std::size_t>> routes_;
 };
 
 // The key setting a task's chunk size, where it is written: the task's own, else its
@@ -198,10 +204,15 @@ void check_limits(const Scenario& s, const Origins& o, const ScenarioLimits& lim
               pipeline ? "cpu_time" : "compute", fmt::format("application '{}'", s.apps[a].name));
   }
   for (std::size_t w = 0; w < s.workflows.size(); ++w) {
+    // The workflow's I/O counted as if on its first host (a task may run on another: the
+    // estimate of what its devices move is then pessimistic), its compute over all its hosts'
+    // cores.
     const WorkflowSpec& flow = s.workflows[w];
-    const auto host = std::find_if(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& h) { return h.name == flow.host; });
-    add_tasks(demand.host_of(flow.host), flow.tasks, o.workflows[w], [&](std::size_t t) -> const Origin& { return o.workflow_tasks[w][t]; },
-              static_cast<double>(host->cores), "compute", fmt::format("workflow '{}' on {} cores", flow.name, host->cores));
+    int cores = 0;
+    for (const std::string& name : flow.hosts) cores += s.hosts[demand.host_of(name)].cores;
+    add_tasks(demand.host_of(flow.hosts.front()), flow.tasks, o.workflows[w],
+              [&](std::size_t t) -> const Origin& { return o.workflow_tasks[w][t]; }, static_cast<double>(cores), "compute",
+              fmt::format("workflow '{}' on {} cores", flow.name, cores));
   }
   demand.offer_devices(o, longest);
 

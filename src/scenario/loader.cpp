@@ -16,6 +16,7 @@
 #include <functional>
 #include <map>
 #include <set>
+#include <span>
 #include <sstream>
 #include <string_view>
 #include <unordered_set>
@@ -28,11 +29,21 @@ CacheSettings settings_for(Profile profile) {
   return profile == Profile::Paper ? CacheSettings::paper() : CacheSettings::kernel();
 }
 
-const LinkSpec* find_link(const Scenario& scenario, const std::string& a, const std::string& b) {
-  for (const LinkSpec& l : scenario.links) {
-    if ((l.host_a == a && l.host_b == b) || (l.host_a == b && l.host_b == a)) return &l;
+std::vector<const LinkSpec*> route_between(const Scenario& scenario, const std::string& a, const std::string& b) {
+  std::vector<const LinkSpec*> links;
+  for (const RouteSpec& r : scenario.routes) {
+    if ((r.host_a == a && r.host_b == b) || (r.host_a == b && r.host_b == a)) {
+      for (const std::string& name : r.links) {
+        const auto l = std::find_if(scenario.links.begin(), scenario.links.end(), [&](const LinkSpec& x) { return x.name == name; });
+        if (l != scenario.links.end()) links.push_back(&*l);
+      }
+      return links;
+    }
   }
-  return nullptr;
+  for (const LinkSpec& l : scenario.links) {
+    if ((l.host_a == a && l.host_b == b) || (l.host_a == b && l.host_b == a)) return {&l};
+  }
+  return links;
 }
 
 namespace {
@@ -227,16 +238,21 @@ HostConfig read_host(const toml::table& table, std::string path, std::size_t ind
 }
 
 TaskSpec read_task(const toml::table& table, std::string path, std::size_t index, std::int64_t default_chunk,
-                   const std::string& file, bool with_after) {
+                   const std::string& file, bool in_workflow) {
   TomlReader r(table, std::move(path), file);
   TaskSpec t;
   t.name = r.name("name", std::to_string(index + 1));
+  if (in_workflow) {
+    t.host = r.name("host", "");
+    t.cores = static_cast<int>(r.optional_integer("cores", 1, 1'000'000).value_or(1));
+  }
+  t.memory = r.optional_size("memory").value_or(0);
   t.reads = r.names("read");
   t.compute = r.optional_duration("compute").value_or(0.0);
   t.writes = r.names("write");
   t.chunk_size = r.optional_size("chunk_size").value_or(default_chunk);
   if (t.chunk_size <= 0) r.fail("chunk_size", "must be > 0");
-  if (with_after) t.after = r.names("after");
+  if (in_workflow) t.after = r.names("after");
   t.fsync = r.optional_bool("fsync").value_or(false);
   t.direct_io = r.optional_bool("direct_io").value_or(false);
   t.deletes = r.names("delete");
@@ -371,18 +387,53 @@ void read_platform(TomlReader& r, Scenario& s, const std::string& file, Origins&
     link.name = l.name("name", fmt::format("link{}", s.links.size() + 1));
     link.bandwidth = l.required_bandwidth("bandwidth");
     link.latency = l.optional_duration("latency").value_or(0.0);
-    const std::vector<std::string> ends = l.names("hosts");
-    if (ends.size() != 2 || ends[0] == ends[1]) l.fail("hosts", "a link joins two different hosts: hosts = [\"a\", \"b\"]");
-    for (const std::string& end : ends) {
-      if (std::none_of(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == end; })) {
-        l.fail("hosts", fmt::format("no host named '{}'", end));
-      }
+    if (auto sharing = l.optional_string("sharing")) {
+      if (*sharing == "fatpipe") link.sharing = LinkSharing::Fatpipe;
+      else if (*sharing != "shared") l.fail("sharing", fmt::format("unknown sharing '{}' (use \"shared\" or \"fatpipe\")", *sharing));
     }
-    link.host_a = ends[0];
-    link.host_b = ends[1];
-    if (find_link(s, link.host_a, link.host_b) != nullptr) l.fail("hosts", "these hosts already have a link");
+    for (const LinkSpec& other : s.links) {
+      if (other.name == link.name) l.fail("name", fmt::format("two links named '{}'", link.name));
+    }
+    // Without hosts, a link is crossed only by the routes that name it.
+    if (l.has("hosts")) {
+      const std::vector<std::string> ends = l.names("hosts");
+      if (ends.size() != 2 || ends[0] == ends[1]) l.fail("hosts", "a link joins two different hosts: hosts = [\"a\", \"b\"]");
+      for (const std::string& end : ends) {
+        if (std::none_of(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == end; })) {
+          l.fail("hosts", fmt::format("no host named '{}'", end));
+        }
+      }
+      link.host_a = ends[0];
+      link.host_b = ends[1];
+      if (!route_between(s, link.host_a, link.host_b).empty()) l.fail("hosts", "these hosts already have a link or a route");
+    }
     l.finish();
     s.links.push_back(std::move(link));
+  }
+  const auto routes = r.tables("routes");
+  for (std::size_t i = 0; i < routes.size(); ++i) {
+    TomlReader rt(*routes[i], r.child_path("routes", i), file);
+    origins.routes.push_back({routes[i], rt.path(), &file});
+    RouteSpec route;
+    const std::vector<std::string> ends = rt.names("hosts");
+    if (ends.size() != 2 || ends[0] == ends[1]) rt.fail("hosts", "a route joins two different hosts: hosts = [\"a\", \"b\"]");
+    for (const std::string& end : ends) {
+      if (std::none_of(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == end; })) {
+        rt.fail("hosts", fmt::format("no host named '{}'", end));
+      }
+    }
+    route.host_a = ends[0];
+    route.host_b = ends[1];
+    route.links = rt.names("links");
+    if (route.links.empty()) rt.fail("links", "a route crosses at least one link");
+    for (const std::string& name : route.links) {
+      if (std::none_of(s.links.begin(), s.links.end(), [&](const LinkSpec& x) { return x.name == name; })) {
+        rt.fail("links", fmt::format("no link named '{}'", name));
+      }
+    }
+    if (!route_between(s, route.host_a, route.host_b).empty()) rt.fail("hosts", "these hosts already have a link or a route");
+    rt.finish();
+    s.routes.push_back(std::move(route));
   }
 }
 
@@ -538,7 +589,18 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
     std::vector<Origin>& task_origins = origins.workflow_tasks.emplace_back();
     WorkflowSpec workflow;
     workflow.name = wr.name("name", "workflow");
-    workflow.host = wr.name("host", s.hosts.front().name);
+    if (wr.has("hosts")) {
+      workflow.hosts = wr.names("hosts");
+      if (workflow.hosts.empty()) wr.fail("hosts", "at least one host");
+      if (wr.has("host")) wr.fail("host", "give either host or hosts");
+    } else {
+      workflow.hosts = {wr.name("host", s.hosts.front().name)};
+    }
+    for (const std::string& h : workflow.hosts) {
+      if (std::none_of(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == h; })) {
+        wr.fail(wr.has("hosts") ? "hosts" : "host", fmt::format("no host named '{}'", h));
+      }
+    }
     const std::int64_t chunk = wr.optional_size("chunk_size").value_or(100'000'000);
     if (chunk <= 0) wr.fail("chunk_size", "must be > 0");
     const auto tasks = wr.tables("tasks");
@@ -569,25 +631,47 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
     }
   }
   check_disk_space(s, origins);
-  auto check_tasks = [&](const std::string& owner, const std::string& host, const std::vector<TaskSpec>& tasks) {
-    if (std::none_of(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == host; })) {
-      throw ConfigError(fmt::format("{}: {}: no host named '{}'", file, owner, host));
+  // Every host a task may run on reaches its files, over a route that fits in a flow.
+  std::set<std::pair<std::string, std::string>> reachable;
+  auto check_tasks = [&](const std::string& owner, const std::vector<std::string>& hosts, const std::vector<TaskSpec>& tasks) {
+    for (const std::string& host : hosts) {
+      if (std::none_of(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == host; })) {
+        throw ConfigError(fmt::format("{}: {}: no host named '{}'", file, owner, host));
+      }
     }
     for (const TaskSpec& t : tasks) {
-      for (const auto* list : {&t.reads, &t.writes, &t.deletes}) {
-        for (const std::string& name : *list) {
-          auto it = by_name.find(name);
-          if (it == by_name.end()) throw ConfigError(fmt::format("{}: {}, task '{}': unknown file '{}'", file, owner, t.name, name));
-          if (it->second->host != host && find_link(s, host, it->second->host) == nullptr) {
-            throw ConfigError(fmt::format("{}: {}, task '{}': file '{}' is on host '{}', and no link joins it to '{}'", file,
-                                          owner, t.name, name, it->second->host, host));
+      const std::span<const std::string> candidates = t.host.empty() ? std::span<const std::string>(hosts) : std::span<const std::string>(&t.host, 1);
+      for (const std::string& host : candidates) {
+        if (std::none_of(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == host; })) {
+          throw ConfigError(fmt::format("{}: {}, task '{}': no host named '{}'", file, owner, t.name, host));
+        }
+        for (const auto* list : {&t.reads, &t.writes, &t.deletes}) {
+          for (const std::string& name : *list) {
+            auto it = by_name.find(name);
+            if (it == by_name.end()) throw ConfigError(fmt::format("{}: {}, task '{}': unknown file '{}'", file, owner, t.name, name));
+            const std::string& server = it->second->host;
+            if (server == host || reachable.count({host, server}) != 0) continue;
+            const std::vector<const LinkSpec*> route = route_between(s, host, server);
+            if (route.empty()) {
+              throw ConfigError(fmt::format("{}: {}, task '{}': file '{}' is on host '{}', and no link or route joins it to '{}'",
+                                            file, owner, t.name, name, server, host));
+            }
+            // A transfer is one flow through its route's shared links, the two memories and a
+            // disk (devices.hpp): kMaxResourcesPerFlow in all.
+            const auto shared = std::count_if(route.begin(), route.end(), [](const LinkSpec* l) { return l->sharing == LinkSharing::Shared; });
+            if (static_cast<std::size_t>(shared) + 2 > kMaxResourcesPerFlow) {
+              throw ConfigError(fmt::format("{}: {}, task '{}': the route from '{}' to '{}' crosses {} shared links; pcsim models "
+                                            "routes of at most {}",
+                                            file, owner, t.name, host, server, shared, kMaxResourcesPerFlow - 2));
+            }
+            reachable.emplace(host, server);
           }
         }
       }
     }
   };
-  for (const AppSpec& a : s.apps) check_tasks("application '" + a.name + "'", a.host, a.tasks);
-  for (const WorkflowSpec& w : s.workflows) check_tasks("workflow '" + w.name + "'", w.host, w.tasks);
+  for (const AppSpec& a : s.apps) check_tasks("application '" + a.name + "'", {a.host}, a.tasks);
+  for (const WorkflowSpec& w : s.workflows) check_tasks("workflow '" + w.name + "'", w.hosts, w.tasks);
   scenario::check_limits(s, origins, limits);
   return s;
 }

@@ -14,11 +14,28 @@ struct Origin {
   const toml::table* table = nullptr;
   std::string path;
   const std::string* file = nullptr;
+  /// Elements not read from TOML (a platform's XML, a workflow's JSON): where they were, e.g.
+  /// "p.xml:12: host 'a'", named in place of a TOML key's file, line and path.
+  std::string place;
 
-  bool has(const std::string& key) const { return table->contains(key); }
-  /// "file:line:col: key 'path.key': message" (see TomlReader::fail).
-  [[noreturn]] void fail(const std::string& key, const std::string& message) const { TomlReader(*table, path, *file).fail(key, message); }
-  [[noreturn]] void fail_table(const std::string& message) const { TomlReader(*table, path, *file).fail_table(message); }
+  Origin() = default;
+  Origin(const toml::table* t, std::string p, const std::string* f) : table(t), path(std::move(p)), file(f) {}
+  static Origin elsewhere(std::string place) {
+    Origin o;
+    o.place = std::move(place);
+    return o;
+  }
+
+  bool has(const std::string& key) const { return table != nullptr && table->contains(key); }
+  /// "file:line:col: key 'path.key': message" (see TomlReader::fail), or "place: key: message".
+  [[noreturn]] void fail(const std::string& key, const std::string& message) const {
+    if (table == nullptr) throw ConfigError(place + ": " + key + ": " + message);
+    TomlReader(*table, path, *file).fail(key, message);
+  }
+  [[noreturn]] void fail_table(const std::string& message) const {
+    if (table == nullptr) throw ConfigError(place + ": " + message);
+    TomlReader(*table, path, *file).fail_table(message);
+  }
 };
 
 /// The origins of a scenario's elements, in the Scenario's order. The applications and files
@@ -30,6 +47,7 @@ struct Origins {
   std::vector<Origin> page_caches;  ///< per host: its [hosts.page_cache], else the host's table
   std::vector<std::vector<Origin>> disks;  ///< per host
   std::vector<Origin> links;
+  std::vector<Origin> routes;
   std::vector<Origin> files;  ///< the [[files]] tables
   std::optional<Origin> pipelines;
   std::size_t pipeline_apps = 0;

@@ -35,12 +35,14 @@ std::string list(const std::vector<std::string>& items) {
   return toml_text(array);
 }
 
-void write_task(std::string& out, const std::string& table, const TaskSpec& t, bool with_after) {
-  out += fmt::format("\n[[{}]]\nname = {}\nread = {}\ncompute = {}\nwrite = {}\nchunk_size = {}\n", table, quoted(t.name),
-                     list(t.reads), quoted(units::format_duration(t.compute)), list(t.writes),
-                     quoted(units::format_size(t.chunk_size)));
+void write_task(std::string& out, const std::string& table, const TaskSpec& t, bool in_workflow) {
+  out += fmt::format("\n[[{}]]\nname = {}\n", table, quoted(t.name));
+  if (in_workflow && !t.host.empty()) out += fmt::format("host = {}\n", quoted(t.host));
+  if (in_workflow) out += fmt::format("cores = {}\n", t.cores);
+  out += fmt::format("memory = {}\nread = {}\ncompute = {}\nwrite = {}\nchunk_size = {}\n", quoted(units::format_size(t.memory)),
+                     list(t.reads), quoted(units::format_duration(t.compute)), list(t.writes), quoted(units::format_size(t.chunk_size)));
   out += fmt::format("fsync = {}\ndirect_io = {}\ndelete = {}\n", t.fsync, t.direct_io, list(t.deletes));
-  if (with_after) out += fmt::format("after = {}\n", list(t.after));
+  if (in_workflow) out += fmt::format("after = {}\n", list(t.after));
 }
 
 }  // namespace
@@ -74,9 +76,13 @@ std::string to_toml(const Scenario& s) {
     }
   }
   for (const LinkSpec& l : s.links) {
-    out += fmt::format("\n[[links]]\nname = {}\nbandwidth = {}\nlatency = {}\nhosts = {}\n", quoted(l.name),
+    out += fmt::format("\n[[links]]\nname = {}\nbandwidth = {}\nlatency = {}\nsharing = {}\n", quoted(l.name),
                        quoted(units::format_bandwidth(l.bandwidth)), quoted(units::format_duration(l.latency)),
-                       list({l.host_a, l.host_b}));
+                       quoted(l.sharing == LinkSharing::Fatpipe ? "fatpipe" : "shared"));
+    if (!l.host_a.empty()) out += fmt::format("hosts = {}\n", list({l.host_a, l.host_b}));
+  }
+  for (const RouteSpec& r : s.routes) {
+    out += fmt::format("\n[[routes]]\nhosts = {}\nlinks = {}\n", list({r.host_a, r.host_b}), list(r.links));
   }
   for (const FileSpec& f : s.files) {
     out += fmt::format("\n[[files]]\nname = {}\nsize = {}\nhost = {}\ndisk = {}\ncached = {}\n", quoted(f.name),
@@ -87,7 +93,10 @@ std::string to_toml(const Scenario& s) {
     for (const TaskSpec& t : a.tasks) write_task(out, "apps.tasks", t, false);
   }
   for (const WorkflowSpec& w : s.workflows) {
-    out += fmt::format("\n[workflow]\nname = {}\nhost = {}\n", quoted(w.name), quoted(w.host));
+    if (!w.source.empty()) out += fmt::format("\n# workflow read from {}", text::printable(w.source));
+    out += fmt::format("\n[workflow]\nname = {}\n", quoted(w.name));
+    if (w.hosts.size() == 1) out += fmt::format("host = {}\n", quoted(w.hosts.front()));
+    else out += fmt::format("hosts = {}\n", list(w.hosts));
     for (const TaskSpec& t : w.tasks) write_task(out, "workflow.tasks", t, true);
   }
   return out;

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace pagecache {
@@ -79,8 +80,8 @@ FlowAwaiter Memory::read(std::int64_t bytes) const { return share_->transfer(rea
 FlowAwaiter Memory::read_into_fresh(std::int64_t bytes) const { return share_->transfer(read_into_fresh_spec(bytes)); }
 FlowAwaiter Memory::write(std::int64_t bytes) const { return share_->transfer(write_spec(bytes)); }
 
-Link::Link(FairShare& share, std::string name, double bandwidth, double latency)
-    : share_(&share), bandwidth_(bandwidth), latency_(latency) {
+Link::Link(FairShare& share, std::string name, double bandwidth, double latency, LinkSharing sharing)
+    : share_(&share), bandwidth_(bandwidth), latency_(latency), sharing_(sharing) {
   require_positive(bandwidth, name, "bandwidth");
   if (!(latency >= 0.0) || !std::isfinite(latency)) {
     throw ConfigError(fmt::format("{}: latency must be >= 0, got {}", name, latency));
@@ -94,9 +95,30 @@ Task<void> Link::send(std::int64_t bytes) const {
 }
 
 Task<void> Link::send_through(FlowSpec spec) const {
-  spec.through(usage());
+  carry(spec);
   if (latency_ > 0.0) co_await share_->simulator().sleep(latency_);
   co_await share_->transfer(spec);
+}
+
+FlowSpec& Link::carry(FlowSpec& spec) const {
+  if (sharing_ == LinkSharing::Fatpipe) return spec.with_bound(std::min(spec.bound, bandwidth_));
+  return spec.through(usage());
+}
+
+Route::Route(std::vector<const Link*> links) : links_(std::move(links)) {
+  if (links_.empty()) throw ConfigError("a route needs at least one link");
+  for (const Link* link : links_) latency_ += link->latency();
+}
+
+Task<void> Route::send(std::int64_t bytes) const {
+  require_bytes(bytes, "route send");
+  co_await send_through(FlowSpec{.work = static_cast<double>(bytes)});
+}
+
+Task<void> Route::send_through(FlowSpec spec) const {
+  for (const Link* link : links_) link->carry(spec);
+  if (latency_ > 0.0) co_await links_.front()->share().simulator().sleep(latency_);
+  co_await links_.front()->share().transfer(spec);
 }
 
 Cpu::Cpu(FairShare& share, std::string name, int cores) : share_(&share), cores_(cores) {

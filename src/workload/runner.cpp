@@ -4,8 +4,9 @@
 #include <pagecache/error.hpp>
 #include <pagecache/host.hpp>
 #include <pagecache/run.hpp>
+#include <pagecache/units.hpp>
 
-#include "workload/core_slots.hpp"
+#include "workload/core_scheduler.hpp"
 
 #include <fmt/format.h>
 
@@ -41,6 +42,7 @@ struct TaskPlan {
   std::uint32_t deletes = 0;
   std::uint32_t end = 0;
   std::int64_t chunk_size = 0;
+  std::int64_t memory = 0;  // held besides the buffers of what it reads
   double compute = 0.0;
   bool fsync = false;
   bool direct_io = false;
@@ -65,7 +67,21 @@ class Runner {
       host_order_.push_back(config.name);
       host_list_.push_back(hosts_[config.name].get());
     }
-    for (const LinkSpec& l : scenario.links) links_[{l.host_a, l.host_b}] = &links_storage_.emplace_back(share_, l.name, l.bandwidth, l.latency);
+    std::map<std::string, const Link*> links;
+    for (const LinkSpec& l : scenario.links) {
+      const Link& link = links_storage_.emplace_back(share_, l.name, l.bandwidth, l.latency, l.sharing);
+      links[l.name] = &link;
+      if (!l.host_a.empty()) routes_[{l.host_a, l.host_b}] = &routes_storage_.emplace_back(std::vector<const Link*>{&link});
+    }
+    for (const RouteSpec& r : scenario.routes) {
+      std::vector<const Link*> crossed;
+      for (const std::string& name : r.links) {
+        const auto it = links.find(name);
+        if (it == links.end()) throw ConfigError(fmt::format("route from '{}' to '{}': no link named '{}'", r.host_a, r.host_b, name));
+        crossed.push_back(it->second);
+      }
+      routes_[{r.host_a, r.host_b}] = &routes_storage_.emplace_back(std::move(crossed));
+    }
     files_.reserve(scenario.files.size());
     file_order_.reserve(scenario.files.size());
     for (const FileSpec& f : scenario.files) {
@@ -82,8 +98,12 @@ class Runner {
       for (const TaskSpec& task : app.tasks) plan_task(task);
     }
     for (const WorkflowSpec& w : scenario.workflows) {
-      host_named(w.host, "workflow", w.name);
-      for (const TaskSpec& task : w.tasks) plan_task(task);
+      if (w.hosts.empty()) throw ConfigError(fmt::format("workflow '{}': no host to run on", w.name));
+      for (const std::string& h : w.hosts) host_named(h, "workflow", w.name);
+      for (const TaskSpec& task : w.tasks) {
+        if (!task.host.empty()) host_named(task.host, "task", task.name);
+        plan_task(task);
+      }
     }
   }
 
@@ -102,14 +122,13 @@ class Runner {
       plan += app.tasks.size();
     }
     for (const WorkflowSpec& w : scenario_.workflows) {
-      slots_.push_back(std::make_unique<workload::CoreSlots>(sim_, core_count(w.host)));
-      workload::CoreSlots& slots = *slots_.back();
+      WorkflowHosts& hosts = workflow_hosts_.emplace_back(placement_of(w));
       std::deque<Event>& done = workflow_done_.emplace_back();
       for (std::size_t i = 0; i < w.tasks.size(); ++i) done.emplace_back(sim_);
       std::vector<std::vector<Event*>> prerequisites = prerequisites_of(w, done);
       for (std::size_t i = 0; i < w.tasks.size(); ++i) {
         ++running_;
-        sim_.spawn(run_workflow_task(w, w.tasks[i], *plan++, slots, std::move(prerequisites[i]), done[i]));
+        sim_.spawn(run_workflow_task(w, w.tasks[i], *plan++, hosts, i, std::move(prerequisites[i]), done[i]));
       }
     }
     if (scenario_.memory_sample_interval > 0.0) sim_.spawn(sample_memory());
@@ -189,6 +208,12 @@ class Runner {
     plan.deletes = add(task.writes);
     plan.end = add(task.deletes);
     plan.chunk_size = task.chunk_size;
+    std::int64_t reading = 0;
+    for (std::uint32_t f = plan.reads; f < plan.writes; ++f) {
+      const PlacedFile& placed = planned_files_[f];
+      reading = std::min(reading + placed.host->file_size(placed.ref), units::kMaxBytes * 2);
+    }
+    plan.memory = std::max<std::int64_t>(0, task.memory - reading);
     plan.compute = task.compute;
     plan.fsync = task.fsync;
     plan.direct_io = task.direct_io;
@@ -205,20 +230,51 @@ class Runner {
     const auto key = std::make_tuple(&client, stored.host, stored.ref.index);
     if (auto it = remote_files_.find(key); it != remote_files_.end()) return it->second;
     const std::string& server = stored.host->name();
-    auto link = links_.find({client.name(), server});
-    if (link == links_.end()) link = links_.find({server, client.name()});
-    if (link == links_.end()) {
-      throw ConfigError(fmt::format("file '{}' is on host '{}', and no link joins it to host '{}'", *stored.name, server, client.name()));
+    auto route = routes_.find({client.name(), server});
+    if (route == routes_.end()) route = routes_.find({server, client.name()});
+    if (route == routes_.end()) {
+      throw ConfigError(fmt::format("file '{}' is on host '{}', and no route joins it to host '{}'", *stored.name, server, client.name()));
     }
-    const FileRef ref = client.add_remote_file(*stored.host, stored.ref, *link->second);
+    const FileRef ref = client.add_remote_file(*stored.host, stored.ref, *route->second);
     remote_files_.emplace(key, ref);
     return ref;
   }
 
-  int core_count(const std::string& host) const {
-    for (const HostConfig& h : scenario_.hosts)
-      if (h.name == host) return h.cores;
-    return 1;
+  // The hosts a workflow's tasks may run on, and the scheduler of their cores: the workflow's
+  // hosts, then those its tasks name. Each task's candidates are a span of `candidates`.
+  struct WorkflowHosts {
+    std::vector<Host*> hosts;
+    std::unique_ptr<workload::CoreScheduler> cores;
+    std::vector<std::size_t> shared;               // the workflow's hosts
+    std::vector<std::size_t> own;                  // per task: its own host, if it names one
+  };
+
+  WorkflowHosts placement_of(const WorkflowSpec& w) {
+    WorkflowHosts p;
+    std::vector<int> cores;
+    std::map<std::string, std::size_t> index;
+    const auto add = [&](const std::string& name) {
+      const auto [it, added] = index.try_emplace(name, p.hosts.size());
+      if (added) {
+        p.hosts.push_back(hosts_.at(name).get());
+        const auto config = std::find_if(scenario_.hosts.begin(), scenario_.hosts.end(), [&](const HostConfig& h) { return h.name == name; });
+        cores.push_back(config->cores);
+      }
+      return it->second;
+    };
+    for (const std::string& h : w.hosts) p.shared.push_back(add(h));
+    p.own.reserve(w.tasks.size());
+    for (const TaskSpec& t : w.tasks) p.own.push_back(t.host.empty() ? static_cast<std::size_t>(-1) : add(t.host));
+    for (const TaskSpec& t : w.tasks) {
+      const std::size_t own = p.own[static_cast<std::size_t>(&t - w.tasks.data())];
+      const auto fits = [&](std::size_t h) { return cores[h] >= t.cores; };
+      if (own != static_cast<std::size_t>(-1) ? !fits(own) : std::none_of(p.shared.begin(), p.shared.end(), fits)) {
+        throw ConfigError(fmt::format("workflow '{}', task '{}': needs {} cores, more than {} has", w.name, t.name, t.cores,
+                                      own != static_cast<std::size_t>(-1) ? "its host" : "any of its workflow's hosts"));
+      }
+    }
+    p.cores = std::make_unique<workload::CoreScheduler>(sim_, std::move(cores));
+    return p;
   }
 
   // A host's row only when its memory differs from its previous row. True if it got one.
@@ -323,12 +379,13 @@ class Runner {
   }
 
   Task<void> run_task(const std::string& app, const TaskSpec& task, const TaskPlan& plan, Host& host) {
+    if (plan.memory > 0) co_await host.hold_memory(plan.memory);
     const std::int64_t read_bytes = co_await io_phase(app, task, plan, host, true);
     const double compute_start = sim_.now();
     if (plan.compute > 0.0) co_await host.compute(plan.compute);
     result_.timeline.push_back({app, task.name, "compute", compute_start, sim_.now(), 0, 0, 0});
     co_await io_phase(app, task, plan, host, false);
-    host.release_memory(read_bytes);  // the task's buffers are freed when it ends
+    host.release_memory(read_bytes + plan.memory);  // the task's memory is freed when it ends
     for (const PlacedFile& stored : planned(plan.deletes, plan.end)) {
       co_await host.delete_file(file_on(host, stored));
       if (stored.host != &host) co_await stored.host->delete_file(stored.ref);  // on the server too
@@ -379,12 +436,15 @@ class Runner {
     return waits;
   }
 
-  Task<void> run_workflow_task(const WorkflowSpec& w, const TaskSpec& task, const TaskPlan& plan, workload::CoreSlots& slots,
+  Task<void> run_workflow_task(const WorkflowSpec& w, const TaskSpec& task, const TaskPlan& plan, WorkflowHosts& hosts, std::size_t index,
                                std::vector<Event*> prerequisites, Event& done) {
     for (Event* prerequisite : prerequisites) co_await prerequisite->wait();
-    co_await slots.acquire();
-    co_await run_task(w.name, task, plan, *hosts_.at(w.host));
-    slots.release();
+    const std::size_t own = hosts.own[index];
+    const std::span<const std::size_t> candidates =
+        own != static_cast<std::size_t>(-1) ? std::span<const std::size_t>(&hosts.own[index], 1) : std::span<const std::size_t>(hosts.shared);
+    const std::size_t host = co_await hosts.cores->acquire(candidates, task.cores);
+    co_await run_task(w.name, task, plan, *hosts.hosts[host]);
+    hosts.cores->release(host, task.cores);
     done.trigger();
     finish_one();
   }
@@ -404,14 +464,15 @@ class Runner {
   std::vector<Host*> host_list_;                      // in host_order_
   std::vector<std::optional<MemoryState>> last_memory_;  // per host, its last memory row
   std::deque<Link> links_storage_;
-  std::map<std::pair<std::string, std::string>, const Link*> links_;
+  std::deque<Route> routes_storage_;
+  std::map<std::pair<std::string, std::string>, const Route*> routes_;
   std::unordered_map<std::string, PlacedFile> files_;  // nodes: stable addresses
   std::vector<TaskPlan> task_plans_;  // per task, apps' then workflows', in order
   std::vector<PlacedFile> planned_files_;
   std::map<std::tuple<const Host*, const Host*, std::uint32_t>, FileRef> remote_files_;  // (client, server, server's file)
   std::vector<const PlacedFile*> file_order_;
   bool record_cache_ = false;
-  std::vector<std::unique_ptr<workload::CoreSlots>> slots_;
+  std::deque<WorkflowHosts> workflow_hosts_;  // per workflow
   std::deque<std::deque<Event>> workflow_done_;  // per workflow, its tasks' ends in workflow order
   int running_ = 0;
   RunResult result_;

@@ -115,7 +115,8 @@ void rename_all(Scenario& s, const std::map<std::string, std::string>& rename) {
     for (auto& t : a.tasks) re_task(t);
   }
   for (auto& w : s.workflows) {
-    re(w.name), re(w.host);
+    re(w.name);
+    for (auto& h : w.hosts) re(h);
     for (auto& t : w.tasks) re_task(t);
   }
 }
@@ -138,7 +139,8 @@ std::vector<std::string> names(const Scenario& s) {
     for (const auto& t : a.tasks) task(t);
   }
   for (const auto& w : s.workflows) {
-    out.insert(out.end(), {w.name, w.host});
+    out.push_back(w.name);
+    out.insert(out.end(), w.hosts.begin(), w.hosts.end());
     for (const auto& t : w.tasks) task(t);
   }
   return out;

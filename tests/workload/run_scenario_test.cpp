@@ -91,14 +91,14 @@ TEST_CASE("run_scenario rejects unknown hosts, unknown disks and remote files wi
   unlinked.hosts.push_back(server);
   unlinked.files.front().host = "server";
   CHECK_THROWS_AS(run_scenario(unlinked), ConfigError);
-  CHECK_THROWS_WITH(run_scenario(unlinked), Catch::Contains("no link joins it to host 'node'"));
+  CHECK_THROWS_WITH(run_scenario(unlinked), Catch::Contains("no route joins it to host 'node'"));
 }
 
 TEST_CASE("run_scenario rejects a workflow with two tasks of one name or an unknown predecessor", "[run][errors]") {
   Scenario s = one_pipeline();
   WorkflowSpec w;
   w.name = "flow";
-  w.host = "node";
+  w.hosts = {"node"};
   for (const char* name : {"a", "b"}) {
     TaskSpec& task = w.tasks.emplace_back();
     task.name = name;

@@ -17,10 +17,13 @@
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <toml++/toml.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
+#include <sstream>
 #include <new>
 #include <stdexcept>
 #include <string>
@@ -31,6 +34,13 @@
 namespace {
 
 using Overrides = std::vector<std::pair<std::string, std::string>>;
+
+// `text` as a TOML string (for --set: a value is read as TOML).
+std::string toml_string(const std::string& text) {
+  std::ostringstream out;
+  out << toml::value<std::string>(text);
+  return out.str();
+}
 
 Overrides parse_sets(const std::vector<std::string>& sets) {
   Overrides out;
@@ -44,12 +54,58 @@ Overrides parse_sets(const std::vector<std::string>& sets) {
   return out;
 }
 
-pagecache::Scenario load(const std::string& path, const std::vector<std::string>& sets, const std::string& profile, bool force) {
-  const pagecache::ScenarioLimits limits = force ? pagecache::ScenarioLimits::forced() : pagecache::ScenarioLimits{};
-  if (path.empty()) {
-    return pagecache::parse_scenario(pagecache::default_scenario_text(), "<embedded default>", parse_sets(sets), profile, limits);
+// What the command line gives besides a scenario: a platform, and for a workflow instance
+// where its files live and where its tasks may run.
+struct Inputs {
+  std::string platform;
+  std::string files_host;
+  std::vector<std::string> hosts;
+};
+
+bool ends_with(const std::string& s, const std::string& tail) {
+  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+std::string absolute(const std::string& path) { return std::filesystem::absolute(path).lexically_normal().string(); }
+
+// A workflow instance (WfFormat JSON) on a platform file: read as the scenario
+//   platform = "PLATFORM"
+//   [workflow]
+//   file = "WORKFLOW"   (with files_host and hosts if given)
+// so that --set reaches every key, and errors in the options name them.
+pagecache::Scenario load_workflow(const std::string& path, const Inputs& in, const std::vector<std::string>& sets, const std::string& profile,
+                                  const pagecache::ScenarioLimits& limits) {
+  if (in.platform.empty()) {
+    throw pagecache::ConfigError(fmt::format("{}: a workflow file runs on a platform: add --platform PLATFORM.xml (SimGrid) or .toml", path));
   }
-  return pagecache::load_scenario(path, parse_sets(sets), profile, limits);
+  toml::table workflow{{"file", absolute(path)}};
+  if (!in.files_host.empty()) workflow.insert("files_host", in.files_host);
+  if (!in.hosts.empty()) {
+    toml::array hosts;
+    for (const std::string& h : in.hosts) hosts.push_back(h);
+    workflow.insert("hosts", std::move(hosts));
+  }
+  const toml::table root{{"platform", absolute(in.platform)}, {"workflow", std::move(workflow)}};
+  std::ostringstream text;
+  text << root;
+  pagecache::Scenario s = pagecache::parse_scenario(text.str(), "(pcsim options --platform, --files-host, --hosts)", parse_sets(sets), profile, limits);
+  s.source = path;
+  return s;
+}
+
+pagecache::Scenario load(const std::string& path, const Inputs& in, const std::vector<std::string>& sets, const std::string& profile, bool force) {
+  const pagecache::ScenarioLimits limits = force ? pagecache::ScenarioLimits::forced() : pagecache::ScenarioLimits{};
+  if (ends_with(path, ".json")) return load_workflow(path, in, sets, profile, limits);
+  if (!in.files_host.empty() || !in.hosts.empty()) {
+    throw pagecache::ConfigError("--files-host and --hosts place a workflow file's (JSON) files and tasks; a scenario gives them in its [workflow] table");
+  }
+  Overrides overrides = parse_sets(sets);
+  // A scenario on another platform: --platform is its `platform` key.
+  if (!in.platform.empty()) overrides.insert(overrides.begin(), {"platform", toml_string(absolute(in.platform))});
+  if (path.empty()) {
+    return pagecache::parse_scenario(pagecache::default_scenario_text(), "<embedded default>", overrides, profile, limits);
+  }
+  return pagecache::load_scenario(path, overrides, profile, limits);
 }
 
 // The command a user typed that pcsim does not know, with the closest it knows: CLI11 only
@@ -89,9 +145,14 @@ class Progress {
   std::chrono::steady_clock::time_point last_{};
 };
 
-int run_command(const std::string& path, const std::vector<std::string>& sets, const std::string& profile,
+void print_warnings(const pagecache::Scenario& scenario) {
+  for (const std::string& warning : scenario.warnings) fmt::print(stderr, "pcsim: warning: {}\n", warning);
+}
+
+int run_command(const std::string& path, const Inputs& in, const std::vector<std::string>& sets, const std::string& profile,
                 const std::string& out_dir, bool quiet, bool cache_contents, bool force) {
-  const pagecache::Scenario scenario = load(path, sets, profile, force);
+  const pagecache::Scenario scenario = load(path, in, sets, profile, force);
+  if (!quiet) print_warnings(scenario);
   pagecache::report::check_output_folder(out_dir, path);  // before simulating, not after
   Progress progress(!quiet);
   pagecache::RunOptions options;
@@ -137,8 +198,18 @@ int main(int argc, char** argv) {
   const char* force_help = "load a scenario beyond the limits on its size, events, simulated time and memory profile "
                            "(what pcsim cannot represent is still refused)";
 
-  auto* run = app.add_subcommand("run", "run a scenario (without one: the embedded default, the paper's Exp 1 at 100 GB)");
-  run->add_option("scenario", scenario_path, "scenario file (TOML)");
+  Inputs inputs;
+  const char* platform_help = "platform file, SimGrid XML (WRENCH-cache's conventions) or TOML: what a workflow file runs on, or "
+                              "in place of a scenario's own";
+  const char* files_host_help = "host whose disk stores a workflow file's files (default: the first of its recorded machines the "
+                                "platform has, else the platform's first host)";
+  const char* hosts_help = "hosts a workflow file's tasks may run on, besides those its recorded machines name (default: those "
+                           "machines, else every host but the files host)";
+  auto* run = app.add_subcommand("run", "run a scenario or a workflow (without either: the embedded default, the paper's Exp 1 at 100 GB)");
+  run->add_option("scenario", scenario_path, "scenario file (TOML), or workflow file (WfFormat JSON, with --platform)");
+  run->add_option("--platform", inputs.platform, platform_help);
+  run->add_option("--files-host", inputs.files_host, files_host_help);
+  run->add_option("--hosts", inputs.hosts, hosts_help)->delimiter(',');
   run->add_option("--out", out_dir,
                   "output folder: made if absent; an empty folder or one an earlier run made (marked by .pcsim-output) "
                   "is replaced whole; anything else is refused and left untouched")
@@ -149,8 +220,12 @@ int main(int argc, char** argv) {
   run->add_flag("--no-cache-contents", no_cache_contents, "do not record cache.csv (large workloads)");
   run->add_flag("--force", force, force_help);
 
-  auto* show = app.add_subcommand("show", "print the fully resolved scenario, defaults included");
-  show->add_option("scenario", scenario_path, "scenario file (TOML); the embedded default if omitted");
+  auto* show = app.add_subcommand("show", "print the fully resolved scenario, defaults included, or a platform file alone");
+  show->add_option("scenario", scenario_path,
+                   "scenario file (TOML), workflow file (JSON, with --platform) or platform file (XML); the embedded default if omitted");
+  show->add_option("--platform", inputs.platform, std::string(platform_help) + "; alone, the platform is shown");
+  show->add_option("--files-host", inputs.files_host, files_host_help);
+  show->add_option("--hosts", inputs.hosts, hosts_help)->delimiter(',');
   show->add_option("--profile", profile, "model profile, overriding the scenario's")->check(CLI::IsMember({"paper", "linux"}));
   show->add_option("--set", sets, "override a scenario key: KEY=VALUE (repeatable)");
   show->add_flag("--force", force, force_help);
@@ -210,10 +285,16 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (show->parsed()) {
-      fmt::print("{}", pagecache::to_toml(load(scenario_path, sets, profile, force)));
+      // A platform alone: an XML file, or --platform without a scenario.
+      const bool platform_alone = ends_with(scenario_path, ".xml") || (scenario_path.empty() && !inputs.platform.empty());
+      if (platform_alone && !sets.empty()) throw pagecache::ConfigError("--set changes a scenario; a platform is shown as its file says");
+      const pagecache::Scenario scenario = platform_alone ? pagecache::load_platform(scenario_path.empty() ? inputs.platform : scenario_path, profile)
+                                                          : load(scenario_path, inputs, sets, profile, force);
+      print_warnings(scenario);
+      fmt::print("{}", pagecache::to_toml(scenario));
       return 0;
     }
-    return run_command(scenario_path, sets, profile, out_dir, quiet, !no_cache_contents, force);
+    return run_command(scenario_path, inputs, sets, profile, out_dir, quiet, !no_cache_contents, force);
   } catch (const pagecache::ConfigError& e) {
     fmt::print(stderr, "pcsim: {}\n", e.what());
     return 2;

@@ -106,7 +106,7 @@ struct WorkflowSpec {
   std::string name = "workflow";
   std::vector<std::string> hosts;  ///< at least one
   std::vector<TaskSpec> tasks;
-  /// Where it was read from, if not from the scenario itself (a WfFormat file), for `show`.
+  /// The workflow file it was read from (WfFormat JSON); empty if written in the scenario.
   std::string source;
 };
 
@@ -123,6 +123,9 @@ struct Scenario {
   std::vector<FileSpec> files;
   std::vector<AppSpec> apps;
   std::vector<WorkflowSpec> workflows;
+  /// What the inputs hold that pcsim read but does not model, and what it took in place of a
+  /// value beyond its range: "file:line: what", for the user to see (pcsim prints them).
+  std::vector<std::string> warnings;
 };
 
 /// What one scenario may ask of a run, checked when it is loaded: a typo in a count, a size, a
@@ -153,7 +156,9 @@ struct ScenarioLimits {
 /// joining them; empty if none.
 std::vector<const LinkSpec*> route_between(const Scenario& scenario, const std::string& a, const std::string& b);
 
-/// Reads and resolves a scenario file (a regular file of at most 64 MiB). `overrides` are
+/// Reads and resolves a scenario file (a regular file of at most 64 MiB). Its platform may be
+/// a SimGrid XML file (`platform = "p.xml"`), and its workflow a WfFormat instance
+/// (`workflow = "w.json"`, or a [workflow] table with `file` and options); see the README. `overrides` are
 /// (dotted key, TOML value) pairs applied to the file's contents before anything is checked,
 /// e.g. {"pipelines.count", "16"}; a problem with an override's value names the override.
 /// `profile_override`, if set, wins over the file's `profile`. Throws ConfigError naming the
@@ -164,6 +169,11 @@ Scenario load_scenario(const std::string& path, const std::vector<std::pair<std:
 Scenario parse_scenario(const std::string& toml_text, const std::string& source_name,
                         const std::vector<std::pair<std::string, std::string>>& overrides = {},
                         const std::string& profile_override = {}, const ScenarioLimits& limits = {});
+/// A platform file alone (TOML, or SimGrid XML with WRENCH-cache's conventions), with every
+/// route it lists (up to 10^5; Scenario::warnings says how many more), for `pcsim show`. The
+/// hosts of an XML file may lack what a run needs: their memory and memory bandwidths are then
+/// 0. Throws ConfigError naming the file, line and element or key at fault.
+Scenario load_platform(const std::string& path, const std::string& profile_override = {});
 /// The embedded default scenario (the paper's Exp 1 at 100 GB), as TOML text.
 const std::string& default_scenario_text();
 /// A resolved scenario as TOML, every default written out (`pcsim show`).

@@ -4,6 +4,8 @@
 #include <pagecache/scenario.hpp>
 
 #include "scenario/limits.hpp"
+#include "scenario/simgrid_import.hpp"
+#include "scenario/workflow_import.hpp"
 #include "scenario/origins.hpp"
 #include "scenario/text_file.hpp"
 #include "scenario/toml_reader.hpp"
@@ -15,6 +17,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <optional>
 #include <set>
 #include <span>
 #include <sstream>
@@ -47,6 +50,10 @@ std::vector<const LinkSpec*> route_between(const Scenario& scenario, const std::
 }
 
 namespace {
+
+// `pcsim show` of a platform alone lists at most this many routes (a cluster of N hosts has
+// N (N - 1) / 2).
+constexpr std::size_t kMostShownRoutes = 100'000;
 
 using scenario::Origin;
 using scenario::Origins;
@@ -151,8 +158,7 @@ std::vector<std::pair<std::string, bool*>> cache_switches(CacheSettings& s) {
 
 namespace {
 
-CacheSettings read_page_cache(const toml::table* table, const TomlReader& parent, Profile profile, const std::string& file) {
-  CacheSettings s = settings_for(profile);
+CacheSettings read_page_cache(const toml::table* table, const TomlReader& parent, CacheSettings s, const std::string& file) {
   if (table == nullptr) return s;
   TomlReader r(*table, parent.child_path("page_cache"), file);
   if (auto mode = r.optional_string("mode")) {
@@ -189,50 +195,64 @@ CacheSettings read_page_cache(const toml::table* table, const TomlReader& parent
   return s;
 }
 
+// The keys of a [[hosts]] table. `base`: what is already known of the host, from a platform
+// file (the table amends it: every key optional, its disks added or amended by name); without,
+// memory and its bandwidths are required and the host needs a disk.
 HostConfig read_host(const toml::table& table, std::string path, std::size_t index, Profile profile, const std::string& file,
-                     Origins& origins) {
+                     const HostConfig* base, Origin& host_origin, Origin& cache_origin, std::vector<Origin>& disk_origins) {
   TomlReader r(table, std::move(path), file);
-  origins.hosts.push_back({&table, r.path(), &file});
-  HostConfig h;
-  h.name = r.name("name", fmt::format("host{}", index + 1));
-  h.cores = static_cast<int>(r.optional_integer("cores", 1, 1'000'000).value_or(1));
-  h.memory_in_use = r.optional_size("memory_in_use").value_or(0);
-  h.memory = r.required_size("memory");
-  if (h.memory <= 0) r.fail("memory", "must be > 0");
-  if (h.memory_in_use >= h.memory) r.fail("memory_in_use", "must be less than the memory");
-  h.memory_bandwidth.read = r.required_bandwidth("memory_read_bw");
-  h.memory_bandwidth.write = r.required_bandwidth("memory_write_bw");
-  h.memory_bandwidth.aggregate_read = r.optional_bandwidth("memory_aggregate_read_bw").value_or(h.memory_bandwidth.read);
-  h.memory_bandwidth.aggregate_write = r.optional_bandwidth("memory_aggregate_write_bw").value_or(h.memory_bandwidth.write);
-  for (const auto& [key, bw] : {std::pair{"memory_aggregate_read_bw", h.memory_bandwidth.aggregate_read},
-                                 std::pair{"memory_aggregate_write_bw", h.memory_bandwidth.aggregate_write}}) {
-    if (bw < units::kMinBandwidth) r.fail(key, fmt::format("must be at least 1 B/s, got {} B/s", bw));
+  host_origin = {&table, r.path(), &file};
+  const bool fresh = base == nullptr;
+  HostConfig h = fresh ? HostConfig{} : *base;
+  if (fresh) h.cache = settings_for(profile);
+  h.name = fresh ? r.name("name", fmt::format("host{}", index + 1)) : r.name("name", h.name);
+  h.cores = static_cast<int>(r.optional_integer("cores", 1, 1'000'000).value_or(h.cores));
+  h.memory_in_use = r.optional_size("memory_in_use").value_or(h.memory_in_use);
+  h.memory = fresh ? r.required_size("memory") : r.optional_size("memory").value_or(h.memory);
+  if (r.has("memory") && h.memory <= 0) r.fail("memory", "must be > 0");
+  if (h.memory > 0 && h.memory_in_use >= h.memory) r.fail("memory_in_use", "must be less than the memory");
+  MemoryBandwidth& bw = h.memory_bandwidth;
+  bw.read = fresh ? r.required_bandwidth("memory_read_bw") : r.optional_bandwidth("memory_read_bw").value_or(bw.read);
+  bw.write = fresh ? r.required_bandwidth("memory_write_bw") : r.optional_bandwidth("memory_write_bw").value_or(bw.write);
+  bw.aggregate_read = r.optional_bandwidth("memory_aggregate_read_bw").value_or(fresh || r.has("memory_read_bw") ? bw.read : bw.aggregate_read);
+  bw.aggregate_write =
+      r.optional_bandwidth("memory_aggregate_write_bw").value_or(fresh || r.has("memory_write_bw") ? bw.write : bw.aggregate_write);
+  for (const auto& [key, value] : {std::pair{"memory_aggregate_read_bw", bw.aggregate_read}, std::pair{"memory_aggregate_write_bw", bw.aggregate_write}}) {
+    if (r.has(key) && value < units::kMinBandwidth) r.fail(key, fmt::format("must be at least 1 B/s, got {} B/s", value));
   }
   // Absent or "0 MB/s": first touch of fresh memory costs nothing.
-  h.memory_bandwidth.first_touch = r.optional_bandwidth("memory_first_touch_bw").value_or(0.0);
-  if (h.memory_bandwidth.first_touch > 0.0 && h.memory_bandwidth.first_touch < units::kMinBandwidth) {
-    r.fail("memory_first_touch_bw", fmt::format("must be 0 (free) or at least 1 B/s, got {} B/s", h.memory_bandwidth.first_touch));
+  bw.first_touch = r.optional_bandwidth("memory_first_touch_bw").value_or(bw.first_touch);
+  if (bw.first_touch > 0.0 && bw.first_touch < units::kMinBandwidth) {
+    r.fail("memory_first_touch_bw", fmt::format("must be 0 (free) or at least 1 B/s, got {} B/s", bw.first_touch));
   }
   const toml::table* page_cache = r.optional_table("page_cache");
-  h.cache = read_page_cache(page_cache, r, profile, file);
-  origins.page_caches.push_back(page_cache != nullptr ? Origin{page_cache, r.child_path("page_cache"), &file} : origins.hosts.back());
+  h.cache = read_page_cache(page_cache, r, h.cache, file);
+  if (page_cache != nullptr || fresh) cache_origin = page_cache != nullptr ? Origin{page_cache, r.child_path("page_cache"), &file} : host_origin;
   const auto disks = r.tables("disks");
-  std::vector<Origin>& disk_origins = origins.disks.emplace_back();
+  if (fresh) disk_origins.clear();
+  std::set<std::string> named;  // by this table
   for (std::size_t i = 0; i < disks.size(); ++i) {
     TomlReader d(*disks[i], r.child_path("disks", i), file);
-    disk_origins.push_back({disks[i], d.path(), &file});
-    DiskSpec disk;
-    disk.name = d.name("name", fmt::format("disk{}", i + 1));
-    disk.read_bw = d.required_bandwidth("read_bw");
-    disk.write_bw = d.required_bandwidth("write_bw");
-    disk.capacity = d.optional_size("capacity").value_or(0);
-    for (const DiskSpec& other : h.disks) {
-      if (other.name == disk.name) d.fail("name", fmt::format("host '{}' has two disks named '{}'", h.name, disk.name));
-    }
+    const std::string name = d.name("name", fmt::format("disk{}", h.disks.size() + 1));
+    if (!named.insert(name).second) d.fail("name", fmt::format("host '{}' has two disks named '{}'", h.name, name));
+    const auto known = std::find_if(h.disks.begin(), h.disks.end(), [&](const DiskSpec& x) { return x.name == name; });
+    const bool amend = known != h.disks.end();
+    DiskSpec disk = amend ? *known : DiskSpec{};
+    disk.name = name;
+    disk.read_bw = amend ? d.optional_bandwidth("read_bw").value_or(disk.read_bw) : d.required_bandwidth("read_bw");
+    disk.write_bw = amend ? d.optional_bandwidth("write_bw").value_or(disk.write_bw) : d.required_bandwidth("write_bw");
+    disk.capacity = d.optional_size("capacity").value_or(disk.capacity);
     d.finish();
-    h.disks.push_back(std::move(disk));
+    const Origin origin{disks[i], d.path(), &file};
+    if (amend) {
+      disk_origins[static_cast<std::size_t>(known - h.disks.begin())] = origin;
+      *known = std::move(disk);
+    } else {
+      disk_origins.push_back(origin);
+      h.disks.push_back(std::move(disk));
+    }
   }
-  if (h.disks.empty()) r.fail_table(fmt::format("host '{}' has no disk ([[{}.disks]])", h.name, r.path()));
+  if (fresh && h.disks.empty()) r.fail_table(fmt::format("host '{}' has no disk ([[{}.disks]])", h.name, r.path()));
   r.finish();
   return h;
 }
@@ -320,7 +340,7 @@ void expand_pipelines(const toml::table& table, Scenario& s, const std::string& 
 
 // A cycle of dependencies, reported with its tasks. Iterative: a workflow may be a chain of
 // 10^5 tasks, deeper than the stack a recursive search would need.
-void check_workflow_acyclic(const WorkflowSpec& w, const TomlReader& r) {
+void check_workflow_acyclic(const WorkflowSpec& w, const Origin& r) {
   std::map<std::string, std::size_t> by_name;
   std::map<std::string, std::size_t> producer;
   for (std::size_t i = 0; i < w.tasks.size(); ++i) {
@@ -370,13 +390,29 @@ void check_workflow_acyclic(const WorkflowSpec& w, const TomlReader& r) {
 }
 
 // The platform part of a scenario or of a platform file: [[hosts]] and [[links]].
-void read_platform(TomlReader& r, Scenario& s, const std::string& file, Origins& origins) {
+void read_platform(TomlReader& r, Scenario& s, const std::string& file, Origins& origins, std::set<std::size_t>& amendable) {
   const auto hosts = r.tables("hosts");
   for (std::size_t i = 0; i < hosts.size(); ++i) {
-    HostConfig host = read_host(*hosts[i], r.child_path("hosts", i), s.hosts.size(), s.profile, file, origins);
+    // A host of a platform's XML file is amended by a [[hosts]] table of its name.
+    const std::string name = (*hosts[i])["name"].value<std::string>().value_or("");
+    const auto known = std::find_if(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == name; });
+    const std::size_t at = static_cast<std::size_t>(known - s.hosts.begin());
+    if (known != s.hosts.end() && amendable.count(at) != 0) {
+      amendable.erase(at);  // once
+      *known = read_host(*hosts[i], r.child_path("hosts", i), at, s.profile, file, &*known, origins.hosts[at], origins.page_caches[at],
+                         origins.disks[at]);
+      continue;
+    }
+    Origin host_origin, cache_origin;
+    std::vector<Origin> disk_origins;
+    HostConfig host = read_host(*hosts[i], r.child_path("hosts", i), s.hosts.size(), s.profile, file, nullptr, host_origin, cache_origin,
+                                disk_origins);
     for (const HostConfig& other : s.hosts) {
       if (other.name == host.name) TomlReader(*hosts[i], r.child_path("hosts", i), file).fail("name", "two hosts share this name");
     }
+    origins.hosts.push_back(std::move(host_origin));
+    origins.page_caches.push_back(std::move(cache_origin));
+    origins.disks.push_back(std::move(disk_origins));
     s.hosts.push_back(std::move(host));
   }
   const auto links = r.tables("links");
@@ -477,7 +513,171 @@ void check_disk_space(const Scenario& s, const Origins& origins) {
   }
 }
 
-Scenario resolve(const toml::table& root, const std::string& file, const std::string& profile_override, const ScenarioLimits& limits) {
+
+// A path written in `file`, relative to its folder.
+std::string relative_path(const std::string& file, const std::string& path) {
+  const std::filesystem::path relative_to = std::filesystem::path(file).parent_path();
+  return std::filesystem::path(path).is_absolute() ? path : (relative_to / path).lexically_normal().string();
+}
+
+// A SimGrid platform: named .xml, or XML inside (a byte-order mark and spaces aside).
+bool is_xml_file(const std::string& path, const std::string& text) {
+  if (std::filesystem::path(path).extension() == ".xml") return true;
+  std::size_t i = text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
+  while (i < text.size() && (text[i] == ' ' || text[i] == '\t' || text[i] == '\r' || text[i] == '\n')) ++i;
+  return i < text.size() && text[i] == '<';
+}
+
+// [host_defaults]: for the hosts of a SimGrid platform, what its file does not say. Memory and
+// memory bandwidths fill in where the file gives none; the rest (no SimGrid word for them)
+// applies to every such host. A [[hosts]] table of a host's name amends it after.
+void apply_host_defaults(const toml::table& table, const std::string& file, const std::set<std::size_t>& hosts, Scenario& s,
+                         Origins& origins) {
+  TomlReader r(table, "host_defaults", file);
+  const auto memory = r.optional_size("memory");
+  if (memory && *memory <= 0) r.fail("memory", "must be > 0");
+  const auto in_use = r.optional_size("memory_in_use");
+  const auto read = r.optional_bandwidth("memory_read_bw");
+  const auto write = r.optional_bandwidth("memory_write_bw");
+  const auto aggregate_read = r.optional_bandwidth("memory_aggregate_read_bw");
+  const auto aggregate_write = r.optional_bandwidth("memory_aggregate_write_bw");
+  const auto first_touch = r.optional_bandwidth("memory_first_touch_bw");
+  if (first_touch && *first_touch > 0.0 && *first_touch < units::kMinBandwidth) {
+    r.fail("memory_first_touch_bw", fmt::format("must be 0 (free) or at least 1 B/s, got {} B/s", *first_touch));
+  }
+  const toml::table* page_cache = r.optional_table("page_cache");
+  for (const std::size_t i : hosts) {
+    HostConfig& h = s.hosts[i];
+    if (h.memory == 0 && memory) h.memory = *memory;
+    if (in_use) h.memory_in_use = *in_use;
+    if (h.memory > 0 && h.memory_in_use >= h.memory) {
+      r.fail("memory_in_use", fmt::format("must be less than the memory of host '{}' ({})", h.name, units::format_size(h.memory)));
+    }
+    MemoryBandwidth& bw = h.memory_bandwidth;
+    if (bw.read == 0.0 && read) bw.read = bw.aggregate_read = *read;
+    if (bw.write == 0.0 && write) bw.write = bw.aggregate_write = *write;
+    if (aggregate_read) bw.aggregate_read = *aggregate_read;
+    if (aggregate_write) bw.aggregate_write = *aggregate_write;
+    if (first_touch) bw.first_touch = *first_touch;
+    h.cache = read_page_cache(page_cache, r, h.cache, file);
+    if (page_cache != nullptr) origins.page_caches[i] = Origin{page_cache, r.child_path("page_cache"), &file};
+  }
+  r.finish();
+}
+
+// workflow = "x.json", or [workflow] with file = "x.json": a workflow instance and its options.
+void read_workflow_file(TomlReader& root, Scenario& s, const std::string& file, const ScenarioLimits& limits, Origins& origins) {
+  const toml::node* node = root.raw("workflow");
+  scenario::WorkflowImport options;
+  std::string path;
+  std::optional<TomlReader> table;
+  if (node->is_string()) {
+    path = *node->value<std::string>();
+    origins.workflows.push_back(origins.root);
+  } else {
+    table.emplace(*node->as_table(), "workflow", file);
+    origins.workflows.push_back({node->as_table(), "workflow", &file});
+    path = table->required_string("file");
+    options.name = table->name("name", "");
+    options.files_host = table->name("files_host", "");
+    options.files_disk = table->name("files_disk", "");
+    options.hosts = table->names("hosts");
+    if (table->has("hosts") && options.hosts.empty()) table->fail("hosts", "at least one host");
+    options.inputs_cached = table->optional_bool("inputs_cached").value_or(false);
+    if (auto compute = table->optional_string("compute")) {
+      if (*compute == "runtime") options.compute = scenario::ComputeFrom::Runtime;
+      else if (*compute == "cpu_share") options.compute = scenario::ComputeFrom::CpuShare;
+      else table->fail("compute", fmt::format("unknown '{}' (use \"runtime\" or \"cpu_share\")", *compute));
+    }
+    options.chunk_size = table->optional_size("chunk_size").value_or(options.chunk_size);
+    if (options.chunk_size <= 0) table->fail("chunk_size", "must be > 0");
+  }
+  const auto fail = [&](const std::string& key, const std::string& message) {
+    if (table) table->fail(key, message);
+    root.fail("workflow", message);
+  };
+  const std::string json = relative_path(file, path);
+  std::string text;
+  try {
+    text = scenario::read_text_file(json, "workflow file");
+  } catch (const ConfigError& e) {
+    if (table) table->fail("file", e.what());
+    root.fail("workflow", e.what());
+  }
+  const scenario::WfWorkflow workflow = scenario::read_workflow_json(text, json, limits.max_tasks, limits.max_files);
+  scenario::add_json_workflow(workflow, options, s, origins, fail);
+  if (table) table->finish();
+  check_workflow_acyclic(s.workflows.back(), origins.workflows.back());
+}
+
+// A run on a SimGrid platform keeps what it uses: the hosts that run tasks or store files, the
+// routes between them and the links those cross (a cluster's N^2 routes are never listed). The
+// hosts it keeps must say what the model needs of them.
+void keep_what_the_run_uses(const scenario::SgPlatform& platform, const std::set<std::size_t>& from_xml, Scenario& s, Origins& origins) {
+  std::set<std::string> runs, stores;
+  for (const AppSpec& a : s.apps) runs.insert(a.host);
+  for (const WorkflowSpec& w : s.workflows) {
+    runs.insert(w.hosts.begin(), w.hosts.end());
+    for (const TaskSpec& t : w.tasks) {
+      if (!t.host.empty()) runs.insert(t.host);
+    }
+  }
+  for (const FileSpec& f : s.files) stores.insert(f.host);
+  std::set<std::pair<std::string, std::string>> pairs;
+  for (const std::string& a : runs) {
+    for (const std::string& b : stores) pairs.emplace(a, b);
+  }
+  const std::size_t routes_before = s.routes.size();
+  scenario::add_simgrid_routes(platform, pairs, s);
+  for (std::size_t i = routes_before; i < s.routes.size(); ++i) origins.routes.push_back(Origin::elsewhere(platform.file + ": route"));
+
+  std::set<std::string> crossed;
+  for (const RouteSpec& r : s.routes) crossed.insert(r.links.begin(), r.links.end());
+  std::vector<LinkSpec> links;
+  std::vector<Origin> link_origins;
+  for (std::size_t l = 0; l < s.links.size(); ++l) {
+    const bool from_platform = l < platform.links.size();
+    if (!from_platform || crossed.count(s.links[l].name) != 0) {
+      links.push_back(std::move(s.links[l]));
+      link_origins.push_back(std::move(origins.links[l]));
+    }
+  }
+  s.links = std::move(links);
+  origins.links = std::move(link_origins);
+
+  std::vector<HostConfig> hosts;
+  Origins kept = origins;
+  kept.hosts.clear(), kept.page_caches.clear(), kept.disks.clear();
+  for (std::size_t h = 0; h < s.hosts.size(); ++h) {
+    HostConfig& host = s.hosts[h];
+    const bool used = runs.count(host.name) != 0 || stores.count(host.name) != 0;
+    if (from_xml.count(h) != 0 && !used) continue;
+    if (from_xml.count(h) != 0) {
+      const Origin& o = origins.hosts[h];
+      const std::string amend = fmt::format("in [host_defaults], or in a [[hosts]] table named '{}', of a scenario", host.name);
+      if (host.memory <= 0) {
+        o.fail_table(fmt::format("no memory size: give the host a <prop id=\"ram\" value=\"...\"/> (WRENCH's convention), or memory {}", amend));
+      }
+      if (host.memory_bandwidth.read <= 0.0 || host.memory_bandwidth.write <= 0.0) {
+        o.fail_table(fmt::format("no memory bandwidth: give the host a <disk> mounted at /memory (WRENCH-cache's convention), or "
+                                 "memory_read_bw and memory_write_bw {}",
+                                 amend));
+      }
+      if (host.memory_in_use >= host.memory) o.fail_table("memory_in_use must be less than the memory");
+    }
+    kept.hosts.push_back(origins.hosts[h]);
+    kept.page_caches.push_back(origins.page_caches[h]);
+    kept.disks.push_back(origins.disks[h]);
+    hosts.push_back(std::move(host));
+  }
+  s.hosts = std::move(hosts);
+  origins = std::move(kept);
+}
+
+// `platform_only`: a platform file shown alone (pcsim show PLATFORM): no workload, and what a run
+// would need of the hosts (memory sizes and bandwidths) may be missing.
+Scenario resolve(const toml::table& root, const std::string& file, const std::string& profile_override, const ScenarioLimits& limits,
+                 bool platform_only = false) {
   TomlReader r(root, "", file);
   Origins origins;
   origins.root = {&root, "", &file};
@@ -492,9 +692,12 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
   }
   s.memory_sample_interval = r.optional_duration("memory_sample_interval").value_or(1.0);
 
-  // platform = "file.toml", or one per profile: platform = { paper = "a.toml", linux = "b.toml" }
+  // platform = "file.toml" or "file.xml" (SimGrid), or one per profile:
+  // platform = { paper = "a.toml", linux = "b.toml" }
   std::string platform_file;  // outlives the platform's origins
   toml::table platform_root;
+  std::optional<scenario::SgPlatform> simgrid;  // kept until the run's routes are known
+  std::set<std::size_t> amendable;              // hosts of an XML platform, which [[hosts]] tables amend
   if (const toml::node* platform = r.raw("platform")) {
     std::string path;
     if (platform->is_string()) {
@@ -506,25 +709,35 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
     } else {
       r.fail("platform", "expected a file name, or a table of file names per profile");
     }
-    const std::filesystem::path relative_to = std::filesystem::path(file).parent_path();
-    platform_file = std::filesystem::path(path).is_absolute() ? path : (relative_to / path).lexically_normal().string();
+    platform_file = relative_path(file, path);
     std::string text;
     try {
       text = scenario::read_text_file(platform_file, "platform file");
     } catch (const ConfigError& e) {
       r.fail("platform", e.what());
     }
-    try {
-      platform_root = toml::parse(text, platform_file);
-    } catch (const toml::parse_error& e) {
-      throw ConfigError(fmt::format("{}:{}:{}: {}", platform_file, e.source().begin.line, e.source().begin.column, e.description()));
+    if (is_xml_file(platform_file, text)) {
+      simgrid = scenario::read_simgrid_platform(text, platform_file);
+      scenario::add_simgrid_platform(*simgrid, s, origins);
+      for (std::size_t h = 0; h < s.hosts.size(); ++h) amendable.insert(h);
+    } else {
+      try {
+        platform_root = toml::parse(text, platform_file);
+      } catch (const toml::parse_error& e) {
+        throw ConfigError(fmt::format("{}:{}:{}: {}", platform_file, e.source().begin.line, e.source().begin.column, e.description()));
+      }
+      TomlReader p(platform_root, "", platform_file);
+      p.string("title", "");
+      read_platform(p, s, platform_file, origins, amendable);
+      p.finish();
     }
-    TomlReader p(platform_root, "", platform_file);
-    p.string("title", "");
-    read_platform(p, s, platform_file, origins);
-    p.finish();
   }
-  read_platform(r, s, file, origins);
+  const std::set<std::size_t> from_xml = amendable;
+  if (const toml::table* defaults = r.optional_table("host_defaults")) {
+    if (from_xml.empty()) r.fail("host_defaults", "fills in what a SimGrid platform file does not say; this scenario has none");
+    apply_host_defaults(*defaults, file, from_xml, s, origins);
+  }
+  read_platform(r, s, file, origins, amendable);
   if (s.hosts.empty()) r.fail_table("no host: add a [[hosts]] table, or a platform file");
 
   // [start.memory_in_use]: host name -> memory in use when this run starts (what a measured
@@ -561,6 +774,13 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
     f.finish();
     s.files.push_back(std::move(spec));
   }
+  // workflow = "x.json", or [workflow] with file = "x.json" and options: a WfFormat instance.
+  // Read before [pipelines], whose files' origins are all that table's (Origins::file).
+  const toml::node* workflow_node = root.get("workflow");
+  const toml::table* workflow_table = workflow_node != nullptr ? workflow_node->as_table() : nullptr;
+  if (workflow_node != nullptr && (workflow_node->is_string() || (workflow_table != nullptr && workflow_table->contains("file")))) {
+    read_workflow_file(r, s, file, limits, origins);
+  }
   if (const toml::table* p = r.optional_table("pipelines")) expand_pipelines(*p, s, file, limits, origins);
 
   const auto apps = r.tables("apps");
@@ -583,7 +803,7 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
     s.apps.push_back(std::move(app));
   }
 
-  if (const toml::table* w = r.optional_table("workflow")) {
+  if (const toml::table* w = s.workflows.empty() ? r.optional_table("workflow") : nullptr) {
     TomlReader wr(*w, "workflow", file);
     origins.workflows.push_back({w, "workflow", &file});
     std::vector<Origin>& task_origins = origins.workflow_tasks.emplace_back();
@@ -609,12 +829,23 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
       task_origins.push_back({tasks[t], wr.child_path("tasks", t), &file});
       workflow.tasks.push_back(read_task(*tasks[t], wr.child_path("tasks", t), t, chunk, file, true));
     }
-    check_workflow_acyclic(workflow, wr);
+    check_workflow_acyclic(workflow, origins.workflows.back());
     wr.finish();
     s.workflows.push_back(std::move(workflow));
   }
-  if (s.apps.empty() && s.workflows.empty()) r.fail_table("no workload: add [pipelines], [[apps]] or [workflow]");
+  if (platform_only) {
+    if (simgrid) {
+      const std::size_t more = scenario::add_all_simgrid_routes(*simgrid, kMostShownRoutes, s);
+      if (more > 0) s.warnings.push_back(fmt::format("{}: {} more routes not shown (the first {} are)", platform_file, more, kMostShownRoutes));
+    }
+    r.finish();
+    return s;
+  }
+  if (s.apps.empty() && s.workflows.empty()) {
+    r.fail_table("no workload: add [pipelines], [[apps]] or [workflow] (or workflow = \"x.json\", a WfFormat file)");
+  }
   r.finish();
+  if (simgrid) keep_what_the_run_uses(*simgrid, from_xml, s, origins);
 
   // References: every file a task names exists on the task's host; files fit their disks.
   std::map<std::string, const FileSpec*> by_name;
@@ -688,6 +919,12 @@ Scenario parse_scenario(const std::string& toml_text, const std::string& source_
   }
   for (const auto& [key, value] : overrides) apply_override(root, key, value, source_name);
   return resolve(root, source_name, profile_override, limits);
+}
+
+Scenario load_platform(const std::string& path, const std::string& profile_override) {
+  toml::table root;
+  root.insert("platform", std::filesystem::path(path).filename().string());
+  return resolve(root, path, profile_override, ScenarioLimits{}, true);
 }
 
 Scenario load_scenario(const std::string& path, const Overrides& overrides, const std::string& profile_override,

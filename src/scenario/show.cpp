@@ -54,14 +54,21 @@ std::string to_toml(const Scenario& s) {
   out += fmt::format("profile = {}\nmemory_sample_interval = {}\n", quoted(to_string(s.profile)),
                      quoted(units::format_duration(s.memory_sample_interval)));
   for (const HostConfig& h : s.hosts) {
-    out += fmt::format(
-        "\n[[hosts]]\nname = {}\ncores = {}\nmemory = {}\nmemory_in_use = {}\nmemory_read_bw = {}\nmemory_write_bw = {}\n"
-        "memory_aggregate_read_bw = {}\nmemory_aggregate_write_bw = {}\nmemory_first_touch_bw = {}\n",
-        quoted(h.name), h.cores, quoted(units::format_size(h.memory)), quoted(units::format_size(h.memory_in_use)),
-        quoted(units::format_bandwidth(h.memory_bandwidth.read)),
-        quoted(units::format_bandwidth(h.memory_bandwidth.write)), quoted(units::format_bandwidth(h.memory_bandwidth.aggregate_read)),
-        quoted(units::format_bandwidth(h.memory_bandwidth.aggregate_write)),
-        quoted(units::format_bandwidth(h.memory_bandwidth.first_touch)));
+    // A platform file shown alone may not give what a run needs (load_platform): the key is
+    // left for the user to fill in.
+    const auto size = [](const char* key, std::int64_t v) {
+      return v > 0 ? fmt::format("{} = {}\n", key, quoted(units::format_size(v))) : fmt::format("# {} = ?  (not in the platform file)\n", key);
+    };
+    const auto rate = [](const char* key, double v) {
+      return v > 0.0 ? fmt::format("{} = {}\n", key, quoted(units::format_bandwidth(v))) : fmt::format("# {} = ?  (not in the platform file)\n", key);
+    };
+    out += fmt::format("\n[[hosts]]\nname = {}\ncores = {}\n", quoted(h.name), h.cores);
+    out += size("memory", h.memory);
+    out += fmt::format("memory_in_use = {}\n", quoted(units::format_size(h.memory_in_use)));
+    out += rate("memory_read_bw", h.memory_bandwidth.read) + rate("memory_write_bw", h.memory_bandwidth.write) +
+           rate("memory_aggregate_read_bw", h.memory_bandwidth.aggregate_read) +
+           rate("memory_aggregate_write_bw", h.memory_bandwidth.aggregate_write);
+    out += fmt::format("memory_first_touch_bw = {}\n", quoted(units::format_bandwidth(h.memory_bandwidth.first_touch)));
     out += fmt::format(
         "\n[hosts.page_cache]\nmode = {}\ndirty_ratio = {}\ndirty_background_ratio = {}\ndirty_expire = {}\nwriteback_interval = {}\n",
         quoted(h.cache.write_mode == WriteMode::Writeback ? "writeback" : "writethrough"), h.cache.dirty_ratio,
@@ -93,7 +100,6 @@ std::string to_toml(const Scenario& s) {
     for (const TaskSpec& t : a.tasks) write_task(out, "apps.tasks", t, false);
   }
   for (const WorkflowSpec& w : s.workflows) {
-    if (!w.source.empty()) out += fmt::format("\n# workflow read from {}", text::printable(w.source));
     out += fmt::format("\n[workflow]\nname = {}\n", quoted(w.name));
     if (w.hosts.size() == 1) out += fmt::format("host = {}\n", quoted(w.hosts.front()));
     else out += fmt::format("hosts = {}\n", list(w.hosts));

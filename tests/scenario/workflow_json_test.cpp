@@ -7,6 +7,8 @@
 
 #include "support/files.hpp"
 
+#include "workflow_property.hpp"
+
 #include <pagecache/error.hpp>
 
 #include <catch2/catch.hpp>
@@ -631,6 +633,50 @@ TEST_CASE("warnings stop at a hundred, the last saying how many more there were"
   CHECK(w.warnings[98].rfind("w.json: workflow.tasks[1].files[100] (file 'f1'): size: 109 bytes here, 10 at", 0) == 0);
   CHECK(w.warnings.back() == "w.json: 51 more warnings, not shown");
   CHECK(w.tasks[1].inputs == std::vector<std::size_t>{1, 0});
+}
+
+TEST_CASE("the fuzz target's contract holds for the reference workflows, the seeds and hostile inputs", "[scenario][workflow][fuzz]") {
+  std::vector<std::filesystem::path> inputs;
+  for (const auto& dir : {kReference / "wfcommons" / "instances", kReference / "wrench-cache-inputs",
+                          std::filesystem::path(PAGECACHE_FUZZ_SEEDS_DIR)}) {
+    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+      if (entry.path().extension() == ".json") inputs.push_back(entry.path());
+    }
+  }
+  REQUIRE(inputs.size() == 12);
+  for (const auto& path : inputs) {
+    INFO(path.string());
+    const std::string text = testing::slurp(path);
+    CHECK(fuzz::check_workflow_text(text, path.string()).empty());
+    CHECK_NOTHROW(read_workflow_json(text, path.string(), fuzz::kFuzzMaxTasks, fuzz::kFuzzMaxFiles));  // read, not refused
+  }
+  for (const std::string& hostile : {std::string(1'000'000, '['), std::string("{\"a\": 1e400}"), chain(5'000, true).dump(),
+                                     std::string("{\"workflow\": {\"tasks\": [") + std::string(200'000, '{')}) {
+    CHECK(fuzz::check_workflow_text(hostile, "fuzz.json").empty());
+  }
+}
+
+TEST_CASE("the fuzz target's property check catches each broken promise", "[scenario][workflow][fuzz]") {
+  const WfWorkflow good = read(small_wfformat().dump());
+  REQUIRE(fuzz::workflow_problem(good).empty());
+  WfWorkflow w = good;
+  w.tasks[0].parents = {1};
+  CHECK(fuzz::workflow_problem(w) == "the parents form a cycle");
+  w = good;
+  w.tasks[1].parents = {2};
+  CHECK(fuzz::workflow_problem(w) == "parent index 2 out of range in task b");
+  w = good;
+  w.tasks[1].inputs = {0, 0};
+  CHECK(fuzz::workflow_problem(w) == "input index 0 repeated in task b");
+  w = good;
+  w.files[1].id = "in";
+  CHECK(fuzz::workflow_problem(w) == "file id empty or repeated: in");
+  w = good;
+  w.tasks[0].machines = {"m9"};
+  CHECK(fuzz::workflow_problem(w) == "unknown machine in task a");
+  w = good;
+  w.tasks[0].cores = 0;
+  CHECK(fuzz::workflow_problem(w) == "cores out of range: a");
 }
 
 }  // namespace

@@ -1,0 +1,22 @@
+// libFuzzer target: the bytes as a workflow JSON file, through
+// pagecache::scenario::read_workflow_json (fuzz/workflow_property.hpp states the contract).
+// Seed it with the reference workflows (../shared/reference: wfcommons/instances/*.json and
+// wrench-cache-inputs/*.json) and fuzz/workflow.dict.
+
+#include "workflow_property.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  const std::string broken = pagecache::fuzz::check_workflow_text(text, "fuzz.json");
+  if (!broken.empty()) {
+    std::fprintf(stderr, "workflow property broken: %s\n", broken.c_str());
+    std::abort();
+  }
+  return 0;
+}

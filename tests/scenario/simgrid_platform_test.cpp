@@ -6,12 +6,15 @@
 #include "scenario/simgrid_radical.hpp"
 #include "scenario/simgrid_units.hpp"
 
+#include "platform_property.hpp"
+
 #include <pagecache/error.hpp>
 
 #include <catch2/catch.hpp>
 
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <thread>
@@ -639,4 +642,33 @@ TEST_CASE("zones nested beyond a bound are refused rather than overflowing the s
   for (int i = 0; i < 100'000; ++i) text += "</zone>";
   text += "</platform>";
   CHECK_THAT(message_of(text), Contains("<zone id=\"z64\">: zones nested more than 64 deep"));
+}
+
+// ---------------------------------------------------------------- the fuzz target's contract
+
+TEST_CASE("the platform fuzzer's contract holds on the reference platforms and its seeds, which read within its bounds",
+          "[scenario][simgrid][fuzz]") {
+  std::vector<std::string> files;
+  for (const char* name : {"wrench-cache-inputs/single_host.xml", "wrench-cache-inputs/two_hosts.xml", "simgrid-platforms/hosts_with_disks.xml",
+                           "simgrid-platforms/small_platform.xml", "simgrid-platforms/cluster_backbone.xml"}) {
+    files.push_back(std::string(PAGECACHE_REFERENCE_DIR) + "/" + name);
+  }
+  for (const auto& entry : std::filesystem::directory_iterator(PAGECACHE_FUZZ_SEEDS_DIR)) {
+    if (entry.path().extension() == ".xml") files.push_back(entry.path().string());
+  }
+  REQUIRE(files.size() >= 7);
+  for (const std::string& path : files) {
+    INFO(path);
+    const std::string text = file_text(path);
+    CHECK(fuzz::check_platform_text(text, path).empty());
+    // Under the fuzzer's bounds every seed reads but SimGrid's cluster of 100, refused for its radical.
+    if (path.find("cluster_backbone") == std::string::npos) {
+      CHECK_FALSE(read_simgrid_platform(text, path, fuzz::fuzz_platform_limits()).hosts.empty());
+    } else {
+      CHECK_THROWS_WITH(read_simgrid_platform(text, path, fuzz::fuzz_platform_limits()), Contains("attribute radical"));
+    }
+  }
+  // Broken inputs keep it too: refused with FILE:LINE.
+  CHECK(fuzz::check_platform_text("<platform version=\"4.1\"><zone id=\"z\" routing=\"Floyd\"/></platform>", "x.xml").empty());
+  CHECK(fuzz::check_platform_text("\xff\xfe<", "x.xml").empty());
 }

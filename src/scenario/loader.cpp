@@ -644,6 +644,7 @@ void keep_what_the_run_uses(const scenario::SgPlatform& platform, const std::set
   }
   s.links = std::move(links);
   origins.links = std::move(link_origins);
+  scenario::add_link_warnings(platform, s);
 
   std::vector<HostConfig> hosts;
   Origins kept = origins;
@@ -837,6 +838,7 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
     if (simgrid) {
       const std::size_t more = scenario::add_all_simgrid_routes(*simgrid, kMostShownRoutes, s);
       if (more > 0) s.warnings.push_back(fmt::format("{}: {} more routes not shown (the first {} are)", platform_file, more, kMostShownRoutes));
+      scenario::add_link_warnings(*simgrid, s);
     }
     r.finish();
     return s;

@@ -40,18 +40,28 @@ std::int64_t size_prop(const SgPlatform& p, int line, const std::string& what, c
 // A bandwidth within what pcsim takes. SimGrid files give "infinite" links as huge ones
 // (WRENCH-cache's loopback: 1000 EBps): above 1 PB/s a link limits nothing a run can do,
 // and is taken as 1 PB/s.
-double bandwidth(SgPlatform const& p, int line, const std::string& what, double value, Scenario& s) {
+double bandwidth(SgPlatform const& p, int line, const std::string& what, double value, Scenario& s, bool warn = true) {
   if (!(value >= units::kMinBandwidth) || !std::isfinite(value)) {
     throw ConfigError(fmt::format("{}: bandwidth {} B/s is below the 1 B/s pcsim takes", where(p, line, what), value));
   }
   if (value > units::kMaxBandwidth) {
-    s.warnings.push_back(fmt::format("{}: bandwidth {:g} B/s taken as 1 PB/s, the most pcsim models", where(p, line, what), value));
+    if (warn) s.warnings.push_back(fmt::format("{}: {:g} B/s taken as 1 PB/s, the most pcsim models", where(p, line, what), value));
     return units::kMaxBandwidth;
   }
   return value;
 }
 
 }  // namespace
+
+void add_link_warnings(const SgPlatform& p, Scenario& s) {
+  for (const LinkSpec& link : s.links) {
+    const SgLink* sg = p.find_link(link.name);
+    if (sg != nullptr && sg->bandwidth > units::kMaxBandwidth) {
+      s.warnings.push_back(fmt::format("{}: {:g} B/s taken as 1 PB/s, the most pcsim models",
+                                       where(p, sg->line, fmt::format("link '{}', bandwidth", sg->id)), sg->bandwidth));
+    }
+  }
+}
 
 bool is_memory_disk(const SgDisk& disk) {
   const std::string* mount = prop(disk.props, "mount");
@@ -105,7 +115,9 @@ void add_simgrid_platform(const SgPlatform& p, Scenario& s, Origins& origins) {
     LinkSpec link;
     link.name = sg.id;
     const std::string what = fmt::format("link '{}'", sg.id);
-    link.bandwidth = bandwidth(p, sg.line, what + ", bandwidth", sg.bandwidth, s);
+    // Said only of the links a run keeps (add_link_warnings): WRENCH-cache's loopbacks are
+    // 1000 EBps and a run rarely crosses them.
+    link.bandwidth = bandwidth(p, sg.line, what + ", bandwidth", sg.bandwidth, s, false);
     if (!(sg.latency >= 0.0) || sg.latency > units::kMaxSeconds) {
       throw ConfigError(fmt::format("{}: latency {} s is not one pcsim takes (0 to 10^9 s)", where(p, sg.line, what), sg.latency));
     }

@@ -28,6 +28,9 @@ void add_simgrid_routes(const SgPlatform& platform, const std::set<std::pair<std
 /// platform alone); returns how many more there are.
 std::size_t add_all_simgrid_routes(const SgPlatform& platform, std::size_t most, Scenario& s);
 
+/// Warns of the links of `s` that the platform gives more than the 1 PB/s pcsim models.
+void add_link_warnings(const SgPlatform& platform, Scenario& s);
+
 /// True if `host`'s disk is its memory by WRENCH-cache's convention.
 bool is_memory_disk(const SgDisk& disk);
 

@@ -110,7 +110,9 @@ double parse(std::string_view text, const Kind& kind) {
     throw ConfigError(fmt::format("'{}': unknown {} unit '{}' ({}SimGrid's units: {})", sg_shown(text), kind.what, sg_shown(unit),
                                   spaced ? "no space between number and unit; " : "", kind.examples));
   }
-  const double value = n.value * found->second;
+  // A fraction of the base unit divides by its inverse, which is exact: 100 * 1e-6 is
+  // 9.999999999999999e-05, 100 / 1e6 is 1e-4 (SimGrid multiplies; the two differ by an ulp).
+  const double value = found->second < 1.0 ? n.value / std::round(1.0 / found->second) : n.value * found->second;
   if (!std::isfinite(value)) throw ConfigError(fmt::format("'{}' is too large", sg_shown(text)));
   return value;
 }

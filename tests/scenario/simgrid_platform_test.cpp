@@ -82,10 +82,10 @@ TEST_CASE("SimGrid bandwidths are bytes per second with decimal and binary prefi
 }
 
 TEST_CASE("SimGrid times run from picoseconds to weeks", "[scenario][simgrid]") {
-  CHECK(parse_sg_time("50us") == 50 * 1e-6);
-  CHECK(parse_sg_time("1.461517ms") == 1.461517 * 1e-3);
-  CHECK(parse_sg_time("3ns") == 3 * 1e-9);
-  CHECK(parse_sg_time("4ps") == 4 * 1e-12);
+  CHECK(parse_sg_time("50us") == 50 / 1e6);
+  CHECK(parse_sg_time("1.461517ms") == 1.461517 / 1e3);
+  CHECK(parse_sg_time("3ns") == 3 / 1e9);
+  CHECK(parse_sg_time("4ps") == 4 / 1e12);
   CHECK(parse_sg_time("2s") == 2.0);
   CHECK(parse_sg_time("2m") == 120.0);
   CHECK(parse_sg_time("2h") == 7200.0);
@@ -212,7 +212,7 @@ TEST_CASE("WRENCH-cache's two hosts: one network link, used both ways, and a loo
   const SgLink* net = p.find_link("network_link");
   REQUIRE(net != nullptr);
   CHECK(net->bandwidth == 3e9);
-  CHECK(net->latency == 20 * 1e-6);
+  CHECK(net->latency == 20 / 1e6);
   CHECK(net->line == 31);
   REQUIRE(p.routes.size() == 3);
   const SgRoute* there = p.find_route("storage_host", "compute_host");
@@ -252,7 +252,7 @@ TEST_CASE("SimGrid's hosts with disks: read and write bandwidths apart, disk pro
   REQUIRE(alice->disks.size() == 1);
   CHECK(alice->disks[0].id == "Disk1");  // disk ids are per host
   CHECK(p.find_link("link1")->bandwidth == 1.25e8);
-  CHECK(p.find_link("link1")->latency == 150 * 1e-6);
+  CHECK(p.find_link("link1")->latency == 150 / 1e6);
   CHECK(p.find_route("alice", "bob")->links == Strings{"link1"});
   CHECK(p.find_route("alice", "alice") == nullptr);  // none declared
 }
@@ -269,12 +269,12 @@ TEST_CASE("SimGrid's small platform, version 4 with <AS>: five hosts, eleven lin
   REQUIRE(p.links.size() == 11);
   CHECK(p.links[0].id == "6");
   CHECK(p.links[3].id == "9");
-  CHECK(p.links[3].latency == 1.461517 * 1e-3);
+  CHECK(p.links[3].latency == 1.461517 / 1e3);
   const SgLink* loopback = p.find_link("loopback");
   REQUIRE(loopback != nullptr);
   CHECK(loopback->sharing == LinkSharing::Fatpipe);
   CHECK(loopback->bandwidth == 498e6);
-  CHECK(loopback->latency == 15 * 1e-6);
+  CHECK(loopback->latency == 15 / 1e6);
   REQUIRE(p.routes.size() == 15);
   CHECK(p.find_route("Tremblay", "Fafard")->links == Strings{"4", "3", "2", "0", "1", "8"});
   CHECK(p.find_route("Fafard", "Tremblay")->links == Strings{"8", "1", "0", "2", "3", "4"});
@@ -301,11 +301,11 @@ TEST_CASE("SimGrid's cluster with a backbone: 100 nodes, split-duplex private li
   REQUIRE(p.links.size() == 201);
   CHECK(p.links[0].id == "acme_backbone");
   CHECK(p.links[0].bandwidth == 2.25e9);
-  CHECK(p.links[0].latency == 500 * 1e-6);
+  CHECK(p.links[0].latency == 500 / 1e6);
   const SgLink* up = p.find_link("acme_link_7_UP");
   REQUIRE(up != nullptr);
   CHECK(up->bandwidth == 1.25e8);
-  CHECK(up->latency == 50 * 1e-6);
+  CHECK(up->latency == 50 / 1e6);
   CHECK(up->half == DuplexHalf::Up);
   CHECK(up->duplex_id == "acme_link_7");
   CHECK(p.find_link("acme_link_7_DOWN")->half == DuplexHalf::Down);

@@ -6,7 +6,9 @@
 
 #include "support/watched_child.hpp"
 
+#include "platform_property.hpp"
 #include "scenario_property.hpp"
+#include "workflow_property.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -19,10 +21,11 @@
 namespace pagecache {
 namespace {
 
-std::vector<std::filesystem::path> regression_inputs() {
+// The inputs of one reader: .toml (scenario), .json (workflow), .xml (platform).
+std::vector<std::filesystem::path> regression_inputs(const char* extension = ".toml") {
   std::vector<std::filesystem::path> files;
   for (const auto& entry : std::filesystem::directory_iterator(PAGECACHE_FUZZ_REGRESSIONS_DIR)) {
-    if (entry.path().extension() == ".toml") files.push_back(entry.path());
+    if (entry.path().extension() == extension) files.push_back(entry.path());
   }
   std::sort(files.begin(), files.end());
   return files;
@@ -44,6 +47,20 @@ TEST_CASE("every input the scenario fuzzer found reads, or is refused with Confi
     const std::string failure = testing::run_watched([&] { return fuzz::check_scenario_text(text, path.string()); });
     INFO(path.filename().string() << ": " << failure);
     CHECK(failure.empty());
+  }
+}
+
+TEST_CASE("every input the workflow and platform fuzzers found reads, or is refused with ConfigError, and keeps the reader's promises",
+          "[scenario][fuzz]") {
+  for (const char* extension : {".json", ".xml"}) {
+    for (const auto& path : regression_inputs(extension)) {
+      const std::string text = read_file(path);
+      const std::string failure = testing::run_watched([&] {
+        return extension == std::string(".json") ? fuzz::check_workflow_text(text, path.string()) : fuzz::check_platform_text(text, path.string());
+      });
+      INFO(path.filename().string() << ": " << failure);
+      CHECK(failure.empty());
+    }
   }
 }
 

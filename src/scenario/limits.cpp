@@ -1,4 +1,5 @@
 #include "scenario/limits.hpp"
+#include "scenario/route_index.hpp"
 
 #include <pagecache/units.hpp>
 
@@ -56,6 +57,7 @@ class Demand {
     for (std::size_t h = 0; h < s.hosts.size(); ++h) {
       disk_read_[h].assign(s.hosts[h].disks.size(), 0.0);
       disk_write_[h].assign(s.hosts[h].disks.size(), 0.0);
+      host_index_.emplace(s.hosts[h].name, h);
     }
     // Where each file is, found once: a scenario may have 10^6 of them.
     place_.reserve(s.files.size());
@@ -67,10 +69,7 @@ class Demand {
     }
   }
 
-  std::size_t host_of(const std::string& name) const {
-    return static_cast<std::size_t>(std::find_if(s_.hosts.begin(), s_.hosts.end(), [&](const HostConfig& h) { return h.name == name; }) -
-                                    s_.hosts.begin());
-  }
+  std::size_t host_of(const std::string& name) const { return host_index_.at(name); }
 
   /// Adds one task's reads and writes on host `h`; returns its chunk operations.
   double add(std::size_t h, const TaskSpec& t) {
@@ -134,7 +133,7 @@ class Demand {
   const std::vector<std::size_t>& route_of(std::size_t a, std::size_t b) {
     auto [it, added] = routes_.try_emplace({a, b});
     if (added) {
-      for (const LinkSpec* l : route_between(s_, s_.hosts[a].name, s_.hosts[b].name)) {
+      for (const LinkSpec* l : route_index_.between(s_.hosts[a].name, s_.hosts[b].name)) {
         it->second.push_back(static_cast<std::size_t>(l - s_.links.data()));
       }
     }
@@ -142,12 +141,14 @@ class Demand {
   }
 
   const Scenario& s_;
+  std::unordered_map<std::string_view, std::size_t> host_index_;  // a cluster's 10^5 hosts: no scan per name
   std::unordered_map<std::string_view, std::size_t> file_index_;
   std::vector<std::pair<std::size_t, std::size_t>> place_;  // per file: its host and disk
   std::vector<std::vector<double>> disk_read_, disk_write_;
   std::vector<double> memory_read_, memory_write_;
   std::vector<double> link_;
   std::map<std::pair<std::size_t, std::size_t>, std::vector<std::size_t>> routes_;
+  RouteIndex route_index_{s_};
 };
 
 // The key setting a task's chunk size, where it is written: the task's own, else its

@@ -4,6 +4,7 @@
 #include <pagecache/scenario.hpp>
 
 #include "scenario/limits.hpp"
+#include "scenario/route_index.hpp"
 #include "scenario/simgrid_import.hpp"
 #include "scenario/workflow_import.hpp"
 #include "scenario/origins.hpp"
@@ -22,6 +23,7 @@
 #include <span>
 #include <sstream>
 #include <string_view>
+#include <unordered_map>
 #include <unordered_set>
 
 namespace pagecache {
@@ -489,16 +491,20 @@ void check_disk_space(const Scenario& s, const Origins& origins) {
   };
   for (const AppSpec& a : s.apps) note(a.tasks);
   for (const WorkflowSpec& w : s.workflows) note(w.tasks);
+  // What each disk holds at the start and at the end, summed in one pass over the files.
+  std::map<std::pair<std::string_view, std::string_view>, std::pair<std::int64_t, std::int64_t>> held;
+  for (const FileSpec& f : s.files) {
+    auto& [at_start, at_end] = held[{f.host, f.disk}];  // at most 2^60 each, summed while below 2^62
+    if (written.count(f.name) == 0) at_start = std::min(at_start + f.size, units::kMaxBytes * 2);
+    if (deleted.count(f.name) == 0) at_end = std::min(at_end + f.size, units::kMaxBytes * 2);
+  }
   for (std::size_t h = 0; h < s.hosts.size(); ++h) {
     for (std::size_t d = 0; d < s.hosts[h].disks.size(); ++d) {
       const DiskSpec& disk = s.hosts[h].disks[d];
       if (disk.capacity <= 0) continue;
-      std::int64_t at_start = 0, at_end = 0;  // at most 2^60 each, summed while below 2^62
-      for (const FileSpec& f : s.files) {
-        if (f.host != s.hosts[h].name || f.disk != disk.name) continue;
-        if (written.count(f.name) == 0) at_start = std::min(at_start + f.size, units::kMaxBytes * 2);
-        if (deleted.count(f.name) == 0) at_end = std::min(at_end + f.size, units::kMaxBytes * 2);
-      }
+      const auto sums = held.find({s.hosts[h].name, disk.name});
+      if (sums == held.end()) continue;
+      const auto [at_start, at_end] = sums->second;
       const bool start = at_start >= at_end;
       const std::int64_t needed = std::max(at_start, at_end);
       if (needed > disk.capacity) {
@@ -851,10 +857,12 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
 
   // References: every file a task names exists on the task's host; files fit their disks.
   std::map<std::string, const FileSpec*> by_name;
+  std::unordered_map<std::string_view, const HostConfig*> host_by_name;
+  for (const HostConfig& h : s.hosts) host_by_name.emplace(h.name, &h);
   for (std::size_t i = 0; i < s.files.size(); ++i) {
     const FileSpec& f = s.files[i];
     if (!by_name.emplace(f.name, &f).second) origins.file(i).fail("name", fmt::format("two files named '{}'", f.name));
-    const HostConfig& h = *std::find_if(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == f.host; });
+    const HostConfig& h = *host_by_name.at(f.host);
     const auto d = std::find_if(h.disks.begin(), h.disks.end(), [&](const DiskSpec& x) { return x.name == f.disk; });
     if (d == h.disks.end()) origins.file(i).fail("disk", fmt::format("file '{}': host '{}' has no disk '{}'", f.name, h.name, f.disk));
     if (d->capacity > 0 && f.size > d->capacity) {
@@ -864,43 +872,51 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
     }
   }
   check_disk_space(s, origins);
-  // Every host a task may run on reaches its files, over a route that fits in a flow.
+  // Every host a task may run on reaches its files, over a route that fits in a flow. Each pair
+  // of hosts is looked at once: a workflow's tasks may run on every host of a cluster.
+  const scenario::RouteIndex routes(s);
   std::set<std::pair<std::string, std::string>> reachable;
+  const auto check_reach = [&](const std::string& owner, const std::string& task, const std::string& file_name, const std::string& host,
+                               const std::string& server) {
+    if (server == host || !reachable.emplace(host, server).second) return;
+    const std::vector<const LinkSpec*>& route = routes.between(host, server);
+    if (route.empty()) {
+      throw ConfigError(fmt::format("{}: {}, task '{}': file '{}' is on host '{}', and no link or route joins it to '{}'", file, owner,
+                                    task, file_name, server, host));
+    }
+    // A transfer is one flow through its route's shared links, the two memories and a disk
+    // (devices.hpp): kMaxResourcesPerFlow in all.
+    const auto shared = std::count_if(route.begin(), route.end(), [](const LinkSpec* l) { return l->sharing == LinkSharing::Shared; });
+    if (static_cast<std::size_t>(shared) + 2 > kMaxResourcesPerFlow) {
+      throw ConfigError(fmt::format("{}: {}, task '{}': the route from '{}' to '{}' crosses {} shared links; pcsim models routes of at most {}",
+                                    file, owner, task, host, server, shared, kMaxResourcesPerFlow - 2));
+    }
+  };
+  std::set<std::string> host_names;
+  for (const HostConfig& h : s.hosts) host_names.insert(h.name);
   auto check_tasks = [&](const std::string& owner, const std::vector<std::string>& hosts, const std::vector<TaskSpec>& tasks) {
     for (const std::string& host : hosts) {
-      if (std::none_of(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == host; })) {
-        throw ConfigError(fmt::format("{}: {}: no host named '{}'", file, owner, host));
+      if (host_names.count(host) == 0) throw ConfigError(fmt::format("{}: {}: no host named '{}'", file, owner, host));
+    }
+    // The hosts storing the files of the tasks that may run on any of `hosts`: (task, file) first
+    // needing each, checked against every such host after.
+    std::map<std::string, std::pair<const std::string*, const std::string*>> servers;
+    for (const TaskSpec& t : tasks) {
+      if (!t.host.empty() && host_names.count(t.host) == 0) {
+        throw ConfigError(fmt::format("{}: {}, task '{}': no host named '{}'", file, owner, t.name, t.host));
+      }
+      for (const auto* list : {&t.reads, &t.writes, &t.deletes}) {
+        for (const std::string& name : *list) {
+          auto it = by_name.find(name);
+          if (it == by_name.end()) throw ConfigError(fmt::format("{}: {}, task '{}': unknown file '{}'", file, owner, t.name, name));
+          const std::string& server = it->second->host;
+          if (!t.host.empty()) check_reach(owner, t.name, name, t.host, server);
+          else servers.try_emplace(server, &t.name, &it->first);
+        }
       }
     }
-    for (const TaskSpec& t : tasks) {
-      const std::span<const std::string> candidates = t.host.empty() ? std::span<const std::string>(hosts) : std::span<const std::string>(&t.host, 1);
-      for (const std::string& host : candidates) {
-        if (std::none_of(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == host; })) {
-          throw ConfigError(fmt::format("{}: {}, task '{}': no host named '{}'", file, owner, t.name, host));
-        }
-        for (const auto* list : {&t.reads, &t.writes, &t.deletes}) {
-          for (const std::string& name : *list) {
-            auto it = by_name.find(name);
-            if (it == by_name.end()) throw ConfigError(fmt::format("{}: {}, task '{}': unknown file '{}'", file, owner, t.name, name));
-            const std::string& server = it->second->host;
-            if (server == host || reachable.count({host, server}) != 0) continue;
-            const std::vector<const LinkSpec*> route = route_between(s, host, server);
-            if (route.empty()) {
-              throw ConfigError(fmt::format("{}: {}, task '{}': file '{}' is on host '{}', and no link or route joins it to '{}'",
-                                            file, owner, t.name, name, server, host));
-            }
-            // A transfer is one flow through its route's shared links, the two memories and a
-            // disk (devices.hpp): kMaxResourcesPerFlow in all.
-            const auto shared = std::count_if(route.begin(), route.end(), [](const LinkSpec* l) { return l->sharing == LinkSharing::Shared; });
-            if (static_cast<std::size_t>(shared) + 2 > kMaxResourcesPerFlow) {
-              throw ConfigError(fmt::format("{}: {}, task '{}': the route from '{}' to '{}' crosses {} shared links; pcsim models "
-                                            "routes of at most {}",
-                                            file, owner, t.name, host, server, shared, kMaxResourcesPerFlow - 2));
-            }
-            reachable.emplace(host, server);
-          }
-        }
-      }
+    for (const auto& [server, first] : servers) {
+      for (const std::string& host : hosts) check_reach(owner, *first.first, *first.second, host, server);
     }
   };
   for (const AppSpec& a : s.apps) check_tasks("application '" + a.name + "'", {a.host}, a.tasks);

@@ -8,24 +8,29 @@
 
 #include <algorithm>
 #include <set>
+#include <string_view>
+#include <unordered_map>
 
 namespace pagecache::scenario {
 
 namespace {
 
-const HostConfig* host_named(const Scenario& s, const std::string& name) {
-  const auto it = std::find_if(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& h) { return h.name == name; });
-  return it == s.hosts.end() ? nullptr : &*it;
-}
-
 }  // namespace
 
 void add_json_workflow(const WfWorkflow& wf, const WorkflowImport& o, Scenario& s, Origins& origins,
                        const std::function<void(const std::string&, const std::string&)>& fail) {
+  // By name: an instance of 10^6 tasks on a cluster of 10^5 hosts must not scan them per task.
+  std::unordered_map<std::string_view, const HostConfig*> hosts;
+  for (const HostConfig& h : s.hosts) hosts.emplace(h.name, &h);
+  const auto host_named = [&](const Scenario&, const std::string& name) -> const HostConfig* {
+    const auto it = hosts.find(name);
+    return it == hosts.end() ? nullptr : it->second;
+  };
   // The recorded machines the platform has: the instance's list first, then the tasks' own.
   std::vector<std::string> ordered;
+  std::set<std::string_view> noted;
   const auto note_machine = [&](const std::string& m) {
-    if (host_named(s, m) != nullptr && std::find(ordered.begin(), ordered.end(), m) == ordered.end()) ordered.push_back(m);
+    if (host_named(s, m) != nullptr && noted.insert(m).second) ordered.push_back(m);
   };
   for (const std::string& m : wf.machines) note_machine(m);
   for (const WfTask& t : wf.tasks) {

@@ -64,6 +64,7 @@ class Runner {
         host->set_memory_observer([this, index](double now, const MemoryState& m) { record_memory(now, index, m); });
       }
       hosts_[config.name] = std::move(host);
+      cores_[config.name] = config.cores;
       host_order_.push_back(config.name);
       host_list_.push_back(hosts_[config.name].get());
     }
@@ -257,23 +258,24 @@ class Runner {
       const auto [it, added] = index.try_emplace(name, p.hosts.size());
       if (added) {
         p.hosts.push_back(hosts_.at(name).get());
-        const auto config = std::find_if(scenario_.hosts.begin(), scenario_.hosts.end(), [&](const HostConfig& h) { return h.name == name; });
-        cores.push_back(config->cores);
+        cores.push_back(cores_.at(name));
       }
       return it->second;
     };
     for (const std::string& h : w.hosts) p.shared.push_back(add(h));
+    int most = 0;  // the most cores of a shared host
+    for (const std::size_t h : p.shared) most = std::max(most, cores[h]);
     p.own.reserve(w.tasks.size());
-    for (const TaskSpec& t : w.tasks) p.own.push_back(t.host.empty() ? static_cast<std::size_t>(-1) : add(t.host));
-    for (const TaskSpec& t : w.tasks) {
-      const std::size_t own = p.own[static_cast<std::size_t>(&t - w.tasks.data())];
-      const auto fits = [&](std::size_t h) { return cores[h] >= t.cores; };
-      if (own != static_cast<std::size_t>(-1) ? !fits(own) : std::none_of(p.shared.begin(), p.shared.end(), fits)) {
+    for (const TaskSpec& t : w.tasks) p.own.push_back(t.host.empty() ? workload::CoreScheduler::kShared : add(t.host));
+    for (std::size_t i = 0; i < w.tasks.size(); ++i) {
+      const TaskSpec& t = w.tasks[i];
+      const bool own = p.own[i] != workload::CoreScheduler::kShared;
+      if (t.cores > (own ? cores[p.own[i]] : most)) {
         throw ConfigError(fmt::format("workflow '{}', task '{}': needs {} cores, more than {} has", w.name, t.name, t.cores,
-                                      own != static_cast<std::size_t>(-1) ? "its host" : "any of its workflow's hosts"));
+                                      own ? "its host" : "any of its workflow's hosts"));
       }
     }
-    p.cores = std::make_unique<workload::CoreScheduler>(sim_, std::move(cores));
+    p.cores = std::make_unique<workload::CoreScheduler>(sim_, std::move(cores), p.shared);
     return p;
   }
 
@@ -439,10 +441,7 @@ class Runner {
   Task<void> run_workflow_task(const WorkflowSpec& w, const TaskSpec& task, const TaskPlan& plan, WorkflowHosts& hosts, std::size_t index,
                                std::vector<Event*> prerequisites, Event& done) {
     for (Event* prerequisite : prerequisites) co_await prerequisite->wait();
-    const std::size_t own = hosts.own[index];
-    const std::span<const std::size_t> candidates =
-        own != static_cast<std::size_t>(-1) ? std::span<const std::size_t>(&hosts.own[index], 1) : std::span<const std::size_t>(hosts.shared);
-    const std::size_t host = co_await hosts.cores->acquire(candidates, task.cores);
+    const std::size_t host = co_await hosts.cores->acquire(hosts.own[index], task.cores);
     co_await run_task(w.name, task, plan, *hosts.hosts[host]);
     hosts.cores->release(host, task.cores);
     done.trigger();
@@ -459,6 +458,7 @@ class Runner {
   Simulator sim_;
   FairShare share_;
   std::map<std::string, std::unique_ptr<Host>> hosts_;
+  std::map<std::string, int> cores_;
   std::map<std::string, std::map<std::string, DiskRef>> disks_;
   std::vector<std::string> host_order_;
   std::vector<Host*> host_list_;                      // in host_order_

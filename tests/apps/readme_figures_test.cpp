@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -117,6 +118,34 @@ TEST_CASE("the README's embedded default: its real run and pcsim's makespan", "[
   std::smatch m;
   REQUIRE(std::regex_search(printed, m, std::regex(R"(makespan ([0-9.]+) s)")));
   check_figure("pcsim run's makespan", f[1], std::stod(m[1].str()));
+}
+
+TEST_CASE("the README's WfCommons command: the instance's tasks, machine, cores, recorded makespan and pcsim's", "[cli][docs][inputs]") {
+  const auto f = figures(R"(runs the ([0-9]+) tasks of an Epigenomics instance on the machine it was recorded on \(`compute-3`, ([0-9]+) cores\) )"
+                         R"(with the `linux` profile: makespan ([0-9.]+) s\. The instance records ([0-9.]+) s)");
+  const fs::path instance = fs::path(PCSIM_SOURCE_DIR) / "inputs" / "wfcommons" / "epigenomics-chameleon-hep-1seq-100k-001.json";
+  const std::string text = slurp(instance);
+  std::size_t tasks = 0;
+  for (std::size_t at = text.find("\"runtimeInSeconds\""); at != std::string::npos; at = text.find("\"runtimeInSeconds\"", at + 1)) ++tasks;
+  check_figure("the instance's tasks", f[0], static_cast<double>(tasks));
+  std::smatch m;
+  REQUIRE(std::regex_search(text, m, std::regex(R"("nodeName": "compute-3"[^}]*"coreCount": ([0-9]+))")));
+  check_figure("compute-3's cores", f[1], std::stod(m[1].str()));
+  REQUIRE(std::regex_search(text, m, std::regex(R"("makespanInSeconds": ([0-9.]+))")));
+  check_figure("the recorded makespan", f[3], std::stod(m[1].str()));
+  // The README's command, from the repository's root, as a user runs it.
+  const std::string command = fmt::format("cd '{}' && '{}' run {} --platform platforms/wfcommons-chameleon.xml --out '{}' 2>&1", PCSIM_SOURCE_DIR,
+                                          PCSIM_BINARY, "inputs/wfcommons/epigenomics-chameleon-hep-1seq-100k-001.json", fresh("epigenomics").string());
+  REQUIRE(readme().find("build/apps/pcsim/pcsim run inputs/wfcommons/epigenomics-chameleon-hep-1seq-100k-001.json --platform "
+                        "platforms/wfcommons-chameleon.xml") != std::string::npos);
+  FILE* pipe = ::popen(command.c_str(), "r");
+  REQUIRE(pipe != nullptr);
+  std::string printed;
+  char buffer[4096];
+  while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) printed.append(buffer, n);
+  REQUIRE(::pclose(pipe) == 0);
+  REQUIRE(std::regex_search(printed, m, std::regex(R"(makespan ([0-9.]+) s)")));
+  check_figure("pcsim run's makespan", f[2], std::stod(m[1].str()));
 }
 
 TEST_CASE("the README's paper-profile figures are pcsim's against WRENCH-cache's published outputs", "[cli][docs][paper]") {

@@ -23,6 +23,7 @@
 #include <span>
 #include <sstream>
 #include <string_view>
+#include <tuple>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -417,6 +418,25 @@ void read_platform(TomlReader& r, Scenario& s, const std::string& file, Origins&
     origins.disks.push_back(std::move(disk_origins));
     s.hosts.push_back(std::move(host));
   }
+  // By name and by pair, not by scanning: a platform shown from a cluster run has 10^4 of each.
+  std::set<std::string> host_names, link_names;
+  std::set<std::pair<std::string, std::string>> joined;  // hosts with a link or route, each pair in order
+  for (const HostConfig& h : s.hosts) host_names.insert(h.name);
+  for (const LinkSpec& l : s.links) {
+    link_names.insert(l.name);
+    if (!l.host_a.empty()) joined.insert(std::minmax(l.host_a, l.host_b));
+  }
+  for (const RouteSpec& rs : s.routes) joined.insert(std::minmax(rs.host_a, rs.host_b));
+  // hosts = ["a", "b"] of a link or route: two different known hosts not joined yet.
+  const auto read_ends = [&](TomlReader& t, const char* what) {
+    const std::vector<std::string> ends = t.names("hosts");
+    if (ends.size() != 2 || ends[0] == ends[1]) t.fail("hosts", fmt::format("a {} joins two different hosts: hosts = [\"a\", \"b\"]", what));
+    for (const std::string& end : ends) {
+      if (host_names.count(end) == 0) t.fail("hosts", fmt::format("no host named '{}'", end));
+    }
+    if (!joined.insert(std::minmax(ends[0], ends[1])).second) t.fail("hosts", "these hosts already have a link or a route");
+    return std::pair{ends[0], ends[1]};
+  };
   const auto links = r.tables("links");
   for (std::size_t i = 0; i < links.size(); ++i) {
     TomlReader l(*links[i], r.child_path("links", i), file);
@@ -429,22 +449,9 @@ void read_platform(TomlReader& r, Scenario& s, const std::string& file, Origins&
       if (*sharing == "fatpipe") link.sharing = LinkSharing::Fatpipe;
       else if (*sharing != "shared") l.fail("sharing", fmt::format("unknown sharing '{}' (use \"shared\" or \"fatpipe\")", *sharing));
     }
-    for (const LinkSpec& other : s.links) {
-      if (other.name == link.name) l.fail("name", fmt::format("two links named '{}'", link.name));
-    }
+    if (!link_names.insert(link.name).second) l.fail("name", fmt::format("two links named '{}'", link.name));
     // Without hosts, a link is crossed only by the routes that name it.
-    if (l.has("hosts")) {
-      const std::vector<std::string> ends = l.names("hosts");
-      if (ends.size() != 2 || ends[0] == ends[1]) l.fail("hosts", "a link joins two different hosts: hosts = [\"a\", \"b\"]");
-      for (const std::string& end : ends) {
-        if (std::none_of(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == end; })) {
-          l.fail("hosts", fmt::format("no host named '{}'", end));
-        }
-      }
-      link.host_a = ends[0];
-      link.host_b = ends[1];
-      if (!route_between(s, link.host_a, link.host_b).empty()) l.fail("hosts", "these hosts already have a link or a route");
-    }
+    if (l.has("hosts")) std::tie(link.host_a, link.host_b) = read_ends(l, "link");
     l.finish();
     s.links.push_back(std::move(link));
   }
@@ -453,23 +460,12 @@ void read_platform(TomlReader& r, Scenario& s, const std::string& file, Origins&
     TomlReader rt(*routes[i], r.child_path("routes", i), file);
     origins.routes.push_back({routes[i], rt.path(), &file});
     RouteSpec route;
-    const std::vector<std::string> ends = rt.names("hosts");
-    if (ends.size() != 2 || ends[0] == ends[1]) rt.fail("hosts", "a route joins two different hosts: hosts = [\"a\", \"b\"]");
-    for (const std::string& end : ends) {
-      if (std::none_of(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == end; })) {
-        rt.fail("hosts", fmt::format("no host named '{}'", end));
-      }
-    }
-    route.host_a = ends[0];
-    route.host_b = ends[1];
+    std::tie(route.host_a, route.host_b) = read_ends(rt, "route");
     route.links = rt.names("links");
     if (route.links.empty()) rt.fail("links", "a route crosses at least one link");
     for (const std::string& name : route.links) {
-      if (std::none_of(s.links.begin(), s.links.end(), [&](const LinkSpec& x) { return x.name == name; })) {
-        rt.fail("links", fmt::format("no link named '{}'", name));
-      }
+      if (link_names.count(name) == 0) rt.fail("links", fmt::format("no link named '{}'", name));
     }
-    if (!route_between(s, route.host_a, route.host_b).empty()) rt.fail("hosts", "these hosts already have a link or a route");
     rt.finish();
     s.routes.push_back(std::move(route));
   }

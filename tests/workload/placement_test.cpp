@@ -200,3 +200,36 @@ read = "f2"
 }
 
 }  // namespace pagecache
+
+namespace pagecache {
+
+TEST_CASE("a route in a scenario names known hosts and links, and two hosts have one link or route", "[scenario][routes][errors]") {
+  const std::string links = R"(
+[[links]]
+name = "a"
+bandwidth = "1 GB/s"
+[[links]]
+name = "b"
+bandwidth = "1 GB/s"
+hosts = ["h1", "h3"]
+[workflow]
+host = "h1"
+[[workflow.tasks]]
+name = "t"
+)";
+  const auto error = [&](const std::string& route) {
+    try {
+      hosts_and(links + route);
+    } catch (const ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  CHECK_THAT(error("[[routes]]\nhosts = [\"h1\", \"h2\"]\nlinks = [\"c\"]\n"), Catch::Contains("key 'routes[0].links': no link named 'c'"));
+  CHECK_THAT(error("[[routes]]\nhosts = [\"h1\", \"h9\"]\nlinks = [\"a\"]\n"), Catch::Contains("key 'routes[0].hosts': no host named 'h9'"));
+  CHECK_THAT(error("[[routes]]\nhosts = [\"h3\", \"h1\"]\nlinks = [\"a\"]\n"), Catch::Contains("these hosts already have a link or a route"));
+  CHECK_THAT(error("[[routes]]\nhosts = [\"h1\", \"h2\"]\nlinks = []\n"), Catch::Contains("a route crosses at least one link"));
+  CHECK(error("[[routes]]\nhosts = [\"h1\", \"h2\"]\nlinks = [\"a\", \"b\"]\n") == "(no error)");
+}
+
+}  // namespace pagecache

@@ -202,9 +202,9 @@ int main(int argc, char** argv) {
   const char* platform_help = "platform file, SimGrid XML (WRENCH-cache's conventions) or TOML: what a workflow file runs on, or "
                               "in place of a scenario's own";
   const char* files_host_help = "host whose disk stores a workflow file's files (default: the first of its recorded machines the "
-                                "platform has, else the platform's first host)";
+                                "platform has, else the first of --hosts, else the platform's first host)";
   const char* hosts_help = "hosts a workflow file's tasks may run on, besides those its recorded machines name (default: those "
-                           "machines, else every host but the files host)";
+                           "machines, else with --files-host every other host, else the files host)";
   auto* run = app.add_subcommand("run", "run a scenario or a workflow (without either: the embedded default, the paper's Exp 1 at 100 GB)");
   run->add_option("scenario", scenario_path, "scenario file (TOML), or workflow file (WfFormat JSON, with --platform)");
   run->add_option("--platform", inputs.platform, platform_help);

@@ -37,7 +37,10 @@ void add_json_workflow(const WfWorkflow& wf, const WorkflowImport& o, Scenario& 
     for (const std::string& m : t.machines) note_machine(m);
   }
 
-  const std::string files_host = !o.files_host.empty() ? o.files_host : !ordered.empty() ? ordered.front() : s.hosts.front().name;
+  const std::string files_host = !o.files_host.empty() ? o.files_host
+                                 : !ordered.empty()      ? ordered.front()
+                                 : !o.hosts.empty()      ? o.hosts.front()
+                                                         : s.hosts.front().name;
   const HostConfig* store = host_named(s, files_host);
   if (store == nullptr) fail("files_host", fmt::format("no host named '{}'", files_host));
   std::string files_disk = o.files_disk;
@@ -68,11 +71,14 @@ void add_json_workflow(const WfWorkflow& wf, const WorkflowImport& o, Scenario& 
     w.hosts = o.hosts;
   } else if (!ordered.empty()) {
     w.hosts = ordered;
-  } else {
+  } else if (!o.files_host.empty()) {
+    // A files host chosen, no machine recorded: a storage server, the others compute.
     for (const HostConfig& h : s.hosts) {
       if (h.name != files_host) w.hosts.push_back(h.name);
     }
     if (w.hosts.empty()) w.hosts.push_back(files_host);
+  } else {
+    w.hosts.push_back(files_host);  // everything on one host, on its local disk
   }
 
   std::vector<bool> written(wf.files.size(), false);

@@ -32,9 +32,13 @@ enum class ComputeFrom {
 
 struct WorkflowImport {
   std::string name;                ///< empty: the instance's
-  std::string files_host;          ///< empty: the first recorded machine the platform has, else its first host
-  std::string files_disk;          ///< empty: the files host's first disk
-  std::vector<std::string> hosts;  ///< empty: the recorded machines the platform has, else every host but the files host
+  /// Empty: the first recorded machine the platform has, else the first of `hosts`, else the
+  /// platform's first host.
+  std::string files_host;
+  std::string files_disk;  ///< empty: the files host's first disk
+  /// Empty: the recorded machines the platform has; else, if files_host is given, every host
+  /// but that one (a storage server); else the files host alone.
+  std::vector<std::string> hosts;
   bool inputs_cached = false;      ///< the files no task writes start in the files host's page cache
   ComputeFrom compute = ComputeFrom::Runtime;
   std::int64_t chunk_size = 100'000'000;

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -345,4 +346,25 @@ TEST_CASE("bad workflow and platform files are refused with exit 2, a message na
   INFO(run.output);
   CHECK(run.status == 0);
   CHECK(fs::exists(dir / "out" / "timeline.csv"));
+}
+
+TEST_CASE("where a workflow's files live and its tasks run when no recorded machine is a host of the platform", "[cli][inputs]") {
+  // helloworld ran on "ubuntu"; platforms/paper-cluster.toml has "node" and "storage".
+  const auto placement = [](const std::string& options) {
+    const auto shown = pcsim(fmt::format("show '{}' --platform '{}' {}", (kSource / "inputs" / "wfcommons" / "helloworld-chain-5-chameleon.json").string(),
+                                         (kSource / "platforms" / "paper-cluster.toml").string(), options));
+    INFO(shown.output);
+    REQUIRE(shown.status == 0);
+    std::smatch files, hosts;
+    REQUIRE(std::regex_search(shown.output, files, std::regex("name = \"chain_00000001_input.txt\"\nsize = \"[^\"]*\"\nhost = \"([a-z]+)\"")));
+    REQUIRE(std::regex_search(shown.output, hosts, std::regex("\\[workflow\\]\nname = \"[^\"]*\"\n(host|hosts) = ([^\n]*)\n")));
+    return std::pair{files[1].str(), hosts[2].str()};
+  };
+  // Everything on the first host, on its local disk.
+  CHECK(placement("") == std::pair<std::string, std::string>{"node", "\"node\""});
+  // A files host chosen: a storage server, the tasks on the other hosts.
+  CHECK(placement("--files-host storage") == std::pair<std::string, std::string>{"storage", "\"node\""});
+  // Hosts chosen: the files on the first of them.
+  CHECK(placement("--hosts storage") == std::pair<std::string, std::string>{"storage", "\"storage\""});
+  CHECK(placement("--hosts storage,node") == std::pair<std::string, std::string>{"storage", "[ \"storage\", \"node\" ]"});
 }

@@ -3,6 +3,7 @@
 // Seed it with the reference workflows (../shared/reference: wfcommons/instances/*.json and
 // wrench-cache-inputs/*.json) and fuzz/workflow.dict.
 
+#include "import_property.hpp"
 #include "workflow_property.hpp"
 
 #include <cstddef>
@@ -13,7 +14,9 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
-  const std::string broken = pagecache::fuzz::check_workflow_text(text, "fuzz.json");
+  std::string broken = pagecache::fuzz::check_workflow_text(text, "fuzz.json");
+  // What the reader accepts goes on into a scenario (workflow_import.cpp, the loader's checks).
+  if (broken.empty() && pagecache::fuzz::reads_as_workflow(text)) broken = pagecache::fuzz::check_workflow_import(text);
   if (!broken.empty()) {
     std::fprintf(stderr, "workflow property broken: %s\n", broken.c_str());
     std::abort();

@@ -320,7 +320,10 @@ void expand_pipelines(const toml::table& table, Scenario& s, const std::string& 
   }
   const auto h = std::find_if(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == files_host; });
   if (h == s.hosts.end()) r.fail("files_host", fmt::format("no host named '{}'", files_host));
-  if (disk.empty()) disk = h->disks.front().name;
+  if (disk.empty()) {
+    if (h->disks.empty()) r.fail("files_host", fmt::format("host '{}' has no disk to store the pipelines' files", files_host));
+    disk = h->disks.front().name;
+  }
   s.files.reserve(s.files.size() + static_cast<std::size_t>(count * (tasks + 1)));
   s.apps.reserve(s.apps.size() + static_cast<std::size_t>(count));
   for (std::int64_t i = 1; i <= count; ++i) {
@@ -773,7 +776,11 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
     spec.cached = f.optional_bool("cached").value_or(false);
     const auto h = std::find_if(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == spec.host; });
     if (h == s.hosts.end()) f.fail("host", fmt::format("no host named '{}'", spec.host));
-    if (spec.disk.empty()) spec.disk = h->disks.front().name;
+    if (spec.disk.empty()) {
+      // A platform file's host may have none (a SimGrid cluster's).
+      if (h->disks.empty()) f.fail("host", fmt::format("host '{}' has no disk to store file '{}'", spec.host, spec.name));
+      spec.disk = h->disks.front().name;
+    }
     f.finish();
     s.files.push_back(std::move(spec));
   }

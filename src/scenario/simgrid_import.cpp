@@ -4,6 +4,8 @@
 #include <pagecache/units.hpp>
 
 #include "scenario/simgrid_units.hpp"
+#include "scenario/toml_reader.hpp"
+#include "text/printable.hpp"
 
 #include <fmt/format.h>
 
@@ -51,6 +53,12 @@ double bandwidth(SgPlatform const& p, int line, const std::string& what, double 
   return value;
 }
 
+// An id pcsim can use as a name (those of scenario files: printable UTF-8, no leading formula
+// character); SimGrid's XML takes any text, and pugixml does not check its encoding.
+void check_name(const SgPlatform& p, int line, const std::string& what, const std::string& id) {
+  if (const std::string problem = name_problem(id); !problem.empty()) throw ConfigError(fmt::format("{}: id: {}", where(p, line, what), problem));
+}
+
 }  // namespace
 
 void add_link_warnings(const SgPlatform& p, Scenario& s) {
@@ -71,7 +79,8 @@ bool is_memory_disk(const SgDisk& disk) {
 void add_simgrid_platform(const SgPlatform& p, Scenario& s, Origins& origins) {
   s.warnings.insert(s.warnings.end(), p.warnings.begin(), p.warnings.end());
   for (const SgHost& sg : p.hosts) {
-    const std::string what = fmt::format("host '{}'", sg.id);
+    const std::string what = fmt::format("host '{}'", text::printable(sg.id));
+    check_name(p, sg.line, "host", sg.id);
     HostConfig h;
     h.name = sg.id;
     h.cores = sg.cores;
@@ -84,7 +93,8 @@ void add_simgrid_platform(const SgPlatform& p, Scenario& s, Origins& origins) {
     }
     std::vector<Origin>& disk_origins = origins.disks.emplace_back();
     for (const SgDisk& disk : sg.disks) {
-      const std::string disk_what = fmt::format("{}, disk '{}'", what, disk.id);
+      const std::string disk_what = fmt::format("{}, disk '{}'", what, text::printable(disk.id));
+      check_name(p, disk.line, what + ", disk", disk.id);
       const std::string* size = prop(disk.props, "size");
       for (const auto& [key, value] : disk.props) {
         if (key != "size" && key != "mount") {
@@ -114,7 +124,8 @@ void add_simgrid_platform(const SgPlatform& p, Scenario& s, Origins& origins) {
   for (const SgLink& sg : p.links) {
     LinkSpec link;
     link.name = sg.id;
-    const std::string what = fmt::format("link '{}'", sg.id);
+    const std::string what = fmt::format("link '{}'", text::printable(sg.id));
+    check_name(p, sg.line, "link", sg.id);
     // Said only of the links a run keeps (add_link_warnings): WRENCH-cache's loopbacks are
     // 1000 EBps and a run rarely crosses them.
     link.bandwidth = bandwidth(p, sg.line, what + ", bandwidth", sg.bandwidth, s, false);

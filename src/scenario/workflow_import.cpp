@@ -3,6 +3,7 @@
 #include <pagecache/error.hpp>
 
 #include "scenario/toml_reader.hpp"
+#include "text/printable.hpp"
 
 #include <fmt/format.h>
 
@@ -54,10 +55,14 @@ void add_json_workflow(const WfWorkflow& wf, const WorkflowImport& o, Scenario& 
   }
 
   for (const WfTask& t : wf.tasks) {
-    if (const std::string problem = name_problem(t.id); !problem.empty()) throw ConfigError(fmt::format("{}: task '{}': {}", wf.file, t.id, problem));
+    if (const std::string problem = name_problem(t.id); !problem.empty()) {
+      throw ConfigError(fmt::format("{}: task '{}': {}", wf.file, text::printable(t.id), problem));
+    }
   }
   for (const WfFile& f : wf.files) {
-    if (const std::string problem = name_problem(f.id); !problem.empty()) throw ConfigError(fmt::format("{}: file '{}': {}", wf.file, f.id, problem));
+    if (const std::string problem = name_problem(f.id); !problem.empty()) {
+      throw ConfigError(fmt::format("{}: file '{}': {}", wf.file, text::printable(f.id), problem));
+    }
   }
 
   s.warnings.insert(s.warnings.end(), wf.warnings.begin(), wf.warnings.end());

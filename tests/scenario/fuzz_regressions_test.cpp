@@ -6,6 +6,7 @@
 
 #include "support/watched_child.hpp"
 
+#include "import_property.hpp"
 #include "platform_property.hpp"
 #include "scenario_property.hpp"
 #include "workflow_property.hpp"
@@ -56,7 +57,12 @@ TEST_CASE("every input the workflow and platform fuzzers found reads, or is refu
     for (const auto& path : regression_inputs(extension)) {
       const std::string text = read_file(path);
       const std::string failure = testing::run_watched([&] {
-        return extension == std::string(".json") ? fuzz::check_workflow_text(text, path.string()) : fuzz::check_platform_text(text, path.string());
+        const bool json = extension == std::string(".json");
+        std::string broken = json ? fuzz::check_workflow_text(text, path.string()) : fuzz::check_platform_text(text, path.string());
+        if (broken.empty() && (json ? fuzz::reads_as_workflow(text) : fuzz::reads_as_small_platform(text))) {
+          broken = json ? fuzz::check_workflow_import(text) : fuzz::check_platform_import(text);
+        }
+        return broken;
       });
       INFO(path.filename().string() << ": " << failure);
       CHECK(failure.empty());

@@ -71,6 +71,7 @@ struct FlowSpec {
 };
 
 class FairShare;
+class TraceSink;
 
 namespace detail {
 struct FlowState;
@@ -122,6 +123,9 @@ class FairShare {
   double utilization(ResourceId resource) const;
 
   Simulator& simulator() const noexcept { return *sim_; }
+
+  /// Reports every flow that starts from now on to `sink` when it ends (nullptr: to none).
+  void set_trace(TraceSink* sink);
 
   /// Checks the internal structures (group membership, sums, events) against a recomputation;
   /// throws InvariantError on a mismatch. O(flows); meant for tests.

@@ -120,6 +120,9 @@ class Host {
 
   /// Calls `observer(now, memory())` after every change of the host's memory.
   void set_memory_observer(std::function<void(double, const MemoryState&)> observer);
+  /// Reports the host's flushes, evictions and throttling pauses to `sink` (nullptr: to none),
+  /// as host number `index` (TraceStart::hosts).
+  void set_trace(TraceSink* sink, std::uint32_t index);
   /// Checks every page-cache invariant after each operation (tests, debugging). Slow.
   void set_checking(bool on);
   /// Checks every page-cache invariant now; throws InvariantError.

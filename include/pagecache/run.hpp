@@ -5,6 +5,7 @@
 
 #include <pagecache/memory_state.hpp>
 #include <pagecache/scenario.hpp>
+#include <pagecache/trace.hpp>
 
 #include <cstdint>
 #include <functional>
@@ -86,6 +87,9 @@ struct RunOptions {
   /// The run stops with a SimulationError once its clock passes this many seconds (checked
   /// every few thousand events): beyond, double-precision time loses the microsecond.
   double max_simulated_time = 1e10;
+  /// Consumers of the run's events (trace.hpp), beside the recorder of the RunResult: each
+  /// must outlive the run. With none, the devices and page caches report nothing.
+  std::vector<TraceSink*> consumers;
 };
 
 /// Runs the scenario to the end. Throws SimulationError (with the simulated time) if the

@@ -25,6 +25,7 @@ Task<void> Flusher::write_block(double cutoff) {
   const PageCache::Flushed taken = cache_->flush_expired_block(cutoff);
   if (taken.bytes == 0) co_return;
   flushed_ += taken.bytes;
+  cache_->tracer().flush(std::isinf(cutoff) ? FlushCause::Background : FlushCause::Expiry, taken.bytes);
   co_await (*files_)[taken.file].disk->write(taken.bytes);
   cache_->end_writeback(taken);
 }

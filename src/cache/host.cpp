@@ -118,6 +118,10 @@ std::int64_t Host::evicted_bytes() const noexcept { return impl_->cache.evicted_
 std::uint64_t Host::chunk_operations() const noexcept { return impl_->io.chunk_operations(); }
 std::int64_t Host::peak_dirty_bytes() const noexcept { return impl_->cache.peak_dirty(); }
 
+void Host::set_trace(TraceSink* sink, std::uint32_t index) {
+  impl_->cache.set_tracer({.sink = sink, .sim = &impl_->sim, .host = index});
+}
+
 void Host::set_memory_observer(std::function<void(double, const MemoryState&)> observer) {
   if (!observer) {
     impl_->cache.set_observer({});

@@ -20,11 +20,12 @@ IoResult file_result(double start, double end, const IoTally& t) {
 
 }  // namespace
 
-Task<std::int64_t> IoController::write_back(std::int64_t amount, FileId excluded) {
+Task<std::int64_t> IoController::write_back(std::int64_t amount, FileId excluded, FlushCause cause) {
   if (amount <= 0) co_return 0;
   std::vector<PageCache::Flushed> taken;
   const std::int64_t total = cache_->flush(amount, excluded, taken);
   flushed_ += total;
+  cache_->tracer().flush(cause, total);
   // The data may belong to files on different devices: one write per device, in the order
   // the data was taken.
   std::vector<std::pair<const Disk*, std::int64_t>> writes;
@@ -61,7 +62,7 @@ Task<void> IoController::wait_for_progress() {
 
 Task<void> IoController::make_room(std::int64_t required, FileId spared, FileId subject, const char* verb) {
   for (;;) {
-    co_await write_back(required - cache_->free() - cache_->evictable(), spared);
+    co_await write_back(required - cache_->free() - cache_->evictable(), spared, FlushCause::Reclaim);
     cache_->evict(required - cache_->free(), spared);
     if (required <= cache_->free()) co_return;
     if (cache_->writeback() == 0 && cache_->reserved() == 0) {
@@ -266,11 +267,12 @@ Task<IoResult> IoController::write_file_throttled(FileId file, std::int64_t byte
       const ThrottledStep step = next_throttled_step(remaining, device_bw, throttled, credit);
       if (step.kind == ThrottledStep::Pause) {
         co_await sim_->sleep(step.pause);
+        cache_->tracer().throttle(sim_->now() - step.pause);
         credit += step.rate * step.pause;
       } else if (step.kind == ThrottledStep::MakeRoom) {
         // Out of memory with nothing clean to reclaim: dirty data must be written first, as
         // reclaim does (pageout), or copies and writebacks in flight must land.
-        if (co_await write_back(remaining - cache_->free(), kNoFile) == 0) {
+        if (co_await write_back(remaining - cache_->free(), kNoFile, FlushCause::Reclaim) == 0) {
           if (cache_->writeback() == 0 && cache_->reserved() == 0) {
             throw SimulationError(fmt::format("t = {:.6f} s: writing '{}': no memory can be freed for {} bytes", sim_->now(),
                                               (*files_)[file].name, remaining));
@@ -309,7 +311,7 @@ Task<IoTally> IoController::write_chunk_writeback(FileId file, std::int64_t chun
   }
   std::int64_t remaining = chunk - to_memory;
   while (remaining > 0) {
-    const std::int64_t flushed = co_await write_back(remaining, kNoFile);
+    const std::int64_t flushed = co_await write_back(remaining, kNoFile, FlushCause::DirtyLimit);
     const std::int64_t evicted = cache_->evict(remaining - cache_->free(), file);
     std::int64_t to_cache = std::min(remaining, cache_->free());
     // Memory is handed out in pages: a sliver of free memory (other copies in flight hold the
@@ -430,6 +432,7 @@ Task<void> IoController::fsync(FileId file) {
   std::vector<PageCache::Flushed> taken;
   const std::int64_t bytes = cache_->flush_file(file, taken);
   flushed_ += bytes;
+  cache_->tracer().flush(FlushCause::Fsync, bytes);
   if (bytes > 0) co_await info.disk->write(bytes);
   for (const auto& part : taken) cache_->end_writeback(part);
   while (cache_->writeback(file) > 0) co_await wait_for_progress();  // the flusher's, or a writer's

@@ -92,7 +92,7 @@ class IoController {
   Task<void> serve_remote(FileId file, std::int64_t bytes);
   Task<IoResult> read_whole_file(FileId file, std::int64_t chunk_size, bool direct);
   /// Flushes up to `amount` dirty bytes (skipping `excluded`) and waits for their writes.
-  Task<std::int64_t> write_back(std::int64_t amount, FileId excluded);
+  Task<std::int64_t> write_back(std::int64_t amount, FileId excluded, FlushCause cause);
   Task<IoTally> write_chunk_writeback(FileId file, std::int64_t chunk);
   /// Whether writeback-mode writers are paced (dirty throttling) rather than made to flush.
   bool throttles_writers() const noexcept;

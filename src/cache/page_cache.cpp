@@ -533,6 +533,7 @@ std::int64_t PageCache::evict(std::int64_t amount, FileId excluded) {
   pass(settings_.protect_files_being_written);
   if (evicted < amount && settings_.protect_files_being_written) pass(false);
   settle();
+  tracer_.eviction(evicted);
   return evicted;
 }
 

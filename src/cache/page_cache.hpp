@@ -19,6 +19,7 @@
 #include "cache/block_pool.hpp"
 #include "cache/file_heap.hpp"
 #include "cache/lru_list.hpp"
+#include "cache/tracer.hpp"
 
 #include <pagecache/cache_settings.hpp>
 #include <pagecache/memory_state.hpp>
@@ -46,6 +47,10 @@ class PageCache {
   /// ended, a copy in flight landed, application memory was released. Writers and readers that
   /// found nothing to reclaim wait for it.
   void set_progress_hook(std::function<void()> on_progress) { progress_hook_ = std::move(on_progress); }
+  /// Where this host's flushes, evictions and throttling pauses are reported (evict() reports
+  /// its own; the flusher and the I/O controller report theirs through tracer()).
+  void set_tracer(const Tracer& tracer) noexcept { tracer_ = tracer; }
+  const Tracer& tracer() const noexcept { return tracer_; }
   /// Calls `observer` after every change of the memory state (memory profiles, peaks).
   void set_observer(std::function<void()> observer) { observer_ = std::move(observer); }
   /// Runs check_invariants() after every mutating operation; on by default in debug builds.
@@ -273,6 +278,7 @@ class PageCache {
   std::int64_t peak_dirty_ = 0;
   std::function<void()> observer_;
   std::function<void()> progress_hook_;
+  Tracer tracer_;
   bool checking_ = checking_by_default();
 };
 

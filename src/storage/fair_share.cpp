@@ -79,6 +79,7 @@ FlowState* FairShare::Impl::start(const FlowSpec& spec, std::coroutine_handle<> 
   flow->usage_count = static_cast<std::uint8_t>(spec.usage_count);
   std::copy_n(spec.usages.begin(), spec.usage_count, flow->usages.begin());
   ++active;
+  if (trace != nullptr) [[unlikely]] traced[flow] = {sim.now(), spec.work};
 
   ResourceState& first = resource(flow->usages[0].resource);
   if (spec.usage_count == 1 && first.coupled == 0) {
@@ -96,7 +97,17 @@ FlowState* FairShare::Impl::start(const FlowSpec& spec, std::coroutine_handle<> 
   return flow;
 }
 
+void FairShare::Impl::report_flow(const FlowState* flow) {
+  const auto it = traced.find(flow);
+  if (it == traced.end()) return;  // started before the consumer listened
+  std::array<std::string_view, kMaxResourcesPerFlow> names;
+  for (std::size_t i = 0; i < flow->usage_count; ++i) names[i] = resources[flow->usages[i].resource.index].name;
+  trace->on_flow({.start = it->second.start, .end = sim.now(), .work = it->second.work, .resources = {names.data(), flow->usage_count}});
+  traced.erase(it);
+}
+
 void FairShare::Impl::wake(FlowState* flow) {
+  if (trace != nullptr) [[unlikely]] report_flow(flow);
   --active;
   flow->awaiter->flow_ = nullptr;
   sim.wake(flow->waiting);
@@ -117,6 +128,7 @@ void FairShare::Impl::withdraw(FlowState* flow) {
     uncouple(key, 1);
     solve_from(key);
   }
+  if (trace != nullptr) [[unlikely]] traced.erase(flow);
   --active;
   pool.give_back(flow);
 }
@@ -194,6 +206,11 @@ std::size_t FairShare::active_flows(ResourceId resource) const {
   std::size_t flows = r.sharing.size();
   for (const FlowClass* c : r.classes) flows += c->size();
   return flows;
+}
+
+void FairShare::set_trace(TraceSink* sink) {
+  impl_->trace = sink;
+  impl_->traced.clear();
 }
 
 double FairShare::utilization(ResourceId resource) const {

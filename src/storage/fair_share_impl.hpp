@@ -4,6 +4,7 @@
 // (flows coupling resources: classes, components, their solution).
 
 #include <pagecache/fair_share.hpp>
+#include <pagecache/trace.hpp>
 
 #include "engine/object_pool.hpp"
 #include "storage/flow_class.hpp"
@@ -58,6 +59,15 @@ struct FairShare::Impl {
 
   Simulator& sim;
   std::deque<ResourceState> resources;  // deque: stable addresses
+  // A trace consumer, and the start and work of each flow in progress while it listens (kept
+  // aside, so that the flows of an untraced run carry nothing for it).
+  struct TracedFlow {
+    double start;
+    double work;
+  };
+  TraceSink* trace = nullptr;
+  std::unordered_map<const detail::FlowState*, TracedFlow> traced;
+  void report_flow(const detail::FlowState* flow);
   detail::ObjectPool<detail::FlowState> pool;
   std::unordered_map<detail::FlowClassKey, std::unique_ptr<detail::FlowClass>, detail::FlowClassKeyHash> classes;
   std::uint64_t next_sequence = 0;

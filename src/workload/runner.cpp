@@ -7,6 +7,7 @@
 #include <pagecache/units.hpp>
 
 #include "workload/core_scheduler.hpp"
+#include "workload/result_recorder.hpp"
 
 #include <fmt/format.h>
 
@@ -109,12 +110,10 @@ class Runner {
   }
 
   RunResult run() {
-    // Three rows per task (read, compute, write): reserved, so the timeline's peak is its size.
     std::size_t tasks = 0;
     for (const AppSpec& app : scenario_.apps) tasks += app.tasks.size();
     for (const WorkflowSpec& w : scenario_.workflows) tasks += w.tasks.size();
-    result_.timeline.reserve(3 * tasks);
-    plan_cache_contents(tasks);
+    attach_consumers(tasks);
     const auto wall_start = std::chrono::steady_clock::now();
     const TaskPlan* plan = task_plans_.data();
     for (const AppSpec& app : scenario_.apps) {
@@ -158,10 +157,11 @@ class Runner {
       throw SimulationError(fmt::format("t = {:.6f} s: {} task(s) never finished (waiting for each other?)", sim_.now(), running_));
     }
     record_all_memory();
+    sink_->on_end(sim_.now());
 
     RunSummary& s = summary();
     s.end_time = sim_.now();
-    for (const PhaseRow& row : result_.timeline) {
+    for (const PhaseRow& row : recorder_->result().timeline) {
       PhaseTotals& totals = row.phase == "read" ? s.read : row.phase == "write" ? s.write : s.compute;
       totals.seconds += row.end - row.start;
       totals.bytes += row.bytes;
@@ -180,11 +180,35 @@ class Runner {
     s.events = sim_.events_processed();
     s.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     s.events_per_second = s.wall_seconds > 0.0 ? static_cast<double>(s.events) / s.wall_seconds : 0.0;
-    return std::move(result_);
+    return std::move(recorder_->result());
   }
 
  private:
-  RunSummary& summary() { return result_.summary; }
+  RunSummary& summary() { return recorder_->result().summary; }
+
+  // The result's recorder, and the run options' consumers beside it: the runner reports to
+  // all; the devices and page caches only to the options' consumers, so that with none they
+  // report nothing.
+  void attach_consumers(std::size_t tasks) {
+    const std::string not_recorded = why_cache_contents_not_recorded(tasks);
+    record_cache_ = not_recorded.empty();
+    recorder_.emplace(3 * tasks, record_cache_ ? 2 * tasks * file_order_.size() : 0, not_recorded);
+    std::vector<TraceSink*> all{&*recorder_};
+    all.insert(all.end(), options_.consumers.begin(), options_.consumers.end());
+    sink_ = all.size() == 1 ? all.front() : &fanouts_.emplace_back(std::move(all));
+    TraceSink* low = nullptr;
+    if (options_.consumers.size() == 1) low = options_.consumers.front();
+    if (options_.consumers.size() > 1) low = &fanouts_.emplace_back(options_.consumers);
+    share_.set_trace(low);
+    for (std::uint32_t i = 0; i < host_list_.size(); ++i) {
+      host_list_[i]->set_trace(low, i);
+      host_index_.emplace(host_list_[i], i);
+    }
+    std::vector<std::string> files;
+    files.reserve(file_order_.size());
+    for (const PlacedFile* f : file_order_) files.push_back(*f->name);
+    sink_->on_start({.hosts = host_order_, .files = files});
+  }
 
   // Scenarios built in code skip the loader's checks: what the run relies on is checked here.
   // `kind` and `owner` name what asks for the host (e.g. file 'a'), for the error only.
@@ -285,7 +309,7 @@ class Runner {
     std::optional<MemoryState>& last = last_memory_[host];
     if (last && *last == m) return false;
     last = m;
-    result_.memory.push_back({now, host_order_[host], m});
+    sink_->on_memory({.host = static_cast<std::uint32_t>(host), .time = now, .state = m});
     return true;
   }
 
@@ -328,31 +352,33 @@ class Runner {
     }
   }
 
-  // A row per file after each of the two I/O phases of every task.
-  void plan_cache_contents(std::size_t tasks) {
+  // A row per file after each of the two I/O phases of every task, unless that is too many:
+  // empty, or why not.
+  std::string why_cache_contents_not_recorded(std::size_t tasks) const {
     const std::size_t phases = 2 * tasks;
     const std::size_t rows = phases * file_order_.size();
-    if (!options_.cache_contents) {
-      result_.cache_not_recorded = "switched off";
-    } else if (rows > options_.max_cache_rows) {
-      result_.cache_not_recorded = fmt::format("{} rows ({} I/O phases x {} files) would exceed the limit of {}", rows,
-                                               phases, file_order_.size(), options_.max_cache_rows);
+    if (!options_.cache_contents) return "switched off";
+    if (rows > options_.max_cache_rows) {
+      return fmt::format("{} rows ({} I/O phases x {} files) would exceed the limit of {}", rows, phases, file_order_.size(),
+                         options_.max_cache_rows);
     }
-    record_cache_ = result_.cache_not_recorded.empty();
-    if (!record_cache_) return;
-    result_.files.reserve(file_order_.size());
-    for (const PlacedFile* f : file_order_) result_.files.push_back(*f->name);
-    // Reserved, as the timeline is: growing by doubling touched (and had the kernel fault in)
-    // up to twice the rows' memory, the largest part of a small run's resident set.
-    result_.cache.reserve(rows);
+    return {};
   }
 
-  // After the I/O phase whose row the timeline has just received.
-  void record_cache() {
+  // A phase that has just ended, with what it moved.
+  std::uint32_t report_phase(std::string_view app, std::string_view task, const Host& host, PhaseKind kind, double start, const IoResult& moved) {
+    const std::uint32_t row = phases_++;
+    sink_->on_phase({.row = row, .host = host_index_.at(&host), .app = app, .task = task, .kind = kind, .start = start, .end = sim_.now(),
+                     .bytes = moved.bytes, .cache_bytes = moved.cache_bytes, .disk_bytes = moved.disk_bytes});
+    return row;
+  }
+
+  // After the I/O phase of row `phase`.
+  void record_cache(std::uint32_t phase) {
     if (!record_cache_) return;
-    const auto phase = static_cast<std::uint32_t>(result_.timeline.size() - 1);
-    std::uint32_t file = 0;
-    for (const PlacedFile* f : file_order_) result_.cache.push_back({phase, file++, f->host->cached(f->ref)});
+    cached_.clear();
+    for (const PlacedFile* f : file_order_) cached_.push_back(f->host->cached(f->ref));
+    sink_->on_cache_contents({.phase_row = phase, .cached = cached_});
   }
 
   // One I/O phase: every file read (or written) whole, one after the other. Returns the bytes
@@ -371,8 +397,7 @@ class Runner {
       sum.cache_bytes += r.cache_bytes;
       sum.disk_bytes += r.disk_bytes;
     }
-    result_.timeline.push_back({app, task.name, reading ? "read" : "write", start, sim_.now(), sum.bytes, sum.cache_bytes, sum.disk_bytes});
-    record_cache();
+    record_cache(report_phase(app, task.name, host, reading ? PhaseKind::Read : PhaseKind::Write, start, sum));
     co_return sum.bytes;
   }
 
@@ -385,7 +410,7 @@ class Runner {
     const std::int64_t read_bytes = co_await io_phase(app, task, plan, host, true);
     const double compute_start = sim_.now();
     if (plan.compute > 0.0) co_await host.compute(plan.compute);
-    result_.timeline.push_back({app, task.name, "compute", compute_start, sim_.now(), 0, 0, 0});
+    report_phase(app, task.name, host, PhaseKind::Compute, compute_start, IoResult{});
     co_await io_phase(app, task, plan, host, false);
     host.release_memory(read_bytes + plan.memory);  // the task's memory is freed when it ends
     for (const PlacedFile& stored : planned(plan.deletes, plan.end)) {
@@ -475,7 +500,12 @@ class Runner {
   std::deque<WorkflowHosts> workflow_hosts_;  // per workflow
   std::deque<std::deque<Event>> workflow_done_;  // per workflow, its tasks' ends in workflow order
   int running_ = 0;
-  RunResult result_;
+  std::optional<workload::ResultRecorder> recorder_;
+  std::deque<workload::TraceFanout> fanouts_;
+  TraceSink* sink_ = nullptr;                        // what the runner reports to: the recorder, and the consumers
+  std::unordered_map<const Host*, std::uint32_t> host_index_;  // in host_order_
+  std::uint32_t phases_ = 0;                         // ended so far
+  std::vector<std::int64_t> cached_;                 // per file, after a phase: record_cache's buffer
 };
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "report/output_rules.hpp"
 #include "report/outputs.hpp"
 #include "report/replace_file.hpp"
+#include "report/trace_json.hpp"
 #include "scenario/closest.hpp"
 #include "validate/validation.hpp"
 
@@ -25,6 +26,7 @@
 #include <filesystem>
 #include <sstream>
 #include <new>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <unistd.h>
@@ -150,7 +152,7 @@ void print_warnings(const pagecache::Scenario& scenario) {
 }
 
 int run_command(const std::string& path, const Inputs& in, const std::vector<std::string>& sets, const std::string& profile,
-                const std::string& out_dir, bool quiet, bool cache_contents, bool force) {
+                const std::string& out_dir, bool quiet, bool cache_contents, bool force, bool trace) {
   const pagecache::Scenario scenario = load(path, in, sets, profile, force);
   if (!quiet) print_warnings(scenario);
   pagecache::report::check_output_folder(out_dir, path);  // before simulating, not after
@@ -158,6 +160,8 @@ int run_command(const std::string& path, const Inputs& in, const std::vector<std
   pagecache::RunOptions options;
   options.cache_contents = cache_contents;
   options.progress = [&progress](double t, std::uint64_t events) { progress.update(t, events); };
+  std::optional<pagecache::report::TraceJson> trace_json;
+  if (trace || scenario.trace) options.consumers.push_back(&trace_json.emplace());
   pagecache::RunResult result;
   try {
     result = pagecache::run_scenario(scenario, options);
@@ -166,15 +170,25 @@ int run_command(const std::string& path, const Inputs& in, const std::vector<std
     throw;
   }
   progress.clear();
-  for (const std::string& warning : pagecache::report::write_outputs(out_dir, scenario, result)) {
+  std::vector<pagecache::report::OutputFile> more;
+  if (trace_json) {
+    more.push_back({"trace.json", trace_json->text(scenario.source)});
+    if (trace_json->truncated()) {
+      fmt::print(stderr, "pcsim: warning: trace.json holds every phase and memory row, but transfers, flushes, evictions and pauses "
+                         "only up to its first GB\n");
+    }
+    trace_json.reset();
+  }
+  for (const std::string& warning : pagecache::report::write_outputs(out_dir, scenario, result, more)) {
     fmt::print(stderr, "pcsim: warning: {}\n", warning);
   }
   if (!quiet) {
     fmt::print("{}", pagecache::report::readable_summary(scenario, result));
+    const std::string trace_name = more.empty() ? "" : ", trace.json";
     if (result.cache_not_recorded.empty()) {
-      fmt::print("outputs: {}/{{timeline.csv, memory.csv, cache.csv, summary.json, timing.json}}\n", out_dir);
+      fmt::print("outputs: {}/{{timeline.csv, memory.csv, cache.csv, summary.json, timing.json{}}}\n", out_dir, trace_name);
     } else {
-      fmt::print("outputs: {}/{{timeline.csv, memory.csv, summary.json, timing.json}}; cache contents {}\n", out_dir,
+      fmt::print("outputs: {}/{{timeline.csv, memory.csv, summary.json, timing.json{}}}; cache contents {}\n", out_dir, trace_name,
                  pagecache::report::cache_contents_note(result));
     }
   }
@@ -219,6 +233,10 @@ int main(int argc, char** argv) {
   run->add_flag("--quiet", quiet, "print nothing but errors");
   run->add_flag("--no-cache-contents", no_cache_contents, "do not record cache.csv (large workloads)");
   run->add_flag("--force", force, force_help);
+  bool trace = false;
+  run->add_flag("--trace", trace,
+                "also write trace.json (Chrome Trace Event format: open it in ui.perfetto.dev or chrome://tracing); the scenario key "
+                "trace = true does the same");
 
   auto* show = app.add_subcommand("show", "print the fully resolved scenario, defaults included, or a platform file alone");
   show->add_option("scenario", scenario_path,
@@ -294,7 +312,7 @@ int main(int argc, char** argv) {
       fmt::print("{}", pagecache::to_toml(scenario));
       return 0;
     }
-    return run_command(scenario_path, inputs, sets, profile, out_dir, quiet, !no_cache_contents, force);
+    return run_command(scenario_path, inputs, sets, profile, out_dir, quiet, !no_cache_contents, force, trace);
   } catch (const pagecache::ConfigError& e) {
     fmt::print(stderr, "pcsim: {}\n", e.what());
     return 2;

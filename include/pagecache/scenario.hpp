@@ -117,6 +117,8 @@ struct Scenario {
   /// 0: one memory.csv row per change; else a host's row at each tick of this interval
   /// (seconds) at which its memory differs from its previous row.
   double memory_sample_interval = 1.0;
+  /// `pcsim run` writes trace.json (Chrome Trace Event format) beside the other outputs.
+  bool trace = false;
   std::vector<HostConfig> hosts;
   std::vector<LinkSpec> links;
   std::vector<RouteSpec> routes;

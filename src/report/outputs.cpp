@@ -2,6 +2,7 @@
 
 #include "report/csv_field.hpp"
 #include "report/output_folder.hpp"
+#include "report/output_rules.hpp"
 #include "text/json_string.hpp"
 #include "text/printable.hpp"
 
@@ -12,6 +13,7 @@
 #include <fmt/compile.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -198,7 +200,13 @@ std::string timing_json(const RunResult& r) {
                      s.events, s.events_per_second);
 }
 
-std::vector<std::string> write_outputs(const std::string& dir, const Scenario& scenario, const RunResult& result) {
+std::vector<std::string> write_outputs(const std::string& dir, const Scenario& scenario, const RunResult& result,
+                                       const std::vector<OutputFile>& more) {
+  for (const OutputFile& f : more) {
+    if (std::find(std::begin(kOutputNames), std::end(kOutputNames), f.name) == std::end(kOutputNames)) {
+      throw Error(fmt::format("'{}' is not one of pcsim's output names", f.name));  // a replaced folder would keep it
+    }
+  }
   OutputFolder folder(dir);
   const fs::path& staging = folder.staging();
   write_timeline_csv(staging / "timeline.csv", result);
@@ -206,6 +214,7 @@ std::vector<std::string> write_outputs(const std::string& dir, const Scenario& s
   if (result.cache_not_recorded.empty()) write_cache_csv(staging / "cache.csv", result);
   write_file(staging / "summary.json", summary_json(scenario, result));
   write_file(staging / "timing.json", timing_json(result));
+  for (const OutputFile& f : more) write_file(staging / f.name, f.text);
   return folder.commit();
 }
 

@@ -15,7 +15,13 @@ namespace pagecache::report {
 /// Writes every output into `dir`, replacing it if it is pcsim's (output_rules.hpp); cache.csv
 /// only if the cache contents were recorded. Throws ConfigError if `dir` may not be replaced,
 /// Error if a file cannot be written. Returns warnings for the user (see OutputFolder::commit).
-std::vector<std::string> write_outputs(const std::string& dir, const Scenario& scenario, const RunResult& result);
+/// `more`: further outputs made by the run's consumers (trace.json), each named in kOutputNames.
+struct OutputFile {
+  std::string name;
+  std::string text;
+};
+std::vector<std::string> write_outputs(const std::string& dir, const Scenario& scenario, const RunResult& result,
+                                       const std::vector<OutputFile>& more = {});
 
 /// The CSV files, each written to `path` as it is formatted (see outputs.cpp), their text
 /// fields quoted and guarded against formulas as csv_field.hpp says. Throw Error if the file

@@ -697,6 +697,7 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
     s.profile = parse_profile(profile_override, [](const std::string& m) -> void { throw ConfigError("--profile: " + m); });
   }
   s.memory_sample_interval = r.optional_duration("memory_sample_interval").value_or(1.0);
+  s.trace = r.optional_bool("trace").value_or(false);
 
   // platform = "file.toml" or "file.xml" (SimGrid), or one per profile:
   // platform = { paper = "a.toml", linux = "b.toml" }

@@ -51,8 +51,8 @@ std::string to_toml(const Scenario& s) {
   // A comment ends at a line break and may hold no control character: the path is printable().
   std::string out = fmt::format("# resolved from {}\n", text::printable(s.source));
   if (!s.title.empty()) out += fmt::format("title = {}\n", quoted(s.title));
-  out += fmt::format("profile = {}\nmemory_sample_interval = {}\n", quoted(to_string(s.profile)),
-                     quoted(units::format_duration(s.memory_sample_interval)));
+  out += fmt::format("profile = {}\nmemory_sample_interval = {}\ntrace = {}\n", quoted(to_string(s.profile)),
+                     quoted(units::format_duration(s.memory_sample_interval)), s.trace);
   for (const HostConfig& h : s.hosts) {
     // A platform file shown alone may not give what a run needs (load_platform): the key is
     // left for the user to fill in.

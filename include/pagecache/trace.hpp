@@ -104,6 +104,9 @@ struct CacheContentsEvent {
 class TraceSink {
  public:
   virtual ~TraceSink() = default;
+  /// Whether it wants on_flow: following every transfer costs a lookup per flow, which a run
+  /// spares when no consumer asks for them.
+  virtual bool wants_flows() const { return true; }
   virtual void on_start(const TraceStart&) {}
   virtual void on_phase(const PhaseEvent&) {}
   virtual void on_flow(const FlowEvent&) {}

@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cmath>
 #include <deque>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <optional>
@@ -196,10 +197,14 @@ class Runner {
     std::vector<TraceSink*> all{&*recorder_};
     all.insert(all.end(), options_.consumers.begin(), options_.consumers.end());
     sink_ = all.size() == 1 ? all.front() : &fanouts_.emplace_back(std::move(all));
-    TraceSink* low = nullptr;
-    if (options_.consumers.size() == 1) low = options_.consumers.front();
-    if (options_.consumers.size() > 1) low = &fanouts_.emplace_back(options_.consumers);
-    share_.set_trace(low);
+    const auto one_of = [this](std::vector<TraceSink*> sinks) -> TraceSink* {
+      if (sinks.empty()) return nullptr;
+      return sinks.size() == 1 ? sinks.front() : &fanouts_.emplace_back(std::move(sinks));
+    };
+    TraceSink* low = one_of(options_.consumers);
+    std::vector<TraceSink*> of_flows;
+    std::copy_if(options_.consumers.begin(), options_.consumers.end(), std::back_inserter(of_flows), [](const TraceSink* c) { return c->wants_flows(); });
+    share_.set_trace(one_of(std::move(of_flows)));
     for (std::uint32_t i = 0; i < host_list_.size(); ++i) {
       host_list_[i]->set_trace(low, i);
       host_index_.emplace(host_list_[i], i);

@@ -110,7 +110,7 @@ TEST_CASE("the trace sink reports what the run tallies: paper profile", "[trace]
   const RunResult r = run_scenario(scenario, options);
   check_agrees(scenario, r, tally);
   // Every byte read from the disk went through it, and every byte written back.
-  const std::string disk = scenario.hosts.front().disks.front().name;
+  const std::string disk = scenario.hosts.front().name + ":" + scenario.hosts.front().disks.front().name;
   CHECK(tally.work_per_resource.at(disk) ==
         Approx(static_cast<double>(r.summary.disk_read_bytes + r.summary.forced_flush_bytes + r.summary.periodic_flush_bytes)));
   if (scenario.title.find("writers") != std::string::npos) CHECK(tally.flushed.count(FlushCause::DirtyLimit) == 1);

@@ -152,7 +152,7 @@ void print_warnings(const pagecache::Scenario& scenario) {
 }
 
 int run_command(const std::string& path, const Inputs& in, const std::vector<std::string>& sets, const std::string& profile,
-                const std::string& out_dir, bool quiet, bool cache_contents, bool force, bool trace) {
+                const std::string& out_dir, bool quiet, bool cache_contents, bool force, bool trace, bool report) {
   const pagecache::Scenario scenario = load(path, in, sets, profile, force);
   if (!quiet) print_warnings(scenario);
   pagecache::report::check_output_folder(out_dir, path);  // before simulating, not after
@@ -162,6 +162,8 @@ int run_command(const std::string& path, const Inputs& in, const std::vector<std
   options.progress = [&progress](double t, std::uint64_t events) { progress.update(t, events); };
   std::optional<pagecache::report::TraceJson> trace_json;
   if (trace || scenario.trace) options.consumers.push_back(&trace_json.emplace());
+  std::optional<pagecache::report::ReportActivity> activity;  // report.html's activity chart
+  if (report) options.consumers.push_back(&activity.emplace());
   pagecache::RunResult result;
   try {
     result = pagecache::run_scenario(scenario, options);
@@ -170,25 +172,25 @@ int run_command(const std::string& path, const Inputs& in, const std::vector<std
     throw;
   }
   progress.clear();
-  std::vector<pagecache::report::OutputFile> more;
+  pagecache::report::OutputOptions outputs{.report = report, .activity = activity ? &*activity : nullptr, .more = {}};
   if (trace_json) {
-    more.push_back({"trace.json", trace_json->text(scenario.source)});
+    outputs.more.push_back({"trace.json", trace_json->text(scenario.source)});
     if (trace_json->truncated()) {
       fmt::print(stderr, "pcsim: warning: trace.json holds every phase and memory row, but transfers, flushes, evictions and pauses "
                          "only up to its first GB\n");
     }
     trace_json.reset();
   }
-  for (const std::string& warning : pagecache::report::write_outputs(out_dir, scenario, result, more)) {
+  for (const std::string& warning : pagecache::report::write_outputs(out_dir, scenario, result, outputs)) {
     fmt::print(stderr, "pcsim: warning: {}\n", warning);
   }
   if (!quiet) {
     fmt::print("{}", pagecache::report::readable_summary(scenario, result));
-    const std::string trace_name = more.empty() ? "" : ", trace.json";
+    const std::string extra = std::string(report ? ", report.html" : "") + (outputs.more.empty() ? "" : ", trace.json");
     if (result.cache_not_recorded.empty()) {
-      fmt::print("outputs: {}/{{timeline.csv, memory.csv, cache.csv, summary.json, timing.json{}}}\n", out_dir, trace_name);
+      fmt::print("outputs: {}/{{timeline.csv, memory.csv, cache.csv, summary.json, timing.json{}}}\n", out_dir, extra);
     } else {
-      fmt::print("outputs: {}/{{timeline.csv, memory.csv, summary.json, timing.json{}}}; cache contents {}\n", out_dir, trace_name,
+      fmt::print("outputs: {}/{{timeline.csv, memory.csv, summary.json, timing.json{}}}; cache contents {}\n", out_dir, extra,
                  pagecache::report::cache_contents_note(result));
     }
   }
@@ -233,6 +235,8 @@ int main(int argc, char** argv) {
   run->add_flag("--quiet", quiet, "print nothing but errors");
   run->add_flag("--no-cache-contents", no_cache_contents, "do not record cache.csv (large workloads)");
   run->add_flag("--force", force, force_help);
+  bool no_report = false;
+  run->add_flag("--no-report", no_report, "do not write report.html (the run's figures drawn in one offline page)");
   bool trace = false;
   run->add_flag("--trace", trace,
                 "also write trace.json (Chrome Trace Event format: open it in ui.perfetto.dev or chrome://tracing); the scenario key "
@@ -312,7 +316,7 @@ int main(int argc, char** argv) {
       fmt::print("{}", pagecache::to_toml(scenario));
       return 0;
     }
-    return run_command(scenario_path, inputs, sets, profile, out_dir, quiet, !no_cache_contents, force, trace);
+    return run_command(scenario_path, inputs, sets, profile, out_dir, quiet, !no_cache_contents, force, trace, !no_report);
   } catch (const pagecache::ConfigError& e) {
     fmt::print(stderr, "pcsim: {}\n", e.what());
     return 2;

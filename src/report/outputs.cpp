@@ -1,6 +1,7 @@
 #include "report/outputs.hpp"
 
 #include "report/csv_field.hpp"
+#include "report/html_report.hpp"
 #include "report/output_folder.hpp"
 #include "report/output_rules.hpp"
 #include "text/json_string.hpp"
@@ -201,8 +202,8 @@ std::string timing_json(const RunResult& r) {
 }
 
 std::vector<std::string> write_outputs(const std::string& dir, const Scenario& scenario, const RunResult& result,
-                                       const std::vector<OutputFile>& more) {
-  for (const OutputFile& f : more) {
+                                       const OutputOptions& options) {
+  for (const OutputFile& f : options.more) {
     if (std::find(std::begin(kOutputNames), std::end(kOutputNames), f.name) == std::end(kOutputNames)) {
       throw Error(fmt::format("'{}' is not one of pcsim's output names", f.name));  // a replaced folder would keep it
     }
@@ -214,7 +215,10 @@ std::vector<std::string> write_outputs(const std::string& dir, const Scenario& s
   if (result.cache_not_recorded.empty()) write_cache_csv(staging / "cache.csv", result);
   write_file(staging / "summary.json", summary_json(scenario, result));
   write_file(staging / "timing.json", timing_json(result));
-  for (const OutputFile& f : more) write_file(staging / f.name, f.text);
+  if (options.report) {
+    write_file(staging / "report.html", report_html(scenario, result, options.activity != nullptr ? *options.activity : ReportActivity{}));
+  }
+  for (const OutputFile& f : options.more) write_file(staging / f.name, f.text);
   return folder.commit();
 }
 

@@ -1,7 +1,9 @@
 #pragma once
-// Writing a run's outputs: timeline.csv, memory.csv, cache.csv, summary.json and timing.json in
-// one folder, marked as pcsim's and put in place whole (output_folder.hpp), so that a failed
+// Writing a run's outputs: timeline.csv, memory.csv, cache.csv, summary.json, timing.json,
+// report.html (and trace.json) in one folder, marked as pcsim's and put in place whole (output_folder.hpp), so that a failed
 // run never leaves a half-written result. Also the readable summary printed to stdout.
+
+#include "report/report_activity.hpp"
 
 #include <pagecache/run.hpp>
 #include <pagecache/scenario.hpp>
@@ -12,16 +14,27 @@
 
 namespace pagecache::report {
 
-/// Writes every output into `dir`, replacing it if it is pcsim's (output_rules.hpp); cache.csv
-/// only if the cache contents were recorded. Throws ConfigError if `dir` may not be replaced,
-/// Error if a file cannot be written. Returns warnings for the user (see OutputFolder::commit).
-/// `more`: further outputs made by the run's consumers (trace.json), each named in kOutputNames.
+/// An output made by one of the run's consumers (trace.json); its name is one of kOutputNames.
 struct OutputFile {
   std::string name;
   std::string text;
 };
+
+struct OutputOptions {
+  /// Write report.html.
+  bool report = true;
+  /// The ReportActivity attached to the run, drawn in report.html (nullptr: the page says it
+  /// was not recorded).
+  const ReportActivity* activity = nullptr;
+  std::vector<OutputFile> more;
+};
+
+/// Writes every output into `dir`, replacing it if it is pcsim's (output_rules.hpp); cache.csv
+/// only if the cache contents were recorded. Throws ConfigError if `dir` may not be replaced,
+/// Error if a file cannot be written or `options.more` names a file pcsim does not write.
+/// Returns warnings for the user (see OutputFolder::commit).
 std::vector<std::string> write_outputs(const std::string& dir, const Scenario& scenario, const RunResult& result,
-                                       const std::vector<OutputFile>& more = {});
+                                       const OutputOptions& options = {});
 
 /// The CSV files, each written to `path` as it is formatted (see outputs.cpp), their text
 /// fields quoted and guarded against formulas as csv_field.hpp says. Throw Error if the file

@@ -18,7 +18,7 @@ using namespace pagecache::testing;
 
 namespace {
 
-const std::set<std::string> kOutputs = {".pcsim-output", "cache.csv", "memory.csv", "summary.json", "timeline.csv", "timing.json"};
+const std::set<std::string> kOutputs = {".pcsim-output", "cache.csv", "memory.csv", "report.html", "summary.json", "timeline.csv", "timing.json"};
 
 // Everything below `dir` (links not followed), by relative path: a folder, a file with its
 // size and contents, or a link with its target.

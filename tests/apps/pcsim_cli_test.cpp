@@ -210,7 +210,7 @@ TEST_CASE("two runs of the same scenario give byte-identical outputs", "[cli][de
     const Outcome o = pcsim(fmt::format("run '{}' --set pipelines.count=12 --out '{}' --quiet", scenario, (dir / run).string()));
     REQUIRE(o.status == 0);
   }
-  for (const char* file : {"timeline.csv", "memory.csv", "cache.csv", "summary.json"}) {
+  for (const char* file : {"timeline.csv", "memory.csv", "cache.csv", "summary.json", "report.html"}) {
     INFO(file);
     const std::string first = slurp(dir / "one" / file);
     CHECK(first.size() > 100);

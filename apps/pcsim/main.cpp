@@ -257,6 +257,8 @@ int main(int argc, char** argv) {
   std::string data_dir = std::string(PCSIM_SOURCE_DIR) + "/validation/paper";
   std::string scenarios_dir = std::string(PCSIM_SOURCE_DIR) + "/scenarios/paper";
   validate->add_option("--json", json_path, "also write the results as JSON to this file");
+  std::string report_path = "validate-report.html";
+  validate->add_option("--report", report_path, "write the results as a self-contained HTML page to this file")->capture_default_str();
   std::string validate_profile = "linux";
   validate->add_option("--profile", validate_profile, "model profile (the paper scenarios' own profile is paper)")
       ->check(CLI::IsMember({"paper", "linux"}))
@@ -296,6 +298,7 @@ int main(int argc, char** argv) {
     }
     if (validate->parsed()) {
       if (!json_path.empty()) pagecache::report::check_output_file(json_path);
+      pagecache::report::check_output_file(report_path);
       std::vector<std::pair<std::string, bool>> forced;
       for (const auto& [name, value] : parse_sets(switches)) {
         if (value != "true" && value != "false") throw pagecache::ConfigError("--switch " + name + ": use true or false");
@@ -304,6 +307,8 @@ int main(int argc, char** argv) {
       const auto report = pagecache::validate::run({data_dir, scenarios_dir, validate_profile, parse_sets(sets), forced});
       fmt::print("{}", report.text());
       if (!json_path.empty()) pagecache::report::replace_file(json_path, report.json());
+      pagecache::report::replace_file(report_path, report.html());
+      fmt::print("report: {}\n", report_path);
       return 0;
     }
     if (show->parsed()) {

@@ -118,6 +118,7 @@ CaseResult exp1(const Options& o, int size_gb, double cpu_seconds) {
     const auto [real_cached, real_dirty] = real_memory_at(real_end.at(key));
     worst_dirty = std::max(worst_dirty, 100.0 * std::abs(sim_dirty - real_dirty) / total);
     worst_cached = std::max(worst_cached, 100.0 * std::abs(sim_cached - real_cached) / total);
+    c.figures.push_back({fmt::format("task {} {}", p.task, p.phase), real.at(key), sim, wrench.at(key)});
     c.table += fmt::format("  {:<6} {:<6} {:>9.2f} {:>9.2f} {:>8.1f} {:>9.2f} {:>8.1f} | {:>9.1f} {:>9.1f} {:>9.1f} {:>9.1f}\n", p.task,
                            p.phase, real.at(key), sim, e, wrench.at(key), we, sim_dirty / 1e9, real_dirty / 1e9, sim_cached / 1e9,
                            real_cached / 1e9);
@@ -206,6 +207,8 @@ CaseResult concurrent(const Options& o, const std::string& name, const std::stri
     w_sum += ew;
     wr_sum += wer;
     ww_sum += wew;
+    c.figures.push_back({fmt::format("n={} read", n), truth.read, sim.read, w.read});
+    c.figures.push_back({fmt::format("n={} write", n), truth.write, sim.write, w.write});
     c.table += fmt::format("  {:>3} {:>9.2f} {:>9.2f} {:>7.1f} {:>9.2f} {:>7.1f} | {:>9.2f} {:>9.2f} {:>7.1f} {:>9.2f} {:>7.1f}\n", n,
                            truth.read, sim.read, er, w.read, wer, truth.write, sim.write, ew, w.write, wew);
   }

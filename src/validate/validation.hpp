@@ -20,8 +20,18 @@ struct Options {
   std::vector<std::pair<std::string, bool>> switches;
 };
 
+/// One compared duration: a phase of Exp 1, or for Exp 2 and 3 the mean read or write time at
+/// one number of pipelines. Seconds.
+struct Figure {
+  std::string label;  ///< "task 1 read", "n=8 write"
+  double real = 0.0;
+  double simulated = 0.0;  ///< pcsim's
+  double wrench = 0.0;     ///< WRENCH-cache's published figure
+};
+
 struct CaseResult {
   std::string name;
+  std::vector<Figure> figures;  ///< what the mean errors are computed from, in the table's order
   double mean_error_pct = 0.0;
   double read_mean_error_pct = -1.0;   ///< Exp 2/3 only
   double write_mean_error_pct = -1.0;  ///< Exp 2/3 only
@@ -37,6 +47,10 @@ struct Report {
   std::vector<CaseResult> cases;
   std::string text() const;
   std::string json() const;
+  /// The same as one self-contained HTML page (validation_html.cpp): per case a table of the
+  /// figures with their errors, the mean errors, and a bar chart of real, pcsim and
+  /// WRENCH-cache side by side (`<svg class="chart" data-chart="validate-<case>">`).
+  std::string html() const;
 };
 
 Report run(const Options& options);

@@ -355,9 +355,16 @@ TEST_CASE("pcsim validate reproduces the dataset's WRENCH-cache baselines and wr
   // 209 %; Exp 3 read 24.3 %, write 23.6 %. validate computes the same from the same files:
   // this checks its metric and its data, whatever pcsim's own figures are.
   const fs::path dir = scratch("validate");
-  const Outcome o = pcsim(fmt::format("validate --json '{}'", (dir / "v.json").string()));
+  const Outcome o = pcsim(fmt::format("validate --json '{}' --report '{}'", (dir / "v.json").string(), (dir / "v.html").string()));
   INFO(o.output);
   REQUIRE(o.status == 0);
+  CHECK_THAT(o.output, Catch::Contains("report: " + (dir / "v.html").string()));
+  // The page: a chart per case, each with real, pcsim and WRENCH-cache side by side.
+  const std::string html = slurp(dir / "v.html");
+  for (const char* c : {"exp1_20gb", "exp1_100gb", "exp2_local", "exp3_nfs"}) {
+    INFO(c);
+    CHECK_THAT(html, Catch::Contains(fmt::format("data-chart=\"validate-{}\" data-series=\"3\"", c)));
+  }
   const std::string json = slurp(dir / "v.json");
   auto field = [&](const std::string& case_name, const std::string& key) { return json_field(json, case_name, key); };
   CHECK(field("exp1_20gb", "wrench_cache_mean_error_pct") == Catch::Detail::Approx(30.1).margin(0.05));
@@ -377,7 +384,7 @@ TEST_CASE("pcsim validate: the linux profile is closer to the real runs than WRE
   // and writes separately, and Exp 1's memory profile is within 10 % of memory at every phase
   // end. The figures compared are errors against real data, not pcsim outputs.
   const fs::path dir = scratch("validate-linux");
-  const Outcome o = pcsim(fmt::format("validate --json '{}'", (dir / "v.json").string()));
+  const Outcome o = pcsim(fmt::format("validate --json '{}' --report '{}'", (dir / "v.json").string(), (dir / "v.html").string()));
   INFO(o.output);
   REQUIRE(o.status == 0);
   CHECK(o.output.find("profile linux") != std::string::npos);

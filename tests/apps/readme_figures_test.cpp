@@ -79,7 +79,7 @@ double duration(const pagecache::testing::CsvRow& row) { return std::stod(row.at
 
 TEST_CASE("the README's validation figures are what pcsim validate prints", "[cli][docs][validate]") {
   const fs::path dir = pagecache::testing::scratch("validate");
-  run_pcsim({"validate", "--json", (dir / "v.json").string()});
+  run_pcsim({"validate", "--json", (dir / "v.json").string(), "--report", (dir / "v.html").string()});
   const std::string json = slurp(dir / "v.json");
   const auto f = figures(
       R"(mean error \(WRENCH-cache's in brackets\): Exp 1 20 GB ([0-9.]+) % \(([0-9.]+) %\), 100 GB ([0-9.]+) % \(([0-9.]+) %\); )"

@@ -27,6 +27,7 @@ class ReportActivity final : public TraceSink {
     double throttled = 0.0;  ///< seconds of pauses within the bucket, summed over writers
   };
 
+  bool wants_flows() const override { return false; }
   void on_flush(const FlushEvent& e) override;
   void on_eviction(const EvictionEvent& e) override;
   void on_throttle(const ThrottleEvent& e) override;

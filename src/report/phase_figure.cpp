@@ -25,8 +25,10 @@ std::size_t kind_of(const std::string& phase) {
   return static_cast<std::size_t>(std::find(kKinds.begin(), kKinds.end(), phase) - kKinds.begin());
 }
 
+// The run's end (dirty data written back), as the memory and activity charts end, so that the
+// charts' time axes line up.
 double end_of(const RunResult& r) {
-  double end = r.summary.makespan;
+  double end = r.summary.end_time;
   for (const PhaseRow& p : r.timeline) end = std::max(end, p.end);
   return end;
 }

@@ -359,12 +359,18 @@ TEST_CASE("pcsim validate reproduces the dataset's WRENCH-cache baselines and wr
   INFO(o.output);
   REQUIRE(o.status == 0);
   CHECK_THAT(o.output, Catch::Contains("report: " + (dir / "v.html").string()));
-  // The page: a chart per case, each with real, pcsim and WRENCH-cache side by side.
+  // The page: charts per case, each with real, pcsim and WRENCH-cache side by side, and a
+  // table row per figure: 6 phases for Exp 1; read and write for each n of Exp 2 (n = 1, 6-16,
+  // 21, 26, 31: 15 values) and Exp 3.
   const std::string html = slurp(dir / "v.html");
-  for (const char* c : {"exp1_20gb", "exp1_100gb", "exp2_local", "exp3_nfs"}) {
-    INFO(c);
-    CHECK_THAT(html, Catch::Contains(fmt::format("data-chart=\"validate-{}\" data-series=\"3\"", c)));
+  for (const char* chart : {"exp1_20gb\" data-series=\"3\" data-rows=\"6\"", "exp1_100gb\" data-series=\"3\" data-rows=\"6\"",
+                            "exp2_local-read\" data-series=\"3\"", "exp2_local-write\" data-series=\"3\"",
+                            "exp3_nfs-read\" data-series=\"3\"", "exp3_nfs-write\" data-series=\"3\""}) {
+    INFO(chart);
+    CHECK_THAT(html, Catch::Contains(fmt::format("data-chart=\"validate-{}", chart)));
   }
+  // The real figures are the dataset's: Exp 1 at 20 GB, task 1's read took 39.19 s.
+  CHECK_THAT(html, Catch::Contains("<td>task 1 read</td><td class=\"num\">39.19</td>"));
   const std::string json = slurp(dir / "v.json");
   auto field = [&](const std::string& case_name, const std::string& key) { return json_field(json, case_name, key); };
   CHECK(field("exp1_20gb", "wrench_cache_mean_error_pct") == Catch::Detail::Approx(30.1).margin(0.05));

@@ -381,8 +381,8 @@ class Runner {
   // After the I/O phase of row `phase`.
   void record_cache(std::uint32_t phase) {
     if (!record_cache_) return;
-    cached_.clear();
-    for (const PlacedFile* f : file_order_) cached_.push_back(f->host->cached(f->ref));
+    cached_.resize(file_order_.size());
+    for (std::size_t i = 0; i < file_order_.size(); ++i) cached_[i] = file_order_[i]->host->cached(file_order_[i]->ref);
     sink_->on_cache_contents({.phase_row = phase, .cached = cached_});
   }
 

@@ -15,6 +15,7 @@
 #include "report/trace_json.hpp"
 #include "scenario/closest.hpp"
 #include "validate/validation.hpp"
+#include "sweep_command.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -269,6 +270,9 @@ int main(int argc, char** argv) {
   validate->add_option("--data", data_dir, "the validation data")->capture_default_str();
   validate->add_option("--scenarios", scenarios_dir, "the paper's scenarios")->capture_default_str();
 
+  pcsim::SweepCommand sweep;
+  pcsim::add_sweep_command(app, sweep);
+
   auto* help = app.add_subcommand("help", "show this help, or a command's: pcsim help run");
   std::string help_topic;
   std::vector<std::string> commands;
@@ -296,6 +300,7 @@ int main(int argc, char** argv) {
       fmt::print("{}", app.get_formatter()->make_help(topic, help_topic.empty() ? "pcsim" : "pcsim " + help_topic, CLI::AppFormatMode::Normal));
       return 0;
     }
+    if (sweep.sweep->parsed()) return pcsim::run_sweep_command(sweep);
     if (validate->parsed()) {
       if (!json_path.empty()) pagecache::report::check_output_file(json_path);
       pagecache::report::check_output_file(report_path);

@@ -682,8 +682,10 @@ void keep_what_the_run_uses(const scenario::SgPlatform& platform, const std::set
 
 // `platform_only`: a platform file shown alone (pcsim show PLATFORM): no workload, and what a run
 // would need of the hosts (memory sizes and bandwidths) may be missing.
+// `platform_overrides`: --set keys of the platform's hosts, links and routes, for a scenario
+// that takes them from a TOML platform file (see parse_scenario).
 Scenario resolve(const toml::table& root, const std::string& file, const std::string& profile_override, const ScenarioLimits& limits,
-                 bool platform_only = false) {
+                 bool platform_only = false, const Overrides& platform_overrides = {}) {
   TomlReader r(root, "", file);
   Origins origins;
   origins.root = {&root, "", &file};
@@ -724,6 +726,10 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
       r.fail("platform", e.what());
     }
     if (is_xml_file(platform_file, text)) {
+      if (!platform_overrides.empty()) {
+        throw ConfigError(fmt::format("--set {}: the hosts, links and routes come from a SimGrid platform file ({}): amend a host with a "
+                                      "[[hosts]] table naming it", platform_overrides.front().first, platform_file));
+      }
       simgrid = scenario::read_simgrid_platform(text, platform_file);
       scenario::add_simgrid_platform(*simgrid, s, origins);
       for (std::size_t h = 0; h < s.hosts.size(); ++h) amendable.insert(h);
@@ -733,6 +739,7 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
       } catch (const toml::parse_error& e) {
         throw ConfigError(fmt::format("{}:{}:{}: {}", platform_file, e.source().begin.line, e.source().begin.column, e.description()));
       }
+      for (const auto& [key, value] : platform_overrides) apply_override(platform_root, key, value, platform_file);
       TomlReader p(platform_root, "", platform_file);
       p.string("title", "");
       read_platform(p, s, platform_file, origins, amendable);
@@ -939,8 +946,16 @@ Scenario parse_scenario(const std::string& toml_text, const std::string& source_
   } catch (const toml::parse_error& e) {
     throw ConfigError(fmt::format("{}:{}:{}: {}", source_name, e.source().begin.line, e.source().begin.column, e.description()));
   }
-  for (const auto& [key, value] : overrides) apply_override(root, key, value, source_name);
-  return resolve(root, source_name, profile_override, limits);
+  // A key of the platform's hosts, links or routes, in a scenario that takes them from a
+  // platform file, changes that file's table (as read for this run only).
+  Overrides of_platform;
+  for (const auto& [key, value] : overrides) {
+    const std::string first = key.substr(0, key.find('.'));
+    const bool platform_part = first == "hosts" || first == "links" || first == "routes";
+    if (platform_part && key != first && !root.contains(first) && root.contains("platform")) of_platform.emplace_back(key, value);
+    else apply_override(root, key, value, source_name);
+  }
+  return resolve(root, source_name, profile_override, limits, false, of_platform);
 }
 
 Scenario load_platform(const std::string& path, const std::string& profile_override) {

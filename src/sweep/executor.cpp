@@ -1,0 +1,182 @@
+#include "sweep/executor.hpp"
+
+#include "report/outputs.hpp"
+#include "report/replace_file.hpp"
+#include "sweep/results_file.hpp"
+#include "text/json_string.hpp"
+
+#include <pagecache/error.hpp>
+#include <pagecache/run.hpp>
+
+#include <fmt/format.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <new>
+#include <sstream>
+#include <thread>
+#include <vector>
+
+namespace pagecache::sweep {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::optional<std::size_t> whole_number(const std::string& text) {
+  if (text.empty() || text.size() > 12 || text.find_first_not_of("0123456789") != std::string::npos) return std::nullopt;
+  return static_cast<std::size_t>(std::stoull(text));
+}
+
+// The run's figures, or its failure, as one JSON line; `wall`: the run's time in this process,
+// its scenario loaded and its result formatted, beside the simulation's own (sim_wall_s).
+std::string result_line(const Run& run, const RunResult* result, int exit_code, const std::string& error, double wall) {
+  std::string out = fmt::format("{{\"id\": \"{}\", \"run\": {}, \"overrides\": {{", run.id, run.index);
+  bool first = true;
+  for (const Override& o : run.overrides) {
+    if (o.toml.empty()) continue;
+    out += fmt::format("{}{}: {}", first ? "" : ", ", text::json_string(o.key), text::json_string(o.toml));
+    first = false;
+  }
+  out += "}, ";
+  if (result == nullptr) {
+    out += fmt::format("\"status\": \"failed\", \"exit_code\": {}, \"error\": {}", exit_code, text::json_string(error));
+  } else {
+    const RunSummary& s = result->summary;
+    out += fmt::format(
+        "\"status\": \"ok\", \"exit_code\": 0, \"makespan_s\": {:.6f}, \"end_time_s\": {:.6f}, \"read_s\": {:.6f}, \"compute_s\": {:.6f}, "
+        "\"write_s\": {:.6f}, \"disk_read_bytes\": {}, \"cache_read_bytes\": {}, \"forced_flush_bytes\": {}, \"periodic_flush_bytes\": {}, "
+        "\"evicted_bytes\": {}, \"peak_dirty_bytes\": {}, \"events\": {}",
+        s.makespan, s.end_time, s.read.seconds, s.compute.seconds, s.write.seconds, s.disk_read_bytes, s.cache_read_bytes, s.forced_flush_bytes,
+        s.periodic_flush_bytes, s.evicted_bytes, s.peak_dirty_bytes, s.events);
+  }
+  return out + fmt::format(", \"wall_s\": {:.6f}, \"sim_wall_s\": {:.6f}}}", wall, result != nullptr ? result->summary.wall_seconds : 0.0);
+}
+
+struct Finished {
+  std::string line;
+  bool failed = false;
+};
+
+// One run, start to end; any failure is its result, with pcsim run's exit code for it.
+Finished execute(const Plan& plan, const Run& run, const SweepOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  int code = 1;
+  std::string error;
+  try {
+    const Scenario scenario = plan.scenario(run);
+    RunOptions run_options;
+    run_options.cache_contents = options.keep_outputs;
+    const RunResult result = run_scenario(scenario, run_options);
+    if (options.keep_outputs) {
+      report::write_outputs((fs::path(options.out_dir) / "runs" / run.id).string(), scenario, result, {.report = false, .activity = nullptr, .more = {}});
+    }
+    return {result_line(run, &result, 0, {}, wall()), false};
+  } catch (const ConfigError& e) {
+    code = 2;
+    error = e.what();
+  } catch (const SimulationError& e) {
+    error = std::string("simulation failed: ") + e.what();
+  } catch (const InvariantError& e) {
+    code = 3;
+    error = std::string("internal error: ") + e.what();
+  } catch (const std::bad_alloc&) {
+    code = 3;
+    error = "out of memory";
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  return {result_line(run, nullptr, code, error, wall()), true};
+}
+
+}  // namespace
+
+// out_dir/sweep-plan.json: written by the first shard, the same for every other.
+void prepare_out_dir(const Plan& plan, const std::string& out_dir) {
+  fs::create_directories(out_dir);
+  const fs::path path = fs::path(out_dir) / "sweep-plan.json";
+  const std::string text = plan.json();
+  if (fs::exists(path)) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream there;
+    there << in.rdbuf();
+    if (there.str() == text) return;
+    throw ConfigError(fmt::format("{}: {} holds the results of another sweep (its sweep-plan.json differs): give another --out", out_dir, path.string()));
+  }
+  report::replace_file(path.string(), text);  // written whole, then renamed: concurrent shards write the same bytes
+}
+
+Shard parse_shard(const std::string& text) {
+  const auto slash = text.find('/');
+  const auto index = slash == std::string::npos ? std::nullopt : whole_number(text.substr(0, slash));
+  const auto count = slash == std::string::npos ? std::nullopt : whole_number(text.substr(slash + 1));
+  if (!index || !count || *count == 0 || *index >= *count) {
+    throw ConfigError(fmt::format("--shard '{}': expected I/N with 0 <= I < N, e.g. 0/4", text));
+  }
+  return {*index, *count};
+}
+
+std::optional<Shard> shard_from_slurm() {
+  const char* id = std::getenv("SLURM_ARRAY_TASK_ID");
+  const char* count = std::getenv("SLURM_ARRAY_TASK_COUNT");
+  const char* min = std::getenv("SLURM_ARRAY_TASK_MIN");
+  if (id == nullptr || count == nullptr) return std::nullopt;
+  const auto i = whole_number(id), n = whole_number(count), m = whole_number(min != nullptr ? min : "0");
+  if (!i || !n || !m || *i < *m || *i - *m >= *n) {
+    throw ConfigError(fmt::format("the Slurm array task {} of {} (from {}) is not a shard: give --shard I/N", id, count, min != nullptr ? min : "0"));
+  }
+  return Shard{*i - *m, *n};
+}
+
+std::string results_path(const std::string& out_dir, const Shard& shard) {
+  return (fs::path(out_dir) / fmt::format("results-{}-of-{}.jsonl", shard.index, shard.count)).string();
+}
+
+SweepOutcome run_sweep(const Plan& plan, const SweepOptions& options) {
+  if (options.out_dir.empty()) throw ConfigError("sweep run: --out DIR is needed");
+  prepare_out_dir(plan, options.out_dir);
+  SweepOutcome outcome;
+  outcome.results = results_path(options.out_dir, options.shard);
+  ResultsFile results(outcome.results);
+  std::vector<Run> pending;
+  for (std::size_t i = options.shard.index; i < plan.size(); i += options.shard.count) {
+    Run run = plan.run(i);
+    if (results.done().count(run.id) != 0) ++outcome.skipped;
+    else pending.push_back(std::move(run));
+  }
+  std::atomic<std::size_t> next{0};
+  std::mutex lock;  // the results file, the outcome, progress
+  std::exception_ptr broken;
+  const auto worker = [&] {
+    for (std::size_t i = next++; i < pending.size(); i = next++) {
+      const Finished finished = execute(plan, pending[i], options);
+      const std::lock_guard guard(lock);
+      if (broken) return;
+      try {
+        results.append(finished.line);
+      } catch (...) {
+        broken = std::current_exception();
+        next = pending.size();
+        return;
+      }
+      ++outcome.ran;
+      if (finished.failed) ++outcome.failed;
+      if (options.progress) options.progress(outcome.ran, pending.size());
+    }
+  };
+  const unsigned jobs = std::max(1u, std::min<unsigned>(options.jobs, static_cast<unsigned>(std::max<std::size_t>(1, pending.size()))));
+  std::vector<std::thread> threads;
+  for (unsigned j = 1; j < jobs; ++j) threads.emplace_back(worker);
+  worker();
+  for (std::thread& t : threads) t.join();
+  if (broken) std::rethrow_exception(broken);
+  return outcome;
+}
+
+}  // namespace pagecache::sweep

@@ -1,0 +1,58 @@
+#pragma once
+// `pcsim sweep run`: the runs of one shard of a plan, `jobs` at a time in this process (each
+// run single-threaded, so each is what `pcsim run` gives), each finished run appended to the
+// shard's results file as one JSON line. Runs already there are skipped (a rerun resumes); a
+// run that fails is recorded with its error and exit code, and the shard goes on.
+
+#include "sweep/plan.hpp"
+
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string>
+
+namespace pagecache::sweep {
+
+/// Shard `index` of `count` (0 <= index < count) takes the runs whose index is `index` modulo
+/// `count`.
+struct Shard {
+  std::size_t index = 0;
+  std::size_t count = 1;
+};
+
+/// "I/N". Throws ConfigError if it is not one.
+Shard parse_shard(const std::string& text);
+/// Under a Slurm job array: this task's shard (SLURM_ARRAY_TASK_ID - SLURM_ARRAY_TASK_MIN of
+/// SLURM_ARRAY_TASK_COUNT). Nothing outside an array.
+std::optional<Shard> shard_from_slurm();
+
+struct SweepOptions {
+  std::string out_dir;
+  Shard shard;
+  unsigned jobs = 1;
+  /// Also write each run's own output folder, out_dir/runs/ID (pcsim run's outputs, no report).
+  bool keep_outputs = false;
+  /// Called after each run with the runs finished and to do in this call (not thread-safe
+  /// itself: called under the results' lock).
+  std::function<void(std::size_t done, std::size_t total)> progress;
+};
+
+struct SweepOutcome {
+  std::size_t ran = 0;
+  std::size_t failed = 0;   ///< of those ran
+  std::size_t skipped = 0;  ///< already in the results
+  std::string results;      ///< the shard's results file
+};
+
+/// The file a shard writes: out_dir/results-I-of-N.jsonl.
+std::string results_path(const std::string& out_dir, const Shard& shard);
+
+/// Makes out_dir and writes its sweep-plan.json, or checks that the one there is this plan's
+/// (ConfigError if not, naming it).
+void prepare_out_dir(const Plan& plan, const std::string& out_dir);
+
+/// Writes out_dir/sweep-plan.json (or checks that the one there is this plan's: ConfigError if
+/// not, naming it), then runs the shard. Throws Error if the results cannot be written.
+SweepOutcome run_sweep(const Plan& plan, const SweepOptions& options);
+
+}  // namespace pagecache::sweep

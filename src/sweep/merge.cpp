@@ -1,0 +1,147 @@
+#include "sweep/merge.hpp"
+
+#include "report/csv_field.hpp"
+#include "report/replace_file.hpp"
+#include "scenario/text_file.hpp"
+#include "sweep/plan.hpp"
+
+#include <pagecache/error.hpp>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <regex>
+#include <unordered_map>
+#include <vector>
+
+namespace pagecache::sweep {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// The figures of a result, in results.csv's order after the swept keys.
+constexpr const char* kFigures[] = {"makespan_s",         "end_time_s",           "read_s",        "compute_s",        "write_s",
+                                    "disk_read_bytes",    "cache_read_bytes",     "forced_flush_bytes", "periodic_flush_bytes",
+                                    "evicted_bytes",      "peak_dirty_bytes",     "events"};
+
+struct Found {
+  nlohmann::json result;
+  std::string where;  // file:line
+};
+
+std::string some(const std::vector<std::string>& ids) {
+  std::string out;
+  for (std::size_t i = 0; i < ids.size() && i < 10; ++i) out += (i ? ", " : "") + ids[i];
+  return ids.size() > 10 ? out + fmt::format(" and {} more", ids.size() - 10) : out;
+}
+
+}  // namespace
+
+MergeOutcome merge(const MergeOptions& options) {
+  const fs::path dir(options.dir);
+  const fs::path plan_path = dir / "sweep-plan.json";
+  if (!fs::exists(plan_path)) throw ConfigError(fmt::format("{}: no sweep-plan.json: not a folder of `pcsim sweep run --out`", options.dir));
+  const Plan plan = Plan::from_json(scenario::read_text_file(plan_path.string(), "sweep plan"), plan_path.string());
+
+  // Every shard's results, whatever the sharding (shards of several runs may be merged).
+  std::vector<fs::path> files;
+  const std::regex shard_file(R"(results-[0-9]+-of-[0-9]+\.jsonl)");
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    if (entry.is_regular_file() && std::regex_match(entry.path().filename().string(), shard_file)) files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end());
+  std::unordered_map<std::string, Found> found;
+  std::vector<std::string> duplicated;
+  for (const fs::path& file : files) {
+    const std::string text = scenario::read_text_file(file.string(), "results file");
+    std::size_t line_no = 0;
+    for (std::size_t at = 0; at < text.size();) {
+      const std::size_t end = text.find('\n', at);
+      if (end == std::string::npos) break;  // a shard still running, or killed mid-line: its run is not done
+      ++line_no;
+      nlohmann::json result = nlohmann::json::parse(text.begin() + static_cast<std::ptrdiff_t>(at), text.begin() + static_cast<std::ptrdiff_t>(end), nullptr, false);
+      at = end + 1;
+      if (!result.is_object() || !result.contains("id") || !result["id"].is_string()) {
+        throw ConfigError(fmt::format("{}:{}: not a result pcsim wrote", file.string(), line_no));
+      }
+      const std::string id = result["id"];
+      const std::string where = fmt::format("{}:{}", file.filename().string(), line_no);
+      if (const auto it = found.find(id); it != found.end()) {
+        duplicated.push_back(fmt::format("{} ({} and {})", id, it->second.where, where));
+        continue;
+      }
+      found.emplace(id, Found{std::move(result), where});
+    }
+  }
+  if (!duplicated.empty()) {
+    throw ConfigError(fmt::format("{}: {} run(s) have more than one result (shards of two different splits?): {}", options.dir, duplicated.size(),
+                                  some(duplicated)));
+  }
+
+  MergeOutcome outcome;
+  outcome.csv = options.csv.empty() ? (dir / "results.csv").string() : options.csv;
+  fmt::memory_buffer csv;
+  const auto field = [&](const std::string& text) { report::append_csv_field(csv, text); };
+  field("id");
+  for (const std::string& key : plan.keys()) {
+    csv.push_back(',');
+    field(key);
+  }
+  csv.append(std::string_view(",status,exit_code"));
+  for (const char* f : kFigures) fmt::format_to(std::back_inserter(csv), ",{}", f);
+  csv.append(std::string_view(",error,wall_s,sim_wall_s\n"));
+  std::vector<std::string> missing;
+  std::size_t used = 0;
+  for (std::size_t i = 0; i < plan.size(); ++i) {
+    const Run run = plan.run(i);
+    const auto it = found.find(run.id);
+    if (it == found.end()) {
+      std::string set;
+      for (const Override& o : run.overrides)
+        if (!o.toml.empty()) set += fmt::format("{}{}={}", set.empty() ? "" : " ", o.key, o.toml);
+      missing.push_back(fmt::format("{} ({})", run.id, set));
+      continue;
+    }
+    ++used;
+    const nlohmann::json& r = it->second.result;
+    field(run.id);
+    for (const Override& o : run.overrides) {
+      csv.push_back(',');
+      field(o.shown);
+    }
+    const std::string status = r.value("status", "");
+    fmt::format_to(std::back_inserter(csv), ",{},{}", status, r.value("exit_code", -1));
+    for (const char* f : kFigures) {
+      csv.push_back(',');
+      if (r.contains(f)) csv.append(r[f].dump());
+    }
+    csv.push_back(',');
+    field(r.value("error", ""));
+    // Last, the two columns that differ from one sweep of the same runs to another.
+    fmt::format_to(std::back_inserter(csv), ",{},{}\n", r.contains("wall_s") ? r["wall_s"].dump() : "", r.contains("sim_wall_s") ? r["sim_wall_s"].dump() : "");
+    ++outcome.runs;
+    if (status != "ok") ++outcome.failed;
+  }
+  if (used != found.size()) {
+    std::vector<std::string> strangers;
+    std::unordered_map<std::string, bool> in_plan;
+    for (std::size_t i = 0; i < plan.size(); ++i) in_plan[plan.run(i).id] = true;
+    for (const auto& [id, f] : found)
+      if (!in_plan.count(id)) strangers.push_back(fmt::format("{} ({})", id, f.where));
+    std::sort(strangers.begin(), strangers.end());
+    throw ConfigError(fmt::format("{}: {} result(s) of runs that are not in sweep-plan.json: {}", options.dir, strangers.size(), some(strangers)));
+  }
+  outcome.missing = missing.size();
+  if (!missing.empty() && !options.allow_missing) {
+    throw ConfigError(fmt::format("{}: {} of {} runs have no result yet: {} (run their shards again, or --allow-missing)", options.dir,
+                                  missing.size(), plan.size(), some(missing)));
+  }
+  report::replace_file(outcome.csv, std::string(csv.data(), csv.size()));
+  return outcome;
+}
+
+}  // namespace pagecache::sweep

@@ -1,0 +1,29 @@
+#pragma once
+// `pcsim sweep merge DIR`: the shards' results in one results.csv, a row per run in the plan's
+// order (a column per swept key, then the figures), the same whichever way the runs were
+// spread over shards, processes and machines, but for the wall times.
+
+#include <cstddef>
+#include <string>
+
+namespace pagecache::sweep {
+
+struct MergeOptions {
+  std::string dir;
+  std::string csv;  ///< default: DIR/results.csv
+  /// Merge what is there; otherwise missing runs are an error.
+  bool allow_missing = false;
+};
+
+struct MergeOutcome {
+  std::size_t runs = 0;     ///< rows written
+  std::size_t missing = 0;  ///< runs of the plan without a result
+  std::size_t failed = 0;   ///< rows of failed runs
+  std::string csv;
+};
+
+/// Throws ConfigError naming the missing (unless allowed) or duplicated runs, a result that is
+/// not of the plan's runs, or a DIR without a sweep-plan.json.
+MergeOutcome merge(const MergeOptions& options);
+
+}  // namespace pagecache::sweep

@@ -1,0 +1,173 @@
+// Sweep files: the runs they make, their ids, and the bad ones refused naming the axis.
+#include "support/files.hpp"
+#include "sweep/plan.hpp"
+#include "sweep/results_file.hpp"
+
+#include <pagecache/error.hpp>
+
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using pagecache::ConfigError;
+using pagecache::sweep::Plan;
+using pagecache::testing::scratch;
+using pagecache::testing::slurp;
+
+namespace {
+
+const std::string kBase = fmt::format("scenario = \"{}/scenarios/paper/exp2.toml\"\n", PCSIM_SOURCE_DIR);
+
+fs::path sweep_file(const std::string& name, const std::string& text) {
+  const fs::path file = scratch("sweep_" + name) / "sweep.toml";
+  std::ofstream(file) << text;
+  return file;
+}
+
+Plan plan_of(const std::string& name, const std::string& text) { return Plan::load(sweep_file(name, text).string()); }
+
+void expect_refused(const std::string& name, const std::string& text, const std::vector<std::string>& fragments) {
+  try {
+    plan_of(name, text);
+    FAIL("accepted: " << text);
+  } catch (const ConfigError& e) {
+    INFO(e.what());
+    CHECK_THAT(e.what(), Catch::Contains("sweep.toml"));
+    for (const std::string& f : fragments) CHECK_THAT(e.what(), Catch::Contains(f));
+  }
+}
+
+std::vector<std::string> ids(const Plan& plan) {
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < plan.size(); ++i) out.push_back(plan.run(i).id);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("a grid sweeps every combination, the last axis fastest", "[sweep]") {
+  const Plan plan = plan_of("grid", kBase + R"(
+[[axes]]
+key = "pipelines.count"
+range = { from = 1, to = 3, step = 1 }
+[[axes]]
+key = "hosts.0.memory"
+values = ["128 GB", "256 GB"]
+)");
+  REQUIRE(plan.size() == 6);
+  CHECK(plan.keys() == std::vector<std::string>{"pipelines.count", "hosts.0.memory"});
+  CHECK(plan.run(0).overrides[0].toml == "1");
+  CHECK(plan.run(0).overrides[1].toml == "\"128 GB\"");
+  CHECK(plan.run(0).overrides[1].shown == "128 GB");
+  CHECK(plan.run(1).overrides[1].shown == "256 GB");
+  CHECK(plan.run(5).overrides[0].toml == "3");
+  const auto all = ids(plan);
+  CHECK(std::set<std::string>(all.begin(), all.end()).size() == 6);
+  // The run really is the base with its overrides, the platform's host included.
+  const pagecache::Scenario s = plan.scenario(plan.run(5));
+  CHECK(s.hosts.front().memory == 256'000'000'000);
+  CHECK(s.apps.size() == 3);
+}
+
+TEST_CASE("a run's id depends on its overrides alone: new axis values and reordered axes rename no run", "[sweep]") {
+  const std::string a = R"(
+[[axes]]
+key = "pipelines.count"
+values = [1, 2]
+[[axes]]
+key = "hosts.0.page_cache.dirty_ratio"
+values = [0.2, 0.4]
+)";
+  const std::string more = R"(
+[[axes]]
+key = "hosts.0.page_cache.dirty_ratio"
+values = [0.1, 0.2, 0.4]
+[[axes]]
+key = "pipelines.count"
+values = [2, 1, 4]
+)";
+  const auto before = ids(plan_of("ids_a", kBase + a));
+  const auto after = ids(plan_of("ids_b", kBase + more));
+  CHECK(after.size() == 9);
+  for (const std::string& id : before) CHECK(std::find(after.begin(), after.end(), id) != after.end());
+  CHECK(before[0] == pagecache::sweep::run_id({{"pipelines.count", "1", "1"}, {"hosts.0.page_cache.dirty_ratio", "0.2", "0.2"}}));
+  CHECK(before[0].size() == 16);
+}
+
+TEST_CASE("ranges: integers, floats without residue, log ranges", "[sweep]") {
+  const Plan floats = plan_of("floats", kBase + R"(
+[[axes]]
+key = "hosts.0.page_cache.dirty_ratio"
+range = { from = 0.1, to = 0.5, step = 0.1 }
+)");
+  std::vector<std::string> values;
+  for (std::size_t i = 0; i < floats.size(); ++i) values.push_back(floats.run(i).overrides[0].toml);
+  CHECK(values == std::vector<std::string>{"0.1", "0.2", "0.3", "0.4", "0.5"});
+  const Plan logs = plan_of("logs", kBase + R"(
+[[axes]]
+key = "pipelines.count"
+range = { from = 1, to = 32, factor = 2 }
+)");
+  values.clear();
+  for (std::size_t i = 0; i < logs.size(); ++i) values.push_back(logs.run(i).overrides[0].toml);
+  CHECK(values == std::vector<std::string>{"1", "2", "4", "8", "16", "32"});
+}
+
+TEST_CASE("explicit points set only what they name", "[sweep]") {
+  const Plan plan = plan_of("points", kBase + R"(
+[[points]]
+"pipelines.count" = 2
+[[points]]
+"pipelines.count" = 4
+"hosts.0.memory" = "128 GB"
+)");
+  REQUIRE(plan.size() == 2);
+  CHECK(plan.keys() == std::vector<std::string>{"pipelines.count", "hosts.0.memory"});
+  CHECK(plan.run(0).overrides[1].toml.empty());
+  CHECK(plan.scenario(plan.run(0)).hosts.front().memory == 268'000'000'000);
+  CHECK(plan.scenario(plan.run(1)).hosts.front().memory == 128'000'000'000);
+  // The plan as sweep-plan.json holds it makes the same runs.
+  const Plan again = Plan::from_json(plan.json(), "test");
+  CHECK(ids(again) == ids(plan));
+  CHECK(again.run(1).overrides[1].shown == "128 GB");
+}
+
+TEST_CASE("bad sweep files are refused, naming the axis", "[sweep][errors]") {
+  expect_refused("unknown_key", kBase + "colour = 3\n[[axes]]\nkey = \"pipelines.count\"\nvalues = [1]\n", {"unknown key 'colour'"});
+  expect_refused("unknown_axis_key", kBase + "[[axes]]\nkey = \"pipelines.colour\"\nvalues = [1]\n", {"axis 'pipelines.colour'", "colour"});
+  expect_refused("empty", kBase + "[[axes]]\nkey = \"pipelines.count\"\nvalues = []\n", {"axis 'pipelines.count' has no value"});
+  expect_refused("wrong_type", kBase + "[[axes]]\nkey = \"hosts.0.memory\"\nvalues = [\"64 GB\", true]\n", {"axis 'hosts.0.memory'", "value true"});
+  expect_refused("step_zero", kBase + "[[axes]]\nkey = \"pipelines.count\"\nrange = { from = 1, to = 4, step = 0 }\n",
+                 {"axis 'pipelines.count'", "step cannot be 0"});
+  expect_refused("never_reaches", kBase + "[[axes]]\nkey = \"pipelines.count\"\nrange = { from = 4, to = 1, step = 1 }\n",
+                 {"axis 'pipelines.count'", "never reaches"});
+  expect_refused("twice", kBase + "[[axes]]\nkey = \"pipelines.count\"\nvalues = [1, 2, 1]\n", {"axis 'pipelines.count'", "twice"});
+  expect_refused("no_axes", kBase, {"[[axes]]", "[[points]]"});
+  // 30 x 3001 x 1000 runs: refused without --force, naming the axes, before any run is made.
+  const std::string huge = kBase + "[[axes]]\nkey = \"pipelines.count\"\nrange = { from = 1, to = 30, step = 1 }\n"
+                                   "[[axes]]\nkey = \"hosts.0.page_cache.dirty_ratio\"\nrange = { from = 0.1, to = 0.4, step = 0.0001 }\n"
+                                   "[[axes]]\nkey = \"pipelines.cpu_time\"\nrange = { from = 1, to = 1000, step = 1 }\n";
+  expect_refused("huge", huge, {"90030000 runs", "axis 'pipelines.count' 30 x", "--force"});
+  CHECK(Plan::load(sweep_file("huge_forced", huge).string(), true).size() == 90'030'000);
+}
+
+TEST_CASE("a results file drops a partial last line and knows the runs it holds", "[sweep]") {
+  const fs::path file = scratch("sweep_results") / "results-0-of-1.jsonl";
+  std::ofstream(file) << "{\"id\": \"a\", \"status\": \"ok\"}\n{\"id\": \"b\", \"status\": \"ok\"}\n{\"id\": \"c\", \"sta";
+  {
+    pagecache::sweep::ResultsFile results(file.string());
+    CHECK(results.done() == std::set<std::string>{"a", "b"});
+    results.append("{\"id\": \"c\", \"status\": \"ok\"}");
+    // A second writer of the same shard is refused while the first holds it.
+    CHECK_THROWS_AS(pagecache::sweep::ResultsFile(file.string()), ConfigError);
+  }
+  CHECK(slurp(file) == "{\"id\": \"a\", \"status\": \"ok\"}\n{\"id\": \"b\", \"status\": \"ok\"}\n{\"id\": \"c\", \"status\": \"ok\"}\n");
+  std::ofstream(file, std::ios::app) << "not json\n";
+  CHECK_THROWS_WITH(pagecache::sweep::ResultsFile(file.string()), Catch::Contains("results-0-of-1.jsonl:4: not a result"));
+}

@@ -1,0 +1,82 @@
+#!/usr/bin/env bash
+# pcsim sweep, run as users run it: the paper's Exp 2 over 128 runs (a) in one process with
+# --jobs 2 and (b) as four shards started by GNU parallel from `sweep plan --commands` must
+# merge into the same results.csv but for the wall times; (c) a shard killed mid-way and run
+# again completes its sweep with each run exactly once; (d) bad sweep files exit 2 naming the
+# axis, with no results folder made.
+#
+#   sweep_test.sh PCSIM_BINARY SOURCE_DIR
+set -euo pipefail
+pcsim=$1
+source_dir=$2
+here=$(cd "$(dirname "$0")" && pwd)
+. "$here/sweep_exp2.sh"
+command -v parallel >/dev/null || { echo "GNU parallel is missing (scripts/install-deps installs it)"; exit 1; }
+work=$(mktemp -d "${TMPDIR:-/tmp}/pcsim-sweep.XXXXXX")
+trap 'kill $(jobs -p) 2>/dev/null || true; rm -rf "$work"' EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+exp2_sweep "$work/exp2.toml" "$source_dir"
+
+# (a) One process, two runs at a time.
+"$pcsim" sweep run "$work/exp2.toml" --out "$work/a" --jobs 2 --quiet
+"$pcsim" sweep merge "$work/a" >/dev/null
+[ "$(wc -l <"$work/a/results.csv")" = 129 ] || fail "(a): $(wc -l <"$work/a/results.csv") lines, expected a header and 128 runs"
+[ "$(grep -c ',ok,0,' "$work/a/results.csv")" = 128 ] || fail "(a): not every run ended well"
+
+# (b) Four shards, one command line each, run by GNU parallel.
+"$pcsim" sweep plan "$work/exp2.toml" --commands --shards 4 --out "$work/b" >"$work/commands"
+[ "$(wc -l <"$work/commands")" = 4 ] || fail "(b): $(wc -l <"$work/commands") command lines, expected 4"
+parallel --will-cite --halt now,fail=1 -j 2 <"$work/commands" >/dev/null
+ls "$work/b"/results-*-of-4.jsonl >/dev/null
+"$pcsim" sweep merge "$work/b" >/dev/null
+cmp <(without_wall_times "$work/a/results.csv") <(without_wall_times "$work/b/results.csv") || fail "(b): results.csv differs from (a)'s"
+
+# (c) A shard killed while it runs, then run again: every run once. Runs of 1 MB chunks take
+# long enough to kill the shard part way.
+cat >"$work/slow.toml" <<SWEEP
+scenario = "$source_dir/scenarios/paper/exp2.toml"
+profile = "linux"
+[[axes]]
+key = "pipelines.chunk_size"
+values = ["1 MB"]
+[[axes]]
+key = "pipelines.count"
+range = { from = 1, to = 24, step = 1 }
+SWEEP
+"$pcsim" sweep run "$work/slow.toml" --out "$work/c" --jobs 1 --quiet &
+shard=$!
+for _ in $(seq 1 600); do
+  [ -f "$work/c/results-0-of-1.jsonl" ] && [ "$(wc -l <"$work/c/results-0-of-1.jsonl")" -ge 5 ] && break
+  sleep 0.05
+done
+kill -9 "$shard"
+wait "$shard" 2>/dev/null || true
+before=$(wc -l <"$work/c/results-0-of-1.jsonl")
+{ [ "$before" -ge 5 ] && [ "$before" -lt 24 ]; } || fail "(c): the shard was killed after $before of 24 runs, not part way"
+if "$pcsim" sweep merge "$work/c" 2>"$work/c.err"; then fail "(c): merge accepted a sweep with runs missing"; fi
+grep -q "runs have no result yet" "$work/c.err" || fail "(c): merge did not name the missing runs: $(cat "$work/c.err")"
+"$pcsim" sweep run "$work/slow.toml" --out "$work/c" --jobs 1 --quiet
+"$pcsim" sweep merge "$work/c" >/dev/null  # refuses duplicated runs
+[ "$(wc -l <"$work/c/results.csv")" = 25 ] || fail "(c): $(wc -l <"$work/c/results.csv") lines after the rerun, expected 25"
+[ "$(cut -d, -f1 "$work/c/results.csv" | sort | uniq -d | wc -l)" = 0 ] || fail "(c): a run is there twice"
+[ "$(grep -c ',ok,0,' "$work/c/results.csv")" = 24 ] || fail "(c): not every run ended well"
+
+# (d) Bad sweep files: exit 2, the axis named, no results folder.
+bad() {
+  local name=$1 axis=$2 body=$3
+  printf 'scenario = "%s/scenarios/paper/exp2.toml"\n%s\n' "$source_dir" "$body" >"$work/$name.toml"
+  local status=0
+  "$pcsim" sweep run "$work/$name.toml" --out "$work/$name-out" --quiet 2>"$work/$name.err" || status=$?
+  [ "$status" = 2 ] || fail "($name): exit $status, expected 2"
+  grep -q -F "$axis" "$work/$name.err" || fail "($name): the message does not name $axis: $(cat "$work/$name.err")"
+  [ ! -e "$work/$name-out" ] || fail "($name): a results folder was made"
+}
+bad unknown_key "pipelines.colour" $'[[axes]]\nkey = "pipelines.colour"\nvalues = [1]'
+bad empty_axis "axis 'pipelines.count'" $'[[axes]]\nkey = "pipelines.count"\nvalues = []'
+bad wrong_type "axis 'hosts.0.memory'" $'[[axes]]\nkey = "hosts.0.memory"\nvalues = [true]'
+bad step_zero "axis 'pipelines.count'" $'[[axes]]\nkey = "pipelines.count"\nrange = { from = 1, to = 3, step = 0 }'
+
+echo "sweep tests: $failures failures"
+[ "$failures" = 0 ]

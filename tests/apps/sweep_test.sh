@@ -17,16 +17,16 @@ trap 'kill $(jobs -p) 2>/dev/null || true; rm -rf "$work"' EXIT
 failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 
-exp2_sweep "$work/exp2.toml" "$source_dir"
+exp2=$(exp2_sweep_file "$source_dir")
 
 # (a) One process, two runs at a time.
-"$pcsim" sweep run "$work/exp2.toml" --out "$work/a" --jobs 2 --quiet
+"$pcsim" sweep run "$exp2" --out "$work/a" --jobs 2 --quiet
 "$pcsim" sweep merge "$work/a" >/dev/null
 [ "$(wc -l <"$work/a/results.csv")" = 129 ] || fail "(a): $(wc -l <"$work/a/results.csv") lines, expected a header and 128 runs"
 [ "$(grep -c ',ok,0,' "$work/a/results.csv")" = 128 ] || fail "(a): not every run ended well"
 
 # (b) Four shards, one command line each, run by GNU parallel.
-"$pcsim" sweep plan "$work/exp2.toml" --commands --shards 4 --out "$work/b" >"$work/commands"
+"$pcsim" sweep plan "$exp2" --commands --shards 4 --out "$work/b" >"$work/commands"
 [ "$(wc -l <"$work/commands")" = 4 ] || fail "(b): $(wc -l <"$work/commands") command lines, expected 4"
 parallel --will-cite --halt now,fail=1 -j 2 <"$work/commands" >/dev/null
 ls "$work/b"/results-*-of-4.jsonl >/dev/null

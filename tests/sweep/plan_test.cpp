@@ -171,3 +171,18 @@ TEST_CASE("a results file drops a partial last line and knows the runs it holds"
   std::ofstream(file, std::ios::app) << "not json\n";
   CHECK_THROWS_WITH(pagecache::sweep::ResultsFile(file.string()), Catch::Contains("results-0-of-1.jsonl:4: not a result"));
 }
+
+TEST_CASE("--set keys of hosts reach the TOML platform file a scenario takes them from, and only for that run", "[sweep][scenario]") {
+  const std::string exp2 = std::string(PCSIM_SOURCE_DIR) + "/scenarios/paper/exp2.toml";
+  const pagecache::Scenario changed = pagecache::load_scenario(exp2, {{"hosts.0.memory", "\"64 GB\""}, {"hosts.1.cores", "4"}});
+  CHECK(changed.hosts.at(0).memory == 64'000'000'000);
+  CHECK(changed.hosts.at(1).cores == 4);
+  CHECK(pagecache::load_scenario(exp2).hosts.at(0).memory == 268'000'000'000);
+  // A value of the wrong type names the option.
+  CHECK_THROWS_WITH(pagecache::load_scenario(exp2, {{"hosts.0.memory", "true"}}), Catch::Contains("hosts[0].memory"));
+  // A SimGrid platform's hosts are amended by name, not by --set.
+  const fs::path dir = scratch("sweep_xml_platform");
+  std::ofstream(dir / "s.toml") << fmt::format("platform = \"{}/inputs/wrench-cache/single_host.xml\"\n", PCSIM_SOURCE_DIR);
+  CHECK_THROWS_WITH(pagecache::load_scenario((dir / "s.toml").string(), {{"hosts.0.memory", "\"64 GB\""}}),
+                    Catch::Contains("SimGrid platform file") && Catch::Contains("[[hosts]]"));
+}

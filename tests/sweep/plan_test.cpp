@@ -172,7 +172,7 @@ TEST_CASE("a results file drops a partial last line and knows the runs it holds"
   CHECK_THROWS_WITH(pagecache::sweep::ResultsFile(file.string()), Catch::Contains("results-0-of-1.jsonl:4: not a result"));
 }
 
-TEST_CASE("--set keys of hosts reach the TOML platform file a scenario takes them from, and only for that run", "[sweep][scenario]") {
+TEST_CASE("overrides of hosts keys reach the TOML platform file a scenario takes them from, and only for that run", "[sweep][scenario]") {
   const std::string exp2 = std::string(PCSIM_SOURCE_DIR) + "/scenarios/paper/exp2.toml";
   const pagecache::Scenario changed = pagecache::load_scenario(exp2, {{"hosts.0.memory", "\"64 GB\""}, {"hosts.1.cores", "4"}});
   CHECK(changed.hosts.at(0).memory == 64'000'000'000);

@@ -33,6 +33,24 @@ ls "$work/b"/results-*-of-4.jsonl >/dev/null
 "$pcsim" sweep merge "$work/b" >/dev/null
 cmp <(without_wall_times "$work/a/results.csv") <(without_wall_times "$work/b/results.csv") || fail "(b): results.csv differs from (a)'s"
 
+# `sweep plan` lists every run, id first; --keep-outputs writes each run's own folder.
+[ "$("$pcsim" sweep plan "$exp2" | wc -l)" = 128 ] || fail "sweep plan does not list 128 runs"
+first=$("$pcsim" sweep plan "$exp2" | sed -n 1p)  # sed reads it all: head would cut pcsim off with SIGPIPE
+[ "$first" = "$(head -2 "$work/a/results.csv" | tail -1 | cut -d, -f1) pipelines.count=1 hosts.0.page_cache.dirty_ratio=0.2 'hosts.0.memory=\"128 GB\"'" ] ||
+  fail "sweep plan's first line: $first"
+cat >"$work/two.toml" <<SWEEP
+scenario = "$source_dir/scenarios/paper/exp2.toml"
+[[points]]
+"pipelines.count" = 2
+[[points]]
+"pipelines.count" = 3
+SWEEP
+"$pcsim" sweep run "$work/two.toml" --out "$work/kept" --keep-outputs --quiet
+[ "$(ls "$work/kept/runs" | wc -l)" = 2 ] || fail "--keep-outputs: $(ls "$work/kept/runs" | wc -l) run folders, expected 2"
+for run in "$work/kept/runs"/*; do
+  [ -s "$run/summary.json" ] && [ -s "$run/timeline.csv" ] || fail "--keep-outputs: $run lacks its outputs"
+done
+
 # (c) A shard killed while it runs, then run again: every run once. Runs of 1 MB chunks take
 # long enough to kill the shard part way.
 cat >"$work/slow.toml" <<SWEEP

@@ -26,6 +26,7 @@
 #include <pagecache/error.hpp>
 #include <pagecache/run.hpp>
 #include <pagecache/scenario.hpp>
+#include <pagecache/scenario_file.hpp>
 
 #include <fmt/format.h>
 

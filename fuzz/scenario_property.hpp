@@ -7,6 +7,7 @@
 
 #include <pagecache/error.hpp>
 #include <pagecache/scenario.hpp>
+#include <pagecache/scenario_file.hpp>
 
 #include <cstddef>
 #include <sstream>

@@ -7,6 +7,7 @@
 #include <pagecache/error.hpp>
 #include <pagecache/run.hpp>
 #include <pagecache/scenario.hpp>
+#include <pagecache/scenario_file.hpp>
 #include <pagecache/version.hpp>
 
 #include "report/output_rules.hpp"

@@ -1,7 +1,8 @@
 #pragma once
 // Scenario: everything one simulation run needs — the platform (hosts, their memory, disks
 // and page-cache settings), the files, and the workload — fully resolved (units converted,
-// defaults filled, shorthands expanded). Loaded from a TOML file by load_scenario(); see the
+// defaults filled, shorthands expanded). Loaded from a TOML file by load_scenario()
+// (scenario_file.hpp, the scenario layer); see the
 // README for the format. Run by run_scenario() (pagecache/run.hpp).
 
 #include <pagecache/cache_settings.hpp>
@@ -130,55 +131,8 @@ struct Scenario {
   std::vector<std::string> warnings;
 };
 
-/// What one scenario may ask of a run, checked when it is loaded: a typo in a count, a size, a
-/// duration or a bandwidth then fails at once with a ConfigError naming the key, instead of
-/// running for hours or exhausting memory. The defaults are far above what real experiments
-/// need; forced() (`pcsim --force`) keeps only what pcsim cannot represent. Whatever the
-/// limits, sizes are at most 1 EiB, durations 10^9 s, bandwidths 1 B/s to 1 PB/s (units.hpp).
-struct ScenarioLimits {
-  /// Tasks and files, pipelines expanded. A task costs a run about 2 kB (10^5 pipelines of
-  /// three tasks and four files peak at 0.8 GB).
-  std::int64_t max_tasks = 1'000'000;
-  std::int64_t max_files = 2'000'000;
-  /// Estimated events: three per chunk operation (each file's bytes over its task's chunk
-  /// size, for every read and write), plus the flushers' periodic wake-ups over the estimated
-  /// simulated time. About ten minutes of a run at the scale of 10^5 pipelines.
-  double max_events = 3e9;
-  /// Estimated simulated seconds: the longest of what the busiest disk, link or memory must
-  /// move at its bandwidth and of what the busiest application must compute.
-  double max_simulated_time = 1e8;
-  /// Estimated memory.csv rows (held in memory until written): about 100 bytes each.
-  double max_memory_rows = 2e7;
-
-  /// Only what pcsim cannot represent: 5 * 10^8 tasks, 10^9 files, 10^9 s.
-  static ScenarioLimits forced();
-};
-
 /// The links a transfer between two different hosts crosses: their route's, or the link
 /// joining them; empty if none.
 std::vector<const LinkSpec*> route_between(const Scenario& scenario, const std::string& a, const std::string& b);
-
-/// Reads and resolves a scenario file (a regular file of at most 64 MiB). Its platform may be
-/// a SimGrid XML file (`platform = "p.xml"`), and its workflow a WfFormat instance
-/// (`workflow = "w.json"`, or a [workflow] table with `file` and options); see the README. `overrides` are
-/// (dotted key, TOML value) pairs applied to the file's contents before anything is checked,
-/// e.g. {"pipelines.count", "16"}; a problem with an override's value names the override.
-/// `profile_override`, if set, wins over the file's `profile`. Throws ConfigError naming the
-/// file, line and key of the first problem, including a scenario beyond `limits`.
-Scenario load_scenario(const std::string& path, const std::vector<std::pair<std::string, std::string>>& overrides = {},
-                       const std::string& profile_override = {}, const ScenarioLimits& limits = {});
-/// The same from TOML text; `source_name` is used in messages.
-Scenario parse_scenario(const std::string& toml_text, const std::string& source_name,
-                        const std::vector<std::pair<std::string, std::string>>& overrides = {},
-                        const std::string& profile_override = {}, const ScenarioLimits& limits = {});
-/// A platform file alone (TOML, or SimGrid XML with WRENCH-cache's conventions), with every
-/// route it lists (up to 10^5; Scenario::warnings says how many more), for `pcsim show`. The
-/// hosts of an XML file may lack what a run needs: their memory and memory bandwidths are then
-/// 0. Throws ConfigError naming the file, line and element or key at fault.
-Scenario load_platform(const std::string& path, const std::string& profile_override = {});
-/// The embedded default scenario (the paper's Exp 1 at 100 GB), as TOML text.
-const std::string& default_scenario_text();
-/// A resolved scenario as TOML, every default written out (`pcsim show`).
-std::string to_toml(const Scenario& scenario);
 
 }  // namespace pagecache

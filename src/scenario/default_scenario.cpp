@@ -4,6 +4,7 @@
 // eviction under memory pressure. Its real run took 1049.4 s.
 
 #include <pagecache/scenario.hpp>
+#include <pagecache/scenario_file.hpp>
 
 namespace pagecache {
 

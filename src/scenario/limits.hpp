@@ -4,6 +4,7 @@
 // names the key that drives it, where it was written.
 
 #include <pagecache/scenario.hpp>
+#include <pagecache/scenario_file.hpp>
 
 #include "scenario/origins.hpp"
 

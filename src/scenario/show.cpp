@@ -2,6 +2,7 @@
 // spelled out (`pcsim show`). Reading it back gives the same scenario.
 
 #include <pagecache/scenario.hpp>
+#include <pagecache/scenario_file.hpp>
 #include <pagecache/units.hpp>
 
 #include "text/printable.hpp"

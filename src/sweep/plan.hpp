@@ -17,7 +17,7 @@
 // id is a hash of its overrides alone, sorted by key: adding a value to an axis, or reordering
 // the axes, renames no run.
 
-#include <pagecache/scenario.hpp>
+#include <pagecache/scenario_file.hpp>
 
 #include <cstdint>
 #include <string>

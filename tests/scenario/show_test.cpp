@@ -2,6 +2,7 @@
 // and its opening comment survives any source path. Read back with the scenario loader and,
 // for names the loader would refuse, with toml++'s parser alone.
 #include <pagecache/scenario.hpp>
+#include <pagecache/scenario_file.hpp>
 
 #include <catch2/catch.hpp>
 #include <toml++/toml.h>

@@ -4,6 +4,7 @@
 #include "sweep/results_file.hpp"
 
 #include <pagecache/error.hpp>
+#include <pagecache/scenario_file.hpp>
 
 #include <catch2/catch.hpp>
 #include <fmt/format.h>

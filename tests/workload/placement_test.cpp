@@ -5,6 +5,7 @@
 #include <pagecache/error.hpp>
 #include <pagecache/run.hpp>
 #include <pagecache/scenario.hpp>
+#include <pagecache/scenario_file.hpp>
 
 #include <catch2/catch.hpp>
 #include <fmt/format.h>

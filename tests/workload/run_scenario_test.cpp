@@ -3,6 +3,7 @@
 #include <pagecache/error.hpp>
 #include <pagecache/run.hpp>
 #include <pagecache/scenario.hpp>
+#include <pagecache/scenario_file.hpp>
 
 #include <catch2/catch.hpp>
 

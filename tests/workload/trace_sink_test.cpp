@@ -3,6 +3,7 @@
 
 #include <pagecache/run.hpp>
 #include <pagecache/scenario.hpp>
+#include <pagecache/scenario_file.hpp>
 #include <pagecache/trace.hpp>
 
 #include <catch2/catch.hpp>

@@ -60,6 +60,12 @@ Task<void> IoController::wait_for_progress() {
   co_await progress_->wait();
 }
 
+void IoController::check_writer_can_wait(FileId file, std::int64_t bytes) const {
+  if (cache_->writeback() == 0 && cache_->reserved() == 0) {
+    throw SimulationError(fmt::format("t = {:.6f} s: writing '{}': no memory can be freed for {} bytes", sim_->now(), (*files_)[file].name, bytes));
+  }
+}
+
 Task<void> IoController::make_room(std::int64_t required, FileId spared, FileId subject, const char* verb) {
   for (;;) {
     co_await write_back(required - cache_->free() - cache_->evictable(), spared, FlushCause::Reclaim);
@@ -273,10 +279,7 @@ Task<IoResult> IoController::write_file_throttled(FileId file, std::int64_t byte
         // Out of memory with nothing clean to reclaim: dirty data must be written first, as
         // reclaim does (pageout), or copies and writebacks in flight must land.
         if (co_await write_back(remaining - cache_->free(), kNoFile, FlushCause::Reclaim) == 0) {
-          if (cache_->writeback() == 0 && cache_->reserved() == 0) {
-            throw SimulationError(fmt::format("t = {:.6f} s: writing '{}': no memory can be freed for {} bytes", sim_->now(),
-                                              (*files_)[file].name, remaining));
-          }
+          check_writer_can_wait(file, remaining);
           co_await wait_for_progress();
         }
       } else {
@@ -297,12 +300,8 @@ Task<IoTally> IoController::write_chunk_writeback(FileId file, std::int64_t chun
     const IoResult r = co_await write_file_throttled(file, chunk, chunk, false);
     co_return IoTally{.bytes = r.bytes, .cache_bytes = r.cache_bytes, .disk_bytes = r.disk_bytes};
   }
-  const CacheSettings& settings = cache_->settings();
-  const auto limit = [&] {
-    return static_cast<std::int64_t>(std::floor(settings.dirty_ratio * static_cast<double>(cache_->dirtyable())));
-  };
   std::int64_t to_memory = 0;
-  const std::int64_t remain_dirty = limit() - cache_->dirty_and_writeback();
+  const std::int64_t remain_dirty = cache_->dirty_limits().thresh - cache_->dirty_and_writeback();
   if (remain_dirty > 0) {
     cache_->evict(std::min(chunk, remain_dirty) - cache_->free(), file);
     // Not capped by remain_dirty: as in the paper, a chunk may overshoot the ratio.
@@ -319,10 +318,7 @@ Task<IoTally> IoController::write_chunk_writeback(FileId file, std::int64_t chun
     if (to_cache < remaining && to_cache < kPageSize) to_cache = 0;
     if (to_cache == 0 && flushed == 0 && evicted == 0) {
       // Nothing to flush or evict now: other writers' data may still be in flight.
-      if (cache_->writeback() == 0 && cache_->reserved() == 0) {
-        throw SimulationError(fmt::format("t = {:.6f} s: writing '{}': no memory can be freed for {} bytes", sim_->now(),
-                                          (*files_)[file].name, remaining));
-      }
+      check_writer_can_wait(file, remaining);
       co_await wait_for_progress();
     }
     if (to_cache > 0) co_await write_to_cache(file, to_cache);

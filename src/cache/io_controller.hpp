@@ -93,6 +93,9 @@ class IoController {
   Task<IoResult> read_whole_file(FileId file, std::int64_t chunk_size, bool direct);
   /// Flushes up to `amount` dirty bytes (skipping `excluded`) and waits for their writes.
   Task<std::int64_t> write_back(std::int64_t amount, FileId excluded, FlushCause cause);
+  /// A writer short of `bytes` of memory, with nothing to flush or evict, waits for copies and
+  /// writebacks in flight; with none, nothing will ever free memory: throws SimulationError.
+  void check_writer_can_wait(FileId file, std::int64_t bytes) const;
   Task<IoTally> write_chunk_writeback(FileId file, std::int64_t chunk);
   /// Whether writeback-mode writers are paced (dirty throttling) rather than made to flush.
   bool throttles_writers() const noexcept;

@@ -6,13 +6,9 @@
 //
 // Growing moves the blocks: a reference to a block is valid until the next take(); ids stay.
 //
-// A pool that ends leaves its array (up to 16 MiB) to the next pool of its thread: a sweep of
-// runs, or the scaling harness's repetitions, would otherwise have every run fault in again
-// the pages of a freshly allocated array, microseconds a page on a virtual machine: without
-// it, 15 runs of the scaling harness's 1,000 pipelines made 12,485 page faults (2,700 in 14
-// runs with it), and took a median of 547 ns per chunk operation (328 with it). Chunks of 2^15
-// blocks instead of one array cost a load per link followed: about 5 % of the time of the
-// harness's 10 pipelines.
+// A pool that ends leaves its array (up to 16 MiB) to the next pool of its thread, so that a
+// sweep of runs does not fault in a fresh array's pages for every run. One array, not chunks,
+// so that following a link is one load.
 
 #include "cache/block.hpp"
 

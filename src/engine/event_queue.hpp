@@ -10,8 +10,7 @@
 //    run and taking its front are O(1); a cancelled member leaves a tombstone that is skipped;
 //  - every event that fits no run: pooled nodes in an indexed 4-ary heap (one array; they can
 //    be cancelled and moved in O(log n)).
-// Measured on the scaling harness, the heap's O(log n) pops and the cache misses of their
-// moves were the largest single cost at 10^4 pipelines and more; most events now skip it.
+// Most events skip the heap, whose pops move entries across memory with many applications.
 // Nothing allocates once the buffers have grown to their peaks. pop() prefetches the state of
 // events a few places behind the front of the ring and of its run (see kAhead).
 

@@ -33,11 +33,10 @@ struct PlacedFile {
   const std::string* name;
 };
 
-// A task as its run reads it, made once before the run, the plans of all tasks side by side:
-// looking file names up per I/O phase cost a hashed lookup and the reading of long-cold
-// strings, and the task's own record is a few cache lines away; with 10^5 applications each
-// is a cache miss per phase. Its files are spans of one array of copies (not pointers into
-// the map: its nodes are scattered), in the order of the task's lists.
+// A task as its run reads it, made once before the run, the plans of all tasks side by side,
+// so that an I/O phase looks no name up and reads no cold string. Its files are spans of one
+// array of copies (not pointers into the map, whose nodes are scattered), in the order of the
+// task's lists.
 struct TaskPlan {
   std::uint32_t reads = 0;  // first read; the writes follow the reads, the deletes the writes
   std::uint32_t writes = 0;
@@ -324,8 +323,8 @@ class Runner {
     return any;
   }
 
-  // Until some host's memory changes. The hosts are observed only meanwhile: an observer
-  // called at every change cost 9 % of the instructions of a run of 1,000 pipelines.
+  // Until some host's memory changes. The hosts are observed only meanwhile, so that a
+  // sampled profile does not pay for a call at every change.
   Task<void> wait_for_memory_change() {
     Event changed(sim_);
     for (Host* host : host_list_) {

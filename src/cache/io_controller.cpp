@@ -41,7 +41,7 @@ Task<std::int64_t> IoController::write_back(std::int64_t amount, FileId excluded
 }
 
 IoController::IoController(Simulator& sim, PageCache& cache, const Memory& memory, FileTable& files, Flusher& flusher)
-    : sim_(&sim), cache_(&cache), memory_(&memory), files_(&files), flusher_(&flusher) {
+    : sim_(&sim), cache_(&cache), memory_(&memory), files_(&files), flusher_(&flusher), throttle_(sim, cache, flusher) {
   machine_at_rest();
   cache_->set_progress_hook([this] {
     if (progress_ && !progress_->triggered()) progress_->trigger();
@@ -53,7 +53,7 @@ bool IoController::throttles_writers() const noexcept {
   return cache_->settings().dirty_throttling && cache_->settings().background_writeback;
 }
 
-void IoController::machine_at_rest() { dirty_limit_.reset(cache_->dirty_limits().thresh); }
+void IoController::machine_at_rest() { throttle_.at_rest(); }
 
 Task<void> IoController::wait_for_progress() {
   if (!progress_ || progress_->triggered()) progress_.emplace(*sim_);
@@ -198,84 +198,24 @@ Task<void> IoController::write_to_cache(FileId file, std::int64_t bytes) {
   flusher_->notify_dirty();
 }
 
-// balance_dirty_pages (mm/page-writeback.c): the writer never writes back itself.
-// - Dirty + writeback under the setpoint (halfway between the freerun ceiling and the
-//   domain's limit, see DirtyLimit): it dirties pages at memory speed. (The kernel lets it
-//   run free under the freerun ceiling only, and paces it by its rate limit above; while
-//   that rate limit is adapted to the device, which it is in a steady state, the two meet
-//   at the setpoint.)
-// - Above the setpoint: its rate is the device's write bandwidth shared by the throttled
-//   writers, times the kernel's position ratio 1 + ((setpoint - dirty) / (limit -
-//   setpoint))^3 (pos_ratio_polynom), which is 1 at the setpoint and 0 at the limit: the
-//   writers together dirty data as fast as writeback cleans it when dirty sits at the
-//   setpoint, slower above it. The kernel pauses a writer every few pages, 200 ms at most
-//   (MAX_PAUSE); pcsim paces it per chunk, the model's unit of I/O: the writer pauses
-//   until it has earned the chunk at that rate, looking again at least every second, then
-//   writes it. (Pacing every 200 ms in 4 MiB granules instead changes the validation's
-//   Exp 2 writes by half a point, at five times the events.)
-IoController::ThrottledStep IoController::next_throttled_step(std::int64_t remaining, double device_bw, bool& throttled,
-                                                              double& credit) {
-  constexpr double kMaxPause = 1.0;
-  // Memory is handed out in pages; slivers of free memory left by copies in flight are not
-  // worth a copy: below this, the writer makes room first.
-  constexpr std::int64_t kMinCopy = 4 * 1024 * 1024;
-  // Copies in flight count: their pages are being dirtied.
-  const std::int64_t in_use = cache_->dirty_and_writeback() + cache_->reserved();
-  const PageCache::DirtyLimits limits = cache_->dirty_limits();
-  if (in_use > limits.freerun) dirty_limit_.update(sim_->now(), limits.thresh, in_use, throttled_writers_ > 0);
-  const std::int64_t limit = dirty_limit_.hard_limit(limits.thresh);
-  const std::int64_t setpoint = (limits.freerun + limit) / 2;
-  // Under the background threshold nothing would write back to pace the writer by: it goes
-  // on (a setpoint within a chunk of it only happens on tiny memories).
-  if (in_use + remaining <= setpoint || in_use <= limits.background) {
-    if (throttled) {
-      --throttled_writers_;
-      throttled = false;
-    }
-  } else {
-    if (!throttled) ++throttled_writers_;
-    throttled = true;
-    flusher_->notify_dirty();
-    if (credit < static_cast<double>(remaining)) {
-      const double x = static_cast<double>(setpoint - in_use) / static_cast<double>(std::max<std::int64_t>(limit - setpoint, 1));
-      const double pos_ratio = std::clamp(1.0 + x * x * x, 0.0, 2.0);
-      const double rate = device_bw * pos_ratio / static_cast<double>(throttled_writers_);
-      const double pause = rate > 0.0 ? std::min(kMaxPause, (static_cast<double>(remaining) - credit) / rate) : kMaxPause;
-      return {ThrottledStep::Pause, 0, pause, rate};
-    }
-  }
-  // Reclaim knows pages, not files: the file's own older clean pages may go too (with
-  // protect_files_being_written, only once no other clean data is left).
-  cache_->evict(remaining - cache_->free(), kNoFile);
-  const std::int64_t to_cache = std::min(remaining, cache_->free());
-  if (to_cache < std::min(remaining, kMinCopy)) return {ThrottledStep::MakeRoom, 0, 0.0, 0.0};
-  if (throttled) credit -= static_cast<double>(to_cache);
-  // As write_to_cache, without a coroutine of its own: the pages are taken now and hold the
-  // data (dirty, entry time the end of the copy) once the copy is done.
-  cache_->reserve(to_cache);
-  return {ThrottledStep::Copy, to_cache, 0.0, 0.0};
-}
-
 // The whole file is written here, chunk after chunk, rather than a coroutine per chunk: with
 // many writers each chunk would otherwise create a frame and resume two, all out of cache.
-// What is decided between two suspensions is decided by next_throttled_step: GCC keeps every
-// local of a coroutine in its frame, and every line of a frame is a miss when it resumes with
-// 10^5 writers in flight.
+// What is decided between two suspensions is decided by the writer's DirtyThrottle::Writer, so
+// that the frame holds little more than it.
 Task<IoResult> IoController::write_file_throttled(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool whole_file) {
   const double start = sim_->now();
   if (whole_file) cache_->set_being_written(file, true);
   const double device_bw = (*files_)[file].disk->write_bandwidth();
   for (std::int64_t offset = 0; offset < bytes; offset += chunk_size) {
     std::int64_t remaining = std::min(chunk_size, bytes - offset);
-    bool throttled = false;
-    double credit = 0.0;  // bytes this writer's pauses have earned for this chunk
+    DirtyThrottle::Writer writer(throttle_, device_bw);
     while (remaining > 0) {
-      const ThrottledStep step = next_throttled_step(remaining, device_bw, throttled, credit);
-      if (step.kind == ThrottledStep::Pause) {
+      const DirtyThrottle::Step step = writer.next(remaining);
+      if (step.kind == DirtyThrottle::Step::Pause) {
         co_await sim_->sleep(step.pause);
         cache_->tracer().throttle(sim_->now() - step.pause);
-        credit += step.rate * step.pause;
-      } else if (step.kind == ThrottledStep::MakeRoom) {
+        writer.paused(step);
+      } else if (step.kind == DirtyThrottle::Step::MakeRoom) {
         // Out of memory with nothing clean to reclaim: dirty data must be written first, as
         // reclaim does (pageout), or copies and writebacks in flight must land.
         if (co_await write_back(remaining - cache_->free(), kNoFile, FlushCause::Reclaim) == 0) {
@@ -289,7 +229,6 @@ Task<IoResult> IoController::write_file_throttled(FileId file, std::int64_t byte
         remaining -= step.to_cache;
       }
     }
-    if (throttled) --throttled_writers_;
   }
   if (whole_file) cache_->set_being_written(file, false);
   co_return file_result(start, sim_->now(), IoTally{.bytes = bytes, .cache_bytes = bytes, .disk_bytes = 0});

@@ -8,7 +8,7 @@
 // that the memory a chunk needs is taken from `free` at once and concurrent readers cannot
 // count on it too.
 
-#include "cache/dirty_limit.hpp"
+#include "cache/dirty_throttle.hpp"
 #include "cache/file_table.hpp"
 #include "cache/flusher.hpp"
 #include "cache/page_cache.hpp"
@@ -105,16 +105,6 @@ class IoController {
   Task<IoResult> write_file_throttled(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool whole_file);
   /// write_file chunk by chunk (not throttled), or straight to the disk.
   Task<IoResult> write_file_in_chunks(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool direct);
-  /// What a throttled writer with `remaining` bytes of its chunk to write does next: pause
-  /// (for `pause` seconds, earning `rate` bytes a second), make room by writing back, or
-  /// copy `to_cache` bytes, whose pages it has reserved.
-  struct ThrottledStep {
-    enum Kind : std::uint8_t { Pause, MakeRoom, Copy } kind;
-    std::int64_t to_cache;
-    double pause;
-    double rate;
-  };
-  ThrottledStep next_throttled_step(std::int64_t remaining, double device_bw, bool& throttled, double& credit);
   /// Copies `bytes` into the cache: the memory transfer, then a new dirty block.
   Task<void> write_to_cache(FileId file, std::int64_t bytes);
   Task<IoTally> write_chunk_writethrough(FileId file, std::int64_t chunk);
@@ -145,8 +135,7 @@ class IoController {
   Flusher* flusher_;
   std::int64_t flushed_ = 0;
   std::uint64_t chunks_ = 0;
-  std::int64_t throttled_writers_ = 0;  // writers waiting for dirty quota
-  DirtyLimit dirty_limit_;
+  DirtyThrottle throttle_;
   std::optional<Event> progress_;
 };
 

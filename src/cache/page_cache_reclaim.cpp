@@ -1,0 +1,127 @@
+// PageCache: reclaim (eviction of clean data) and the balance of the active and inactive lists.
+
+#include "cache/page_cache.hpp"
+
+#include "engine/check.hpp"
+
+#include <algorithm>
+#include <limits>
+
+namespace pagecache::cache {
+
+std::int64_t PageCache::evict(std::int64_t amount, FileId excluded) {
+  std::int64_t evicted = 0;
+  auto take = [&](BlockId id) {
+    const BlockId victim = blocks_[id].size > amount - evicted ? split_front(id, amount - evicted) : id;
+    evicted += blocks_[victim].size;
+    evicted_total_ += blocks_[victim].size;
+    destroy(victim);
+  };
+  // One reclaim pass; `spare_written` also skips the files open for writing.
+  auto pass = [&](bool spare_written) {
+    auto spared = [&](BlockId id) {
+      const FileId file = blocks_[id].file;
+      return file == excluded || (spare_written && files_[file].writers > 0);
+    };
+    for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
+      if (kind == ListKind::Active && settings_.reclaim_inactive_only) break;
+      if (spare_written) {
+        // The same victims in the same order as the walk below, without walking past the
+        // clean blocks of the files being written.
+        bool set_aside = false;
+        while (evicted < amount) {
+          const BlockId victim = next_unwritten_clean(kind, excluded, set_aside);
+          if (victim == kNoBlock) break;
+          take(victim);
+        }
+        // Only other files' blocks were taken: the excluded file's first clean block is the same.
+        if (set_aside) reclaimable(kind).lower(excluded, blocks_[file_clean_list(files_[excluded], kind).front()].order);
+        continue;
+      }
+      LruList& list = list_of(kind);
+      BlockId id = list.front(BlockState::Clean);
+      while (id != kNoBlock && evicted < amount) {
+        const BlockId next = list.next_in_state(id);
+        if (!spared(id)) take(id);
+        id = next;
+      }
+    }
+    if (settings_.reclaim_inactive_only) {
+      // Active list aging (mm/vmscan.c, shrink_active_list): with no clean inactive data left,
+      // the oldest active data is deactivated, and reclaimed if it is clean.
+      while (evicted < amount && !active_.empty()) {
+        const BlockId oldest = active_.front();
+        unlink(oldest);
+        blocks_[oldest].referenced = false;
+        append(oldest, ListKind::Inactive);
+        if (blocks_[oldest].state == BlockState::Clean && !spared(oldest)) take(oldest);
+      }
+    }
+  };
+  pass(settings_.protect_files_being_written);
+  if (evicted < amount && settings_.protect_files_being_written) pass(false);
+  settle();
+  tracer_.eviction(evicted);
+  return evicted;
+}
+
+BlockId PageCache::next_unwritten_clean(ListKind kind, FileId excluded, bool& set_aside) {
+  // The least recently used clean block, unless spared; if it is, the first clean block of
+  // the top file of reclaimable_, once the top's key is that block's.
+  const BlockId front = list_of(kind).front(BlockState::Clean);
+  if (front == kNoBlock) return kNoBlock;
+  const FileId front_file = blocks_[front].file;
+  if (front_file != excluded && files_[front_file].writers == 0) return front;
+  FileHeap& files = reclaimable(kind);
+  while (!files.empty()) {
+    const FileHeap::Entry top = files.top();
+    FileEntry& entry = files_[top.file];
+    FileCleanOrder& clean = file_clean_list(entry, kind);
+    if (clean.empty() || entry.writers > 0) {
+      files.pop();
+    } else if (blocks_[clean.front()].order != top.key) {
+      files.raise_top(blocks_[clean.front()].order);
+    } else if (top.file == excluded) {
+      files.pop();
+      set_aside = true;
+    } else {
+      return clean.front();
+    }
+  }
+  return kNoBlock;
+}
+
+void PageCache::set_being_written(FileId file, bool writing) {
+  FileEntry& entry = file_entry(file);
+  const bool was_written = entry.writers > 0;
+  entry.writers += writing ? 1 : -1;
+  PC_ASSERT(entry.writers >= 0);
+  if (!settings_.protect_files_being_written || was_written == (entry.writers > 0)) return;
+  // Its last write ended: the file is among those eviction may take from while sparing the
+  // files being written. (Its first write started: it leaves them when it comes to the top.)
+  if (!writing) {
+    for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
+      const FileCleanOrder& clean = file_clean_list(entry, kind);
+      if (!clean.empty()) reclaimable(kind).lower(file, blocks_[clean.front()].order);
+    }
+  }
+  if (checking_) check_invariants();
+}
+
+void PageCache::balance() {
+  const std::int64_t excess = active_.bytes() - 2 * inactive_.bytes();
+  if (excess <= 0) return;
+  // Moving x bytes leaves active - x <= 2 (inactive + x): x >= excess / 3, rounded up.
+  std::int64_t to_move = (excess + 2) / 3;
+  while (to_move > 0) {
+    const BlockId front = active_.front();
+    PC_ASSERT(front != kNoBlock);
+    const BlockId id = blocks_[front].size > to_move ? split_front(front, to_move) : front;
+    to_move -= blocks_[id].size;
+    unlink(id);
+    blocks_[id].referenced = false;
+    append(id, ListKind::Inactive);
+  }
+}
+
+}  // namespace pagecache::cache

@@ -1,0 +1,160 @@
+// PageCache: dirty data taken for writing back (by amount, by file, by age) and returned clean.
+
+#include "cache/page_cache.hpp"
+
+#include "engine/check.hpp"
+
+#include <algorithm>
+#include <limits>
+
+namespace pagecache::cache {
+
+std::int64_t PageCache::flush(std::int64_t amount, FileId excluded, std::vector<Flushed>& out) {
+  std::int64_t flushed = 0;
+  const std::uint64_t token = next_token_++;
+  for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
+    LruList& list = list_of(kind);
+    BlockId id = list.front(BlockState::Dirty);
+    while (id != kNoBlock && flushed < amount) {
+      const BlockId next = list.next_in_state(id);
+      if (blocks_[id].file != excluded) {
+        const bool partial = blocks_[id].size > amount - flushed;
+        const BlockId target = partial ? split_front(id, amount - flushed) : id;
+        const Block& block = blocks_[target];
+        flushed += block.size;
+        if (!out.empty() && out.back().file == block.file && out.back().token == token) out.back().bytes += block.size;
+        else out.push_back({block.file, block.size, token});
+        start_writeback(target, token);
+        if (partial && !settings_.flush_splits_in_place) {
+          // WRENCH-cache moves the flushed part of a split block to the MRU end of the
+          // inactive list.
+          unlink(target);
+          append(target, ListKind::Inactive);
+        }
+      }
+      id = next;
+    }
+  }
+  settle();
+  return flushed;
+}
+
+std::int64_t PageCache::flush_file(FileId file, std::vector<Flushed>& out) {
+  std::int64_t flushed = 0;
+  const std::uint64_t token = next_token_++;
+  FileEntry& entry = file_entry(file);
+  for (FileOrder* flist : {&entry.inactive, &entry.active}) {
+    for (BlockId id = flist->front(); id != kNoBlock; id = FileOrder::next(blocks_, id)) {
+      if (blocks_[id].state != BlockState::Dirty) continue;
+      flushed += blocks_[id].size;
+      start_writeback(id, token);
+    }
+  }
+  if (flushed > 0) out.push_back({file, flushed, token});
+  settle();
+  return flushed;
+}
+
+std::int64_t PageCache::writeback(FileId file) const noexcept {
+  if (file >= files_.size()) return 0;
+  std::int64_t bytes = 0;
+  for (const FileOrder* flist : {&files_[file].inactive, &files_[file].active}) {
+    for (const Block& block : flist->range(blocks_)) {
+      if (block.state == BlockState::Writeback) bytes += block.size;
+    }
+  }
+  return bytes;
+}
+
+void PageCache::drop_file(FileId file) {
+  FileEntry& entry = file_entry(file);
+  for (FileOrder* flist : {&entry.inactive, &entry.active}) {
+    while (!flist->empty()) {
+      const BlockId id = flist->front();
+      PC_ASSERT_MSG(blocks_[id].state != BlockState::Writeback, "a file is dropped while being written back");
+      destroy(id);
+    }
+  }
+  settle();
+  if (progress_hook_) progress_hook_();
+}
+
+PageCache::Flushed PageCache::take_for_writeback(BlockId id) {
+  const Flushed taken{blocks_[id].file, blocks_[id].size, next_token_++};
+  start_writeback(id, taken.token);
+  settle();
+  return taken;
+}
+
+PageCache::Flushed PageCache::flush_expired_block(double cutoff) {
+  // Nothing expired if the oldest dirty data has not: O(1) for the flusher's usual tick.
+  if (dirty_by_age_.empty() || blocks_[dirty_by_age_.front()].entry_time > cutoff) return {kNoFile, 0};
+  if (settings_.expire_oldest_first) return take_for_writeback(dirty_by_age_.front());
+  // The least recently used expired block, inactive list first; a search under the cutoff of
+  // the previous one resumes where that one stopped.
+  BlockId id = kNoBlock;
+  if (expiry_scan_.after != kNoBlock && expiry_scan_.cutoff == cutoff) {
+    id = next_dirty(expiry_scan_.after);
+  } else {
+    expiry_scan_ = {};
+    id = inactive_.front(BlockState::Dirty);
+    if (id == kNoBlock) id = active_.front(BlockState::Dirty);
+  }
+  for (; id != kNoBlock; id = next_dirty(id)) {
+    if (blocks_[id].entry_time <= cutoff) return take_for_writeback(id);
+    expiry_scan_ = {id, cutoff};
+  }
+  return {kNoFile, 0};
+}
+
+BlockId PageCache::next_dirty(BlockId id) const noexcept {
+  const Block& block = blocks_[id];
+  BlockId next = (block.list == ListKind::Inactive ? inactive_ : active_).next_in_state(id);
+  if (next == kNoBlock && block.list == ListKind::Inactive) next = active_.front(BlockState::Dirty);
+  return next;
+}
+
+void PageCache::on_dirty_linked(BlockId id) noexcept {
+  const Block& block = blocks_[id];
+  if (expiry_scan_.after != kNoBlock && block.state == BlockState::Dirty && block.entry_time <= expiry_scan_.cutoff) {
+    expiry_scan_ = {};
+  }
+}
+
+void PageCache::on_dirty_unlinked(BlockId id) noexcept {
+  if (id == expiry_scan_.after) expiry_scan_ = {};
+}
+
+void PageCache::end_writeback(const Flushed& taken) {
+  if (taken.bytes == 0) return;
+  // The blocks of one write carry its token (splits pass it on) and all belong to its file.
+  // They are looked for among the file's blocks or among all blocks in writeback, whichever
+  // are fewer: the file's when many writes are in flight at once (many writers flushing), the
+  // blocks in writeback when one file holds many blocks. Both visit the blocks in LRU order,
+  // inactive list first, so the lists end up the same either way.
+  auto end = [&](BlockId id) {
+    const Block& block = blocks_[id];
+    if (block.state != BlockState::Writeback || block.writeback_batch != taken.token) return;
+    set_state(id, BlockState::Clean);
+  };
+  FileEntry& entry = files_[taken.file];
+  const std::size_t in_writeback = inactive_.blocks_in(BlockState::Writeback) + active_.blocks_in(BlockState::Writeback);
+  if (entry.blocks <= in_writeback) {
+    for (FileOrder* flist : {&entry.inactive, &entry.active}) {
+      for (BlockId id = flist->front(); id != kNoBlock; id = FileOrder::next(blocks_, id)) end(id);
+    }
+  } else {
+    for (LruList* list : {&inactive_, &active_}) {
+      BlockId id = list->front(BlockState::Writeback);
+      while (id != kNoBlock) {
+        const BlockId next = list->next_in_state(id);
+        end(id);
+        id = next;
+      }
+    }
+  }
+  settle();
+  if (progress_hook_) progress_hook_();
+}
+
+}  // namespace pagecache::cache

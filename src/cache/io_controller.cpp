@@ -105,12 +105,12 @@ Task<std::int64_t> IoController::room_for_read(FileId file, std::int64_t bytes, 
   const FileInfo& info = (*files_)[file];
   const FileId spared = cache_->settings().reclaim_may_take_file_being_read ? kNoFile : file;
   for (;;) {
-    const std::int64_t uncached = std::clamp<std::int64_t>(info.size - cache_->cached(file), 0, bytes);
-    co_await make_room(anonymous + uncached, spared, file, verb);
-    // While make_room waited, others may have evicted some of this file's data: then more of
-    // the chunk comes from the device, and needs room too.
-    const std::int64_t now_uncached = std::clamp<std::int64_t>(info.size - cache_->cached(file), 0, bytes);
-    if (anonymous + now_uncached <= cache_->free()) co_return now_uncached;
+    // Eviction alone, if it is enough; else writeback and waiting, then the same again: while
+    // make_room waited, others may have evicted some of this file's data, and more of the
+    // chunk then comes from the device, and needs room too.
+    const std::int64_t uncached = room_for_read_at_once(file, info.size, bytes, anonymous);
+    if (uncached >= 0) co_return uncached;
+    co_await make_room(anonymous + std::clamp<std::int64_t>(info.size - cache_->cached(file), 0, bytes), spared, file, verb);
   }
 }
 

@@ -298,8 +298,8 @@ Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_siz
     if (!direct && local) {
       // One chunk (paper Algorithm 2): room for the application's copy and the new cache copy
       // of what is not cached, then the device and cache reads. Here rather than in a
-      // coroutine of its own: a chunk read is the simulator's most frequent operation, and a
-      // frame fewer per chunk is a cache miss less. The application's buffer is fresh memory:
+      // coroutine of its own: a chunk read is the simulator's most frequent operation. The
+      // application's buffer is fresh memory:
       // the reader faults in and zeroes each page it copies into; from the disk that overlaps
       // the device's transfer (readahead), from the cache it adds to the copy.
       std::int64_t disk_read = room_for_read_at_once(file, size, chunk, chunk);

@@ -49,8 +49,8 @@ class IoController {
   /// copy stays in application memory until released); `direct`: bypassing the page cache
   /// (O_DIRECT: from the disk into the application's buffer).
   /// Its result is Host::read_file's: Host hands this task out as its own, a frame fewer per
-  /// file read (with 10^5 applications each frame made is a few cache misses). Not a coroutine
-  /// itself: it checks the request (ConfigError at the call) and hands out the read.
+  /// file read. Not a coroutine itself: it checks the request (ConfigError at the call) and
+  /// hands out the read.
   Task<IoResult> read_file(FileId file, std::int64_t chunk_size, bool direct = false);
   /// Writes `bytes` to `file` in chunks of `chunk_size` bytes; `direct`: straight to the disk.
   /// Not a coroutine itself: it checks the request as read_file does and hands out the task

@@ -1,7 +1,6 @@
 // Coroutine frames: every Task and process frame comes from here (TaskPromiseBase's operator
 // new). A simulation creates and destroys a frame for every chunk it reads or writes, many
-// levels deep; recycling them through per-size free lists instead of malloc took a fifth of
-// the instructions of the scaling harness away, and reuses frames that are still in cache.
+// levels deep; per-size free lists recycle them without malloc, and reuse frames still in cache.
 //
 // One pool per thread, no locking. Sizes are rounded up to 64 bytes; frames above 4 KiB go to
 // the global allocator. The free lists keep what they hold until the thread ends.

@@ -51,13 +51,9 @@ void write_file(const fs::path& path, const std::string& text) {
 
 }  // namespace
 
-// A CSV file written as it is formatted: rows go straight into one small fmt::memory_buffer
-// (a string made and appended per row, or fmt writing into a std::string a character at a
-// time, was nearly half the instructions of a whole `pcsim run` of Exp 2 with 32 pipelines,
-// for its cache.csv), which is written out and reused whenever it fills. The whole file in
-// memory, in a buffer grown by doubling and then copied into a string, touched three times its
-// size in fresh pages: a third of that run's page faults, which on a virtual machine cost
-// microseconds each.
+// A CSV file written as it is formatted: rows go straight into one small fmt::memory_buffer,
+// written out and reused whenever it fills, so that neither a string per row nor the whole
+// file is ever made in memory.
 class CsvFile {
  public:
   explicit CsvFile(const fs::path& path) : path_(path), file_(std::fopen(path.c_str(), "wb")) {
@@ -145,7 +141,7 @@ void write_memory_csv(const fs::path& path, const RunResult& r) {
 
 void write_cache_csv(const fs::path& path, const RunResult& r) {
   // Every row repeats a phase's app, task and phase and a file's name: each is escaped once
-  // here, not once per row (scanning them on every row cost a quarter more instructions).
+  // here, not once per row.
   std::vector<std::string> phase_fields;
   phase_fields.reserve(r.timeline.size());
   for (const PhaseRow& p : r.timeline) phase_fields.push_back(csv_fields({p.app, p.task, p.phase}));

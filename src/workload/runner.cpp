@@ -386,10 +386,9 @@ class Runner {
   }
 
   // One I/O phase: every file read (or written) whole, one after the other. Returns the bytes
-  // moved; its row goes straight into the timeline when it ends. GCC keeps every local of a
-  // coroutine in its frame, and with 10^5 applications every line of a frame is a cache miss
-  // when it is made and when it resumes: the frame holds the tallies, not the row and its
-  // strings, and one co_await serves reads and writes.
+  // moved; its row is reported when it ends. GCC keeps every local of a coroutine in its
+  // frame: the frame holds the tallies, not the row and its strings, and one co_await serves
+  // reads and writes.
   Task<std::int64_t> io_phase(const std::string& app, const TaskSpec& task, const TaskPlan& plan, Host& host, bool reading) {
     const double start = sim_.now();
     IoResult sum;

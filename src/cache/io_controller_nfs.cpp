@@ -1,0 +1,71 @@
+// IoController: NFS. A client reads what its cache lacks from the server (server disk or cache,
+// then the route) into its own cache; it writes through to the server, which caches as its own
+// settings say.
+
+#include "cache/io_controller.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace pagecache::cache {
+
+Task<IoTally> IoController::read_chunk_remote(FileId file, std::int64_t chunk) {
+  // A client read (NFS): what this host's cache lacks comes from the server, over the link,
+  // and is kept in this host's cache (clean); the rest is a hit in this host's cache.
+  const FileInfo& info = (*files_)[file];
+  std::int64_t remote_read = room_for_read_at_once(file, info.size, chunk, chunk);
+  if (remote_read < 0) remote_read = co_await room_for_read(file, chunk, chunk, "reading");
+  const std::int64_t cache_read = chunk - remote_read;
+  take_chunk(file, chunk, remote_read);
+  if (remote_read > 0) co_await serve_remote(file, remote_read);
+  if (cache_read > 0) co_await memory_->read_into_fresh(cache_read);
+  // From this host's point of view, data from the server is not from its own cache.
+  co_return IoTally{.bytes = chunk, .cache_bytes = cache_read, .disk_bytes = remote_read};
+}
+
+Task<void> IoController::serve_remote(FileId file, std::int64_t bytes) {
+  // The data lands in this host's memory (its cache, or with O_DIRECT the application's
+  // buffer), fresh memory either way.
+  const FileInfo& info = (*files_)[file];
+  FlowSpec client_copy = memory_->write_spec(bytes);
+  client_copy.bound = std::min(client_copy.bound, memory_->fresh_copy_rate());
+  co_await info.remote.server->serve_read(info.remote.server_file, bytes, *info.remote.route, client_copy);
+}
+
+Task<void> IoController::serve_read(FileId file, std::int64_t bytes, const Route& route, FlowSpec client_copy) {
+  const FileInfo& info = (*files_)[file];
+  std::int64_t disk_read = room_for_read_at_once(file, info.size, bytes, 0);
+  if (disk_read < 0) disk_read = co_await room_for_read(file, bytes, 0, "serving");
+  const std::int64_t cache_read = bytes - disk_read;
+  cache_->add_read(file, disk_read, sim_->now());
+  cache_->reaccess(file, cache_read, sim_->now());
+  // Each part is one flow through the source device, the link and the client's memory: the
+  // most loaded of them sets the pace.
+  if (disk_read > 0) {
+    FlowSpec spec = client_copy;
+    spec.work = static_cast<double>(disk_read);
+    co_await route.send_through(spec.through(info.disk->read_usage()));
+  }
+  if (cache_read > 0) {
+    const FlowSpec server_copy = memory_->read_spec(cache_read);
+    FlowSpec spec = client_copy;
+    spec.work = static_cast<double>(cache_read);
+    spec.bound = std::min(spec.bound, server_copy.bound);
+    co_await route.send_through(spec.through(server_copy.usages[0]));
+  }
+}
+
+Task<void> IoController::serve_write(FileId file, std::int64_t bytes, const Route& route) {
+  const FileInfo& info = (*files_)[file];
+  if (cache_->settings().write_mode == WriteMode::Writethrough) {
+    co_await route.send_through(FlowSpec{.work = static_cast<double>(bytes)}.through(info.disk->write_usage()));
+    cache_->evict(bytes - cache_->free(), file);
+    cache_->add_clean(file, std::min(bytes, cache_->free()), sim_->now());
+    co_return;
+  }
+  co_await route.send(bytes);
+  co_await write_chunk_writeback(file, bytes);
+}
+
+}  // namespace pagecache::cache

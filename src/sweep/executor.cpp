@@ -20,6 +20,7 @@
 #include <new>
 #include <sstream>
 #include <thread>
+#include <unordered_set>
 #include <vector>
 
 namespace pagecache::sweep {
@@ -107,7 +108,21 @@ void prepare_out_dir(const Plan& plan, const std::string& out_dir) {
     std::stringstream there;
     there << in.rdbuf();
     if (there.str() == text) return;
-    throw ConfigError(fmt::format("{}: {} holds the results of another sweep (its sweep-plan.json differs): give another --out", out_dir, path.string()));
+    // A sweep grown by new axis values (its runs keep their ids) goes on in the same folder;
+    // one that drops a run of the folder's sweep would leave results merge cannot place.
+    const Plan before = Plan::from_json(there.str(), path.string());
+    if (!plan.same_base(before)) {
+      throw ConfigError(fmt::format("{}: holds the results of a sweep of another base scenario ({}): give another --out", out_dir, path.string()));
+    }
+    std::unordered_set<std::string> now;
+    for (std::size_t i = 0; i < plan.size(); ++i) now.insert(plan.run(i).id);
+    for (std::size_t i = 0; i < before.size(); ++i) {
+      const Run run = before.run(i);
+      if (now.count(run.id) == 0) {
+        throw ConfigError(fmt::format("{}: holds the results of another sweep, with runs this one lacks (run {}, of {}): give another --out",
+                                      out_dir, run.id, path.string()));
+      }
+    }
   }
   report::replace_file(path.string(), text);  // written whole, then renamed: concurrent shards write the same bytes
 }

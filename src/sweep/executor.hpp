@@ -47,8 +47,9 @@ struct SweepOutcome {
 /// The file a shard writes: out_dir/results-I-of-N.jsonl.
 std::string results_path(const std::string& out_dir, const Shard& shard);
 
-/// Makes out_dir and writes its sweep-plan.json, or checks that the one there is this plan's
-/// (ConfigError if not, naming it).
+/// Makes out_dir and writes its sweep-plan.json. A sweep-plan.json there already is replaced
+/// if every run it lists is one of this plan's (the sweep grew: new axis values keep the old
+/// runs' ids, and their results stay valid); otherwise ConfigError, naming a run it would lose.
 void prepare_out_dir(const Plan& plan, const std::string& out_dir);
 
 /// Writes out_dir/sweep-plan.json (or checks that the one there is this plan's: ConfigError if

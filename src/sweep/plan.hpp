@@ -64,6 +64,11 @@ class Plan {
   /// What defines the sweep (base and runs), as JSON: two plans with the same text make the
   /// same runs.
   std::string json() const;
+  /// Whether `other` runs the same base scenario (file, workflow, profile): then runs of the
+  /// two with one id are the same run.
+  bool same_base(const Plan& other) const noexcept {
+    return scenario_ == other.scenario_ && workflow_text_ == other.workflow_text_ && profile_ == other.profile_;
+  }
   /// How to name the base on a `pcsim run` command line (the arguments before --set).
   std::string base_description() const;
 

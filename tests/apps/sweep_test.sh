@@ -51,6 +51,24 @@ for run in "$work/kept/runs"/*; do
   [ -s "$run/summary.json" ] && [ -s "$run/timeline.csv" ] || fail "--keep-outputs: $run lacks its outputs"
 done
 
+# A sweep grown by an axis value goes on in the same folder: only the new runs run.
+grown="$work/grown.toml"
+sed 's/values = \["128 GB", "256 GB"\]/values = ["128 GB", "256 GB", "192 GB"]/; s|"../paper/exp2.toml"|"'"$source_dir"'/scenarios/paper/exp2.toml"|' "$exp2" >"$grown"
+cp -r "$work/a" "$work/a2"
+"$pcsim" sweep run "$grown" --out "$work/a2" --jobs 2 >"$work/grown.out"
+grep -q "64 runs done (0 failed), 128 already there" "$work/grown.out" || fail "the grown sweep: $(cat "$work/grown.out")"
+"$pcsim" sweep merge "$work/a2" >/dev/null
+[ "$(wc -l <"$work/a2/results.csv")" = 193 ] || fail "the grown sweep: $(wc -l <"$work/a2/results.csv") lines, expected 193"
+# A different sweep into a folder of this one's is refused, naming a run it would lose.
+status=0
+"$pcsim" sweep run "$work/two.toml" --out "$work/a" --quiet 2>"$work/other.err" || status=$?
+[ "$status" = 2 ] && grep -q "another base scenario\|runs this one lacks" "$work/other.err" || fail "another sweep into (a)'s folder: exit $status, $(cat "$work/other.err")"
+# The same runs of another base (the linux profile) are other runs: refused too.
+sed 's/^scenario = .*/&\nprofile = "linux"/' "$grown" >"$work/linux.toml"
+status=0
+"$pcsim" sweep run "$work/linux.toml" --out "$work/a2" --quiet 2>"$work/linux.err" || status=$?
+[ "$status" = 2 ] && grep -q "another base scenario" "$work/linux.err" || fail "another base into (a2): exit $status, $(cat "$work/linux.err")"
+
 # (c) A shard killed while it runs, then run again: every run once. Runs of 1 MB chunks take
 # long enough to kill the shard part way.
 cat >"$work/slow.toml" <<SWEEP

@@ -16,6 +16,7 @@
 #include "report/trace_json.hpp"
 #include "scenario/closest.hpp"
 #include "validate/validation.hpp"
+#include "status_line.hpp"
 #include "sweep_command.hpp"
 
 #include <CLI/CLI.hpp>
@@ -127,26 +128,17 @@ int unknown_command(const std::string& typed, const std::vector<std::string>& co
 // events per second, at most five times a second, on one line of stderr.
 class Progress {
  public:
-  explicit Progress(bool enabled) : enabled_(enabled && ::isatty(STDERR_FILENO) == 1) {}
+  explicit Progress(bool enabled) : line_(enabled, std::chrono::milliseconds(500)) {}
   void update(double sim_time, std::uint64_t events) {
-    if (!enabled_) return;
-    const auto now = std::chrono::steady_clock::now();
-    if (now - start_ < std::chrono::milliseconds(500) || now - last_ < std::chrono::milliseconds(200)) return;
-    last_ = now;
-    const double wall = std::chrono::duration<double>(now - start_).count();
-    fmt::print(stderr, "\rsimulated {:.1f} s, {} events, {:.2f} M events/s   ", sim_time, events,
-               wall > 0 ? static_cast<double>(events) / wall / 1e6 : 0.0);
-    shown_ = true;
+    if (const auto wall = line_.due()) {
+      line_.show(fmt::format("simulated {:.1f} s, {} events, {:.2f} M events/s", sim_time, events,
+                             *wall > 0 ? static_cast<double>(events) / *wall / 1e6 : 0.0));
+    }
   }
-  void clear() {
-    if (shown_) fmt::print(stderr, "\r{:60}\r", "");
-  }
+  void clear() { line_.clear(); }
 
  private:
-  bool enabled_;
-  bool shown_ = false;
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-  std::chrono::steady_clock::time_point last_{};
+  pcsim::StatusLine line_;
 };
 
 void print_warnings(const pagecache::Scenario& scenario) {

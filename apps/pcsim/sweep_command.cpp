@@ -1,5 +1,7 @@
 #include "sweep_command.hpp"
 
+#include "status_line.hpp"
+
 #include "sweep/executor.hpp"
 #include "sweep/merge.hpp"
 #include "sweep/plan.hpp"
@@ -33,27 +35,18 @@ std::string absolute(const std::string& path) { return fs::absolute(path).lexica
 // second, on one line of stderr.
 class SweepProgress {
  public:
-  explicit SweepProgress(bool enabled) : enabled_(enabled && ::isatty(STDERR_FILENO) == 1) {}
+  explicit SweepProgress(bool enabled) : line_(enabled) {}
   void update(std::size_t done, std::size_t total) {
-    if (!enabled_) return;
-    const auto now = std::chrono::steady_clock::now();
-    if (done < total && now - last_ < std::chrono::milliseconds(200)) return;
-    last_ = now;
-    const double wall = std::chrono::duration<double>(now - start_).count();
-    const double rate = wall > 0 ? static_cast<double>(done) / wall : 0.0;
-    const double left = rate > 0 ? static_cast<double>(total - done) / rate : 0.0;
-    fmt::print(stderr, "\r{} of {} runs, {:.1f} runs/s, {:.0f} s left   ", done, total, rate, left);
-    shown_ = true;
+    if (const auto wall = line_.due(done == total)) {
+      const double rate = *wall > 0 ? static_cast<double>(done) / *wall : 0.0;
+      const double left = rate > 0 ? static_cast<double>(total - done) / rate : 0.0;
+      line_.show(fmt::format("{} of {} runs, {:.1f} runs/s, {:.0f} s left", done, total, rate, left));
+    }
   }
-  void clear() {
-    if (shown_) fmt::print(stderr, "\r{:60}\r", "");
-  }
+  void clear() { line_.clear(); }
 
  private:
-  bool enabled_;
-  bool shown_ = false;
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-  std::chrono::steady_clock::time_point last_{};
+  StatusLine line_;
 };
 
 }  // namespace

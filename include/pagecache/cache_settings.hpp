@@ -2,11 +2,15 @@
 // CacheSettings: how one host's page cache behaves (MODEL.md §3, §6).
 //
 // The kernel knobs keep the kernel's names and are stored in SI units (ratios as fractions,
-// times in seconds). The remaining switches choose between the kernel's behaviour and the
-// way WRENCH-cache, the paper's implementation, reads the paper (../shared/design/
-// WRENCH-NOTES.md). CacheSettings::paper() reproduces WRENCH-cache (the `paper` profile);
-// CacheSettings::kernel() follows the kernel (the `linux` profile; not named linux(), which
-// GNU dialects of C++ predefine as a macro).
+// times in seconds). `policy` names the model of the decisions in which the kernel and
+// WRENCH-cache, the paper's implementation, differ (../shared/design/WRENCH-NOTES.md); the
+// switches are the parameters of the `kernel` policy, each turning one of the kernel's
+// behaviours into WRENCH-cache's. CacheSettings::paper() reproduces WRENCH-cache (the `paper`
+// profile, policy `wrench_cache`); CacheSettings::kernel() follows the kernel (the `linux`
+// profile; not named linux(), which GNU dialects of C++ predefine as a macro).
+
+#include <string>
+#include <vector>
 
 namespace pagecache {
 
@@ -23,6 +27,10 @@ struct CacheSettings {
   /// vm.dirty_writeback_centisecs, in seconds: period of the flusher.
   double writeback_interval = 5.0;
 
+  /// The decisions' model: "kernel", "wrench_cache" or "lru" (src/cache/policies/).
+  std::string policy = "kernel";
+
+  // --- Parameters of the kernel policy (the others ignore them) ----------------------------
   /// Background writeback (mm/page-writeback.c, wb_over_bg_thresh): above
   /// dirty_background_ratio of dirtyable memory the flusher writes the oldest dirty data at
   /// once, concurrently with the writers, until dirty data is back under that threshold. Off,
@@ -74,6 +82,7 @@ struct CacheSettings {
   /// expiry, and WRENCH-cache's reading of the paper where the paper is ambiguous.
   static CacheSettings paper() {
     CacheSettings s;
+    s.policy = "wrench_cache";
     s.dirty_ratio = 0.4;
     s.dirty_background_ratio = 0.1;
     s.dirty_expire = 30.0;
@@ -93,5 +102,8 @@ struct CacheSettings {
   /// The kernel's behaviour with its default knobs.
   static CacheSettings kernel() { return CacheSettings{}; }
 };
+
+/// The names CacheSettings::policy may take, in the order they were registered.
+std::vector<std::string> cache_policy_names();
 
 }  // namespace pagecache

@@ -12,8 +12,7 @@ void Flusher::start() {
 }
 
 bool Flusher::background_due() const {
-  const CacheSettings& s = cache_->settings();
-  if (!s.background_writeback || cache_->dirty() == 0) return false;
+  if (!cache_->policy().background_writeback() || cache_->dirty() == 0) return false;
   return cache_->dirty_and_writeback() > cache_->dirty_limits().background;
 }
 

@@ -48,10 +48,7 @@ IoController::IoController(Simulator& sim, PageCache& cache, const Memory& memor
   });
 }
 
-bool IoController::throttles_writers() const noexcept {
-  // Throttled writers wait for the flusher's background writeback; without it, they flush.
-  return cache_->settings().dirty_throttling && cache_->settings().background_writeback;
-}
+bool IoController::throttles_writers() const noexcept { return cache_->policy().throttles_writers(); }
 
 void IoController::machine_at_rest() { throttle_.at_rest(); }
 
@@ -92,7 +89,7 @@ Task<void> IoController::hold_memory(std::int64_t bytes) {
 
 std::int64_t IoController::room_for_read_at_once(FileId file, std::int64_t file_size, std::int64_t bytes, std::int64_t anonymous) {
   // make_room's first pass when it needs no writeback: evict, and done if that was enough.
-  const FileId spared = cache_->settings().reclaim_may_take_file_being_read ? kNoFile : file;
+  const FileId spared = cache_->policy().reclaim_may_take_file_being_read() ? kNoFile : file;
   const std::int64_t uncached = std::clamp<std::int64_t>(file_size - cache_->cached(file), 0, bytes);
   const std::int64_t required = anonymous + uncached;
   if (required - cache_->free() - cache_->evictable() > 0) return -1;
@@ -103,7 +100,7 @@ std::int64_t IoController::room_for_read_at_once(FileId file, std::int64_t file_
 
 Task<std::int64_t> IoController::room_for_read(FileId file, std::int64_t bytes, std::int64_t anonymous, const char* verb) {
   const FileInfo& info = (*files_)[file];
-  const FileId spared = cache_->settings().reclaim_may_take_file_being_read ? kNoFile : file;
+  const FileId spared = cache_->policy().reclaim_may_take_file_being_read() ? kNoFile : file;
   for (;;) {
     // Eviction alone, if it is enough; else writeback and waiting, then the same again: while
     // make_room waited, others may have evicted some of this file's data, and more of the

@@ -21,7 +21,10 @@ bool PageCache::checking_by_default() {
 }
 
 PageCache::PageCache(std::int64_t total_memory, const CacheSettings& settings)
-    : settings_(settings), total_(total_memory) {
+    : PageCache(total_memory, settings, make_policy(settings)) {}
+
+PageCache::PageCache(std::int64_t total_memory, const CacheSettings& settings, std::unique_ptr<Policy> policy)
+    : settings_(settings), policy_(std::move(policy)), index_clean_(policy_->spares_files_being_written()), total_(total_memory) {
   if (total_memory <= 0) throw ConfigError(fmt::format("memory size must be > 0, got {} bytes", total_memory));
 }
 
@@ -43,12 +46,6 @@ std::int64_t PageCache::writeback() const noexcept {
   return inactive_.bytes(BlockState::Writeback) + active_.bytes(BlockState::Writeback);
 }
 
-std::int64_t PageCache::dirtyable() const noexcept {
-  // Copies into the cache in flight (reserved) are file pages already, as the kernel's pages
-  // are dirtied one by one while the copy runs.
-  return settings_.dirtyable_memory ? free() + cached() + reserved_ : free() + cached() - dirty() - writeback();
-}
-
 std::int64_t PageCache::dirty_and_writeback() const noexcept { return dirty() + writeback(); }
 
 PageCache::DirtyLimits PageCache::dirty_limits() const noexcept {
@@ -60,10 +57,6 @@ PageCache::DirtyLimits PageCache::dirty_limits() const noexcept {
                      : l.thresh / 2;
   l.freerun = (l.background + l.thresh) / 2;
   return l;
-}
-
-std::int64_t PageCache::evictable() const noexcept {
-  return settings_.reclaim_inactive_only ? inactive_.bytes(BlockState::Clean) : inactive_.bytes();
 }
 
 void PageCache::allocate_anonymous(std::int64_t bytes) {
@@ -219,7 +212,7 @@ BlockId PageCache::split_front(BlockId id, std::int64_t head_size) {
   file_list(entry, block.list).insert_after(blocks_, id, tail_id);
   ++entry.blocks;
   if (tail.state == BlockState::Dirty) dirty_by_age_.insert_after(blocks_, id, tail_id);
-  if (tail.state == BlockState::Clean && settings_.protect_files_being_written) {
+  if (tail.state == BlockState::Clean && index_clean_) {
     file_clean_list(entry, block.list).insert_after(blocks_, id, tail_id);
   }
   // Per-file byte counters are unchanged: the file holds the same bytes in the same list.
@@ -227,7 +220,7 @@ BlockId PageCache::split_front(BlockId id, std::int64_t head_size) {
 }
 
 void PageCache::settle() {
-  if (settings_.balance_after_every_change) balance();
+  if (policy_->balances_after_every_change()) balance();
   if (checking_) check_invariants();
   if (observer_) observer_();
 }
@@ -262,7 +255,7 @@ void PageCache::add_clean(FileId file, std::int64_t bytes, double now) { add_new
 
 void PageCache::add_read(FileId file, std::int64_t bytes, double now) {
   // The read that brought the data in is its first touch.
-  add_new(file, bytes, BlockState::Clean, now, settings_.two_touch_activation);
+  add_new(file, bytes, BlockState::Clean, now, policy_->read_is_first_touch());
 }
 
 void PageCache::add_dirty(FileId file, std::int64_t bytes, double now) {
@@ -288,34 +281,34 @@ void PageCache::reaccess(FileId file, std::int64_t bytes, double now) {
   PC_ASSERT(bytes >= 0 && bytes <= cached(file));
   FileEntry& entry = file_entry(file);
   std::int64_t left = bytes;
-  std::int64_t merged_clean = 0;
-  // Activation: clean data read is merged into one new block; dirty (or writeback) data moves
-  // on its own, keeping its entry time.
-  auto activate = [&](BlockId id) {
+  std::int64_t merged_clean[2] = {0, 0};  // by the list it goes to
+  // A block read moves to the MRU end of `to`: clean data read is merged into one new block
+  // there; dirty (or writeback) data moves on its own, keeping its entry time.
+  auto move = [&](BlockId id, ListKind to) {
     Block& block = blocks_[id];
     if (block.state == BlockState::Clean) {
-      merged_clean += block.size;
+      merged_clean[static_cast<int>(to)] += block.size;
       destroy(id);
     } else {
       unlink(id);
       block.referenced = false;
-      append(id, ListKind::Active);
+      append(id, to);
     }
   };
-  // Inactive blocks, least recently used first. With two-touch activation, a block read for
-  // the first time since it entered the cache is only marked referenced and stays in place
-  // (mark_page_accessed); read again, it is activated.
+  // Inactive blocks, least recently used first; each as the policy says.
+  const BlockId last = entry.inactive.back();
   BlockId at = entry.inactive.front();
   while (left > 0 && at != kNoBlock) {
     const BlockId id = blocks_[at].size > left ? split_front(at, left) : at;
     at = FileOrder::next(blocks_, id);
     Block& block = blocks_[id];
     left -= block.size;
-    if (settings_.two_touch_activation && !block.referenced) {
-      block.referenced = true;
-      continue;
+    switch (policy_->reread(block)) {
+      case Policy::Reread::Mark: block.referenced = true; break;
+      case Policy::Reread::Activate: move(id, ListKind::Active); break;
+      case Policy::Reread::Refresh: move(id, ListKind::Inactive); break;
     }
-    activate(id);
+    if (id == last) break;  // the blocks refreshed are behind it
   }
   // Active blocks: taken from the front of the file's active list and moved to the back, so
   // that none is met twice.
@@ -323,13 +316,14 @@ void PageCache::reaccess(FileId file, std::int64_t bytes, double now) {
     const BlockId front = entry.active.front();
     const BlockId id = blocks_[front].size > left ? split_front(front, left) : front;
     left -= blocks_[id].size;
-    activate(id);
+    move(id, ListKind::Active);
   }
   PC_ASSERT(left == 0);
-  if (merged_clean > 0 && !extend_tail(ListKind::Active, file, merged_clean, false)) {
-    append(new_block(file, merged_clean, BlockState::Clean, now), ListKind::Active);
+  for (ListKind to : {ListKind::Active, ListKind::Inactive}) {
+    const std::int64_t merged = merged_clean[static_cast<int>(to)];
+    if (merged > 0 && !extend_tail(to, file, merged, false)) append(new_block(file, merged, BlockState::Clean, now), to);
   }
-  balance();  // after every read, in both profiles
+  balance();  // after every read, under every policy
   settle();
 }
 

@@ -5,20 +5,24 @@
 // Synchronous and engine-free: every operation takes the current time and returns at once,
 // so it can be tested without a simulator. Timing (disk and memory transfers) is the
 // IoController's and the Flusher's business: they ask PageCache what to move, then charge the
-// transfer to the devices.
+// transfer to the devices. PageCache is the mechanism; where models differ (what a re-read
+// activates, what reclaim takes, which expired data goes first, the dirtyable memory) it asks
+// its Policy (cache/policy.hpp).
 //
 // Invariants (checked by check_invariants(), and after every operation when
 // set_checking(true)): total = free + anonymous + cached, free >= 0, 0 <= dirty <= cached,
 // cached = inactive + active, every list's byte counter equals its block sum, every block is
-// in exactly one LRU list and in its file's list for that LRU list; with
-// protect_files_being_written, every clean block is in its file's clean list for that LRU
-// list, and every file not being written that has clean data there is in reclaimable_.
+// in exactly one LRU list and in its file's list for that LRU list; with the clean index,
+// every clean block is in its file's clean list for that LRU
+// list, and every file not being written that has clean data there is in reclaimable_
+// (when the policy spares files being written).
 
 #include "cache/block.hpp"
 #include "cache/block_list.hpp"
 #include "cache/block_pool.hpp"
 #include "cache/file_heap.hpp"
 #include "cache/lru_list.hpp"
+#include "cache/policy.hpp"
 #include "cache/tracer.hpp"
 
 #include <pagecache/cache_settings.hpp>
@@ -29,6 +33,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <vector>
 
 namespace pagecache::cache {
@@ -37,12 +42,16 @@ inline constexpr FileId kNoFile = std::numeric_limits<FileId>::max();
 
 class PageCache {
  public:
+  /// A cache under the policy `settings.policy` names (make_policy).
   PageCache(std::int64_t total_memory, const CacheSettings& settings);
+  /// A cache under `policy` (e.g. a test's own).
+  PageCache(std::int64_t total_memory, const CacheSettings& settings, std::unique_ptr<Policy> policy);
   PageCache(const PageCache&) = delete;
   PageCache& operator=(const PageCache&) = delete;
   ~PageCache();
 
   const CacheSettings& settings() const noexcept { return settings_; }
+  const Policy& policy() const noexcept { return *policy_; }
   /// Calls `on_progress` when memory that was tied up may be reclaimable now: a writeback
   /// ended, a copy in flight landed, application memory was released. Writers and readers that
   /// found nothing to reclaim wait for it.
@@ -70,10 +79,8 @@ class PageCache {
   /// What the dirty thresholds limit: data dirty or being written back (as the kernel's
   /// balance_dirty_pages counts NR_FILE_DIRTY + NR_WRITEBACK).
   std::int64_t dirty_and_writeback() const noexcept;
-  /// Memory the dirty thresholds are fractions of: free + cached + copies into the cache in
-  /// flight (kernel) or free + cached - dirty (paper; dirty including writeback), per
-  /// settings().dirtyable_memory.
-  std::int64_t dirtyable() const noexcept;
+  /// Memory the dirty thresholds are fractions of (Policy::dirtyable).
+  std::int64_t dirtyable() const noexcept { return policy_->dirtyable(*this); }
   /// The dirty thresholds now, in bytes (mm/page-writeback.c, domain_dirty_limits):
   /// `background` = dirty_background_ratio x dirtyable (half of `thresh` if that ratio is not
   /// below dirty_ratio, as the kernel clamps it), `thresh` = dirty_ratio x dirtyable, and the
@@ -84,9 +91,9 @@ class PageCache {
     std::int64_t freerun = 0;
   };
   DirtyLimits dirty_limits() const noexcept;
-  /// Memory a read may count on freeing by eviction before it must flush: clean inactive data
-  /// (kernel) or every inactive byte (WRENCH-cache), the excluded file's included.
-  std::int64_t evictable() const noexcept;
+  /// Memory a read may count on freeing by eviction before it must flush (Policy::evictable),
+  /// the excluded file's included.
+  std::int64_t evictable() const noexcept { return policy_->evictable(*this); }
 
   /// Takes `bytes` of free memory for application buffers. Throws SimulationError if there
   /// is not that much free memory (the caller makes room first).
@@ -108,8 +115,8 @@ class PageCache {
   /// New clean data (written through, or in the cache from the start): a clean block at the
   /// MRU end of the inactive list.
   void add_clean(FileId file, std::int64_t bytes, double now);
-  /// New data read from a device by an application: like add_clean, and with two-touch
-  /// activation this read is its first touch (the next one activates it).
+  /// New data read from a device by an application: like add_clean, and this read is its
+  /// first touch if the policy says so (Policy::read_is_first_touch).
   void add_read(FileId file, std::int64_t bytes, double now);
   /// New data written: a dirty block (entry time `now`) at the MRU end of the inactive list.
   void add_dirty(FileId file, std::int64_t bytes, double now);
@@ -120,9 +127,9 @@ class PageCache {
   /// Re-access of `bytes` cached bytes of `file` by a read: inactive blocks first, then
   /// active ones, least recently used first. Clean data read is merged into one block at the
   /// MRU end of the active list; dirty blocks move there individually, keeping their entry
-  /// times. A block read only in part is split and only the part read moves. With two-touch
-  /// activation, inactive data not touched since it entered the cache is only marked
-  /// referenced and stays where it is.
+  /// times. A block read only in part is split and only the part read moves. What happens
+  /// to each inactive block is the policy's call (Policy::reread): activated, only marked
+  /// referenced, or moved to the MRU end of the inactive list.
   void reaccess(FileId file, std::int64_t bytes, double now);
 
   /// Bytes of one file taken for writing to its device.
@@ -136,9 +143,9 @@ class PageCache {
   /// evictable) until end_writeback. Appends what was taken, per file, to `out` and returns
   /// the total. The caller writes them to their devices, then calls end_writeback.
   std::int64_t flush(std::int64_t amount, FileId excluded, std::vector<Flushed>& out);
-  /// Takes for writing back a dirty block whose entry time is <= `cutoff`, or returns
-  /// {kNoFile, 0}: the oldest (settings().expire_oldest_first) or the least recently used,
-  /// inactive list first. The periodic flusher writes expired data one block at a time.
+  /// Takes for writing back a dirty block whose entry time is <= `cutoff` (the one
+  /// Policy::next_expired chooses), or returns {kNoFile, 0}. The periodic flusher writes
+  /// expired data one block at a time.
   Flushed flush_expired_block(double cutoff);
   /// The write of `taken` is done: its data still in writeback becomes clean (it may have been
   /// split or moved meanwhile).
@@ -151,12 +158,10 @@ class PageCache {
   /// Drops every block of `file` (the file is deleted): clean data is freed, dirty data is
   /// discarded. None of it may be in writeback (wait for it first).
   void drop_file(FileId file);
-  /// Deletes up to `amount` bytes of clean data, least recently used first (inactive list,
-  /// then, unless settings().reclaim_inactive_only, the active list), skipping `excluded`.
-  /// Returns how many. Takes no simulated time.
+  /// Deletes up to `amount` bytes of clean data, skipping `excluded`, as Policy::reclaim
+  /// chooses. Returns how many. Takes no simulated time.
   std::int64_t evict(std::int64_t amount, FileId excluded);
-  /// A write of `file` starts (true) or ends (false). With protect_files_being_written,
-  /// eviction spares files being written while other clean data is left.
+  /// A write of `file` starts (true) or ends (false): a policy may spare files being written.
   void set_being_written(FileId file, bool writing);
   /// Bytes evicted so far.
   std::int64_t evicted_bytes() const noexcept { return evicted_total_; }
@@ -168,17 +173,32 @@ class PageCache {
   /// Throws InvariantError naming the first broken invariant.
   void check_invariants() const;
 
+  // --- Walks for policies: they change the lists, and leave settling to the operation ----
+  /// Evicts clean blocks of `kind`, least recently used first, up to `budget` bytes (the last
+  /// one split), skipping `excluded` and, if `spare_written` (the policy spares files being
+  /// written), the files being written. Returns the bytes evicted.
+  std::int64_t evict_clean(ListKind kind, std::int64_t budget, FileId excluded, bool spare_written);
+  /// Active list aging (mm/vmscan.c, shrink_active_list): moves the oldest active data to the
+  /// inactive list, evicting it if clean and not spared as evict_clean spares, until `budget`
+  /// bytes are evicted or the active list is empty. Returns the bytes evicted.
+  std::int64_t deactivate_oldest(std::int64_t budget, FileId excluded, bool spare_written);
+  /// The dirty block that became dirty first, or kNoBlock.
+  BlockId oldest_dirty() const noexcept { return dirty_by_age_.front(); }
+  /// The least recently used dirty block with entry time <= `cutoff`, inactive list first,
+  /// or kNoBlock. Repeated searches under one cutoff resume where the last one stopped.
+  BlockId lru_expired(double cutoff);
+  const Block& block(BlockId id) const noexcept { return blocks_[id]; }
+
  private:
-  // A file's lists and counters, in one cache line. With 10^5 applications a file's entry is
-  // out of cache whenever it is touched (an entry straddling three lines cost up to three
-  // misses each time, and entries were a sixth of the harness's time at 10^5 pipelines).
+  // A file's lists and counters, in one cache line: with many files an entry is out of cache
+  // whenever it is touched.
   using FileOrder = BlockList<&Block::in_file, false>;  // its block count is the entry's
   using FileCleanOrder = BlockList<&Block::dirty_or_clean, false>;
   struct alignas(64) FileEntry {
     FileOrder inactive;
     FileOrder active;
-    // With protect_files_being_written: the file's clean blocks in each LRU list, in LRU
-    // order (sub-lists of `inactive` and `active`).
+    // When the policy spares files being written: the file's clean blocks in each LRU list,
+    // in LRU order (sub-lists of `inactive` and `active`).
     FileCleanOrder clean_inactive;
     FileCleanOrder clean_active;
     std::int64_t inactive_bytes = 0;
@@ -219,7 +239,7 @@ class PageCache {
   /// On in debug builds, off otherwise; the environment variable PAGECACHE_CHECK_INVARIANTS
   /// (0 or 1) overrides it, e.g. to run large simulations quickly in a debug build.
   static bool checking_by_default();
-  /// After a mutation: balance if the settings say so, then check if checking.
+  /// After a mutation: balance if the policy says so, then check if checking.
   void settle();
   /// The dirty block after `block` in the order flush_expired_block searches: LRU order,
   /// inactive list then active list.
@@ -227,23 +247,25 @@ class PageCache {
   /// Keeps expiry_scan_ true when a dirty block enters a list or leaves the dirty ones.
   void on_dirty_linked(BlockId block) noexcept;
   void on_dirty_unlinked(BlockId block) noexcept;
-  /// Keep the files' clean lists, and reclaimable_, up to date (with
-  /// protect_files_being_written): a clean block was linked in its other lists, or a linked
-  /// block became clean; a clean block is about to leave its lists or its state.
+  /// Keep the files' clean lists, and reclaimable_, up to date (when the policy spares files
+  /// being written): a clean block was linked in its other lists, or a linked block became
+  /// clean; a clean block is about to leave its lists or its state.
   void on_clean_linked(BlockId block) {
-    if (settings_.protect_files_being_written) link_clean(block);
+    if (index_clean_) link_clean(block);
   }
   void on_clean_unlinked(BlockId block) {
-    if (settings_.protect_files_being_written) unlink_clean(block);
+    if (index_clean_) unlink_clean(block);
   }
   void link_clean(BlockId block);
   void unlink_clean(BlockId block);
-  /// With protect_files_being_written: the least recently used clean block of `kind` whose
+  /// With the clean index: the least recently used clean block of `kind` whose
   /// file is neither `excluded` nor being written, or kNoBlock. If `excluded` comes to the top
   /// of reclaimable_ it is taken out and `set_aside` set: the caller puts it back.
   BlockId next_unwritten_clean(ListKind kind, FileId excluded, bool& set_aside);
 
   CacheSettings settings_;
+  std::unique_ptr<Policy> policy_;
+  bool index_clean_;  // policy_->spares_files_being_written(), asked once
   std::int64_t total_;
   std::int64_t anonymous_ = 0;
   std::int64_t reserved_ = 0;
@@ -263,7 +285,7 @@ class PageCache {
   };
   ExpiryScan expiry_scan_;
   std::vector<FileEntry> files_;
-  // Per LRU list, with protect_files_being_written: where an eviction that spares the files
+  // Per LRU list, with the clean index: where an eviction that spares the files
   // being written finds its next victim without walking past their clean blocks. Every file
   // not being written that has clean data in the list is in it, under a key no higher than
   // the order key of its first clean block there. Keys are lowered at once (a clean block

@@ -35,7 +35,7 @@ void PageCache::check_invariants() const {
       const FileCleanOrder& clean = kind == ListKind::Inactive ? entry.clean_inactive : entry.clean_active;
       auto clean_it = clean.range(blocks_).begin();
       const auto clean_end = clean.range(blocks_).end();
-      if (settings_.protect_files_being_written) {
+      if (index_clean_) {
         for (const Block& b : flist.range(blocks_)) {
           if (b.state != BlockState::Clean) continue;
           PC_ASSERT_MSG(clean_it != clean_end && &*clean_it == &b, fmt::format("file {}: clean list out of order", f));
@@ -71,7 +71,7 @@ void PageCache::check_invariants() const {
   PC_ASSERT_MSG(blocks_in_files == inactive_.size() + active_.size(), "a block is missing from its file's list");
   for (const FileHeap& files : reclaimable_) {
     files.check();
-    PC_ASSERT(settings_.protect_files_being_written || files.empty());
+    PC_ASSERT(index_clean_ || files.empty());
   }
   std::size_t dirty_blocks = 0;
   double previous = -std::numeric_limits<double>::infinity();

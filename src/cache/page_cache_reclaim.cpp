@@ -10,58 +10,59 @@
 namespace pagecache::cache {
 
 std::int64_t PageCache::evict(std::int64_t amount, FileId excluded) {
+  const std::int64_t evicted = policy_->reclaim(*this, amount, excluded);
+  settle();
+  tracer_.eviction(evicted);
+  return evicted;
+}
+
+std::int64_t PageCache::evict_clean(ListKind kind, std::int64_t budget, FileId excluded, bool spare_written) {
+  PC_ASSERT(!spare_written || index_clean_);
   std::int64_t evicted = 0;
   auto take = [&](BlockId id) {
-    const BlockId victim = blocks_[id].size > amount - evicted ? split_front(id, amount - evicted) : id;
+    const BlockId victim = blocks_[id].size > budget - evicted ? split_front(id, budget - evicted) : id;
     evicted += blocks_[victim].size;
     evicted_total_ += blocks_[victim].size;
     destroy(victim);
   };
-  // One reclaim pass; `spare_written` also skips the files open for writing.
-  auto pass = [&](bool spare_written) {
-    auto spared = [&](BlockId id) {
-      const FileId file = blocks_[id].file;
-      return file == excluded || (spare_written && files_[file].writers > 0);
-    };
-    for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
-      if (kind == ListKind::Active && settings_.reclaim_inactive_only) break;
-      if (spare_written) {
-        // The same victims in the same order as the walk below, without walking past the
-        // clean blocks of the files being written.
-        bool set_aside = false;
-        while (evicted < amount) {
-          const BlockId victim = next_unwritten_clean(kind, excluded, set_aside);
-          if (victim == kNoBlock) break;
-          take(victim);
-        }
-        // Only other files' blocks were taken: the excluded file's first clean block is the same.
-        if (set_aside) reclaimable(kind).lower(excluded, blocks_[file_clean_list(files_[excluded], kind).front()].order);
-        continue;
-      }
-      LruList& list = list_of(kind);
-      BlockId id = list.front(BlockState::Clean);
-      while (id != kNoBlock && evicted < amount) {
-        const BlockId next = list.next_in_state(id);
-        if (!spared(id)) take(id);
-        id = next;
-      }
+  if (spare_written) {
+    // The same victims in the same order as the walk below, without walking past the clean
+    // blocks of the files being written.
+    bool set_aside = false;
+    while (evicted < budget) {
+      const BlockId victim = next_unwritten_clean(kind, excluded, set_aside);
+      if (victim == kNoBlock) break;
+      take(victim);
     }
-    if (settings_.reclaim_inactive_only) {
-      // Active list aging (mm/vmscan.c, shrink_active_list): with no clean inactive data left,
-      // the oldest active data is deactivated, and reclaimed if it is clean.
-      while (evicted < amount && !active_.empty()) {
-        const BlockId oldest = active_.front();
-        unlink(oldest);
-        blocks_[oldest].referenced = false;
-        append(oldest, ListKind::Inactive);
-        if (blocks_[oldest].state == BlockState::Clean && !spared(oldest)) take(oldest);
-      }
-    }
-  };
-  pass(settings_.protect_files_being_written);
-  if (evicted < amount && settings_.protect_files_being_written) pass(false);
-  settle();
-  tracer_.eviction(evicted);
+    // Only other files' blocks were taken: the excluded file's first clean block is the same.
+    if (set_aside) reclaimable(kind).lower(excluded, blocks_[file_clean_list(files_[excluded], kind).front()].order);
+    return evicted;
+  }
+  LruList& list = list_of(kind);
+  BlockId id = list.front(BlockState::Clean);
+  while (id != kNoBlock && evicted < budget) {
+    const BlockId next = list.next_in_state(id);
+    if (blocks_[id].file != excluded) take(id);
+    id = next;
+  }
+  return evicted;
+}
+
+std::int64_t PageCache::deactivate_oldest(std::int64_t budget, FileId excluded, bool spare_written) {
+  std::int64_t evicted = 0;
+  while (evicted < budget && !active_.empty()) {
+    const BlockId oldest = active_.front();
+    unlink(oldest);
+    Block& block = blocks_[oldest];
+    block.referenced = false;
+    append(oldest, ListKind::Inactive);
+    const bool spared = block.file == excluded || (spare_written && files_[block.file].writers > 0);
+    if (block.state != BlockState::Clean || spared) continue;
+    const BlockId victim = block.size > budget - evicted ? split_front(oldest, budget - evicted) : oldest;
+    evicted += blocks_[victim].size;
+    evicted_total_ += blocks_[victim].size;
+    destroy(victim);
+  }
   return evicted;
 }
 
@@ -96,7 +97,7 @@ void PageCache::set_being_written(FileId file, bool writing) {
   const bool was_written = entry.writers > 0;
   entry.writers += writing ? 1 : -1;
   PC_ASSERT(entry.writers >= 0);
-  if (!settings_.protect_files_being_written || was_written == (entry.writers > 0)) return;
+  if (!index_clean_ || was_written == (entry.writers > 0)) return;
   // Its last write ended: the file is among those eviction may take from while sparing the
   // files being written. (Its first write started: it leaves them when it comes to the top.)
   if (!writing) {

@@ -25,9 +25,7 @@ std::int64_t PageCache::flush(std::int64_t amount, FileId excluded, std::vector<
         if (!out.empty() && out.back().file == block.file && out.back().token == token) out.back().bytes += block.size;
         else out.push_back({block.file, block.size, token});
         start_writeback(target, token);
-        if (partial && !settings_.flush_splits_in_place) {
-          // WRENCH-cache moves the flushed part of a split block to the MRU end of the
-          // inactive list.
+        if (partial && !policy_->splits_flushed_block_in_place()) {
           unlink(target);
           append(target, ListKind::Inactive);
         }
@@ -89,9 +87,12 @@ PageCache::Flushed PageCache::take_for_writeback(BlockId id) {
 PageCache::Flushed PageCache::flush_expired_block(double cutoff) {
   // Nothing expired if the oldest dirty data has not: O(1) for the flusher's usual tick.
   if (dirty_by_age_.empty() || blocks_[dirty_by_age_.front()].entry_time > cutoff) return {kNoFile, 0};
-  if (settings_.expire_oldest_first) return take_for_writeback(dirty_by_age_.front());
-  // The least recently used expired block, inactive list first; a search under the cutoff of
-  // the previous one resumes where that one stopped.
+  const BlockId id = policy_->next_expired(*this, cutoff);
+  return id == kNoBlock ? Flushed{kNoFile, 0} : take_for_writeback(id);
+}
+
+BlockId PageCache::lru_expired(double cutoff) {
+  // A search under the cutoff of the previous one resumes where that one stopped.
   BlockId id = kNoBlock;
   if (expiry_scan_.after != kNoBlock && expiry_scan_.cutoff == cutoff) {
     id = next_dirty(expiry_scan_.after);
@@ -101,10 +102,10 @@ PageCache::Flushed PageCache::flush_expired_block(double cutoff) {
     if (id == kNoBlock) id = active_.front(BlockState::Dirty);
   }
   for (; id != kNoBlock; id = next_dirty(id)) {
-    if (blocks_[id].entry_time <= cutoff) return take_for_writeback(id);
+    if (blocks_[id].entry_time <= cutoff) return id;
     expiry_scan_ = {id, cutoff};
   }
-  return {kNoFile, 0};
+  return kNoBlock;
 }
 
 BlockId PageCache::next_dirty(BlockId id) const noexcept {

@@ -13,6 +13,7 @@
 #include "scenario/toml_reader.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <charconv>
@@ -155,9 +156,25 @@ CacheSettings read_page_cache(const toml::table* table, const TomlReader& parent
     if (*v <= 0.0) r.fail("writeback_interval", "must be > 0");
     s.writeback_interval = *v;
   }
-  // The model's switches (MODEL.md §6), defaults from the profile.
+  // The decisions' model (MODEL.md §6), by default the profile's.
+  const std::optional<std::string> policy = r.optional_string("policy");
+  if (policy) {
+    const std::vector<std::string> known = cache_policy_names();
+    if (std::find(known.begin(), known.end(), *policy) == known.end()) {
+      r.fail("policy", fmt::format("unknown policy '{}' (known: {})", *policy, fmt::join(known, ", ")));
+    }
+    s.policy = *policy;
+  }
+  // The switches are the kernel policy's parameters: setting one chooses it, the others
+  // keeping the profile's values (under the paper profile, WRENCH-cache's).
   for (const auto& [key, flag] : cache_switches(s)) {
-    if (auto v = r.optional_bool(key)) *flag = *v;
+    if (auto v = r.optional_bool(key)) {
+      if (policy && *policy != "kernel") {
+        r.fail(key, fmt::format("a parameter of the kernel policy, and this host's policy is '{}'", *policy));
+      }
+      *flag = *v;
+      s.policy = "kernel";
+    }
   }
   r.finish();
   return s;

@@ -75,8 +75,11 @@ std::string to_toml(const Scenario& s) {
         quoted(h.cache.write_mode == WriteMode::Writeback ? "writeback" : "writethrough"), h.cache.dirty_ratio,
         h.cache.dirty_background_ratio, quoted(units::format_duration(h.cache.dirty_expire)),
         quoted(units::format_duration(h.cache.writeback_interval)));
+    out += fmt::format("policy = {}\n", quoted(h.cache.policy));
     CacheSettings settings = h.cache;
-    for (const auto& [key, flag] : cache_switches(settings)) out += fmt::format("{} = {}\n", key, *flag);
+    if (settings.policy == "kernel") {
+      for (const auto& [key, flag] : cache_switches(settings)) out += fmt::format("{} = {}\n", key, *flag);
+    }
     for (const DiskSpec& d : h.disks) {
       out += fmt::format("\n[[hosts.disks]]\nname = {}\nread_bw = {}\nwrite_bw = {}\ncapacity = {}\n", quoted(d.name),
                          quoted(units::format_bandwidth(d.read_bw)), quoted(units::format_bandwidth(d.write_bw)),

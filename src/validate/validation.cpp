@@ -33,6 +33,7 @@ Scenario load(const Options& o, const std::string& file, const std::vector<std::
       for (const auto& [name, flag] : cache_switches(h.cache)) {
         if (name == key) {
           *flag = value;
+          h.cache.policy = "kernel";  // whose parameter it is; the profile's values stay
           found = true;
         }
       }

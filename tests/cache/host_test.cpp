@@ -267,6 +267,7 @@ TEST_CASE("reading a file whose copy and buffer exceed memory needs reclaim of t
   // paper's Algorithm 2 spares the file being read and cannot go on.
   for (const bool may_take : {true, false}) {
     CacheSettings settings = CacheSettings::paper();
+    settings.policy = "kernel";  // the switch is the kernel policy's parameter
     settings.reclaim_may_take_file_being_read = may_take;
     Simulator sim;
     FairShare share(sim);

@@ -457,6 +457,13 @@ TEST_CASE("PageCache agrees with the reference model over random operations (pap
   for (std::uint64_t seed : {1u, 2u, 3u}) run_random(CacheSettings::paper(), seed, 20000);
 }
 
+TEST_CASE("the kernel policy with every switch at WRENCH-cache's value agrees with the reference as wrench_cache does",
+          "[page_cache][random][policy]") {
+  CacheSettings settings = CacheSettings::paper();
+  settings.policy = "kernel";
+  for (std::uint64_t seed : {1u, 2u, 3u}) run_random(settings, seed, 20000);
+}
+
 TEST_CASE("PageCache agrees with the reference model over random operations (kernel settings)", "[page_cache][random]") {
   // The reference takes expired data in LRU order; the kernel profile's oldest-first order
   // (expire_oldest_first) has its own test in page_cache_test.cpp, and PageCache checks its

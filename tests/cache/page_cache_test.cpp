@@ -99,6 +99,7 @@ TEST_CASE("flushing takes the least recently used dirty data, skipping the exclu
   // the MRU end of the inactive list; in the kernel's it stays in place.
   for (const bool in_place : {false, true}) {
     CacheSettings settings = CacheSettings::paper();
+    settings.policy = "kernel";  // the switch is the kernel policy's parameter
     settings.flush_splits_in_place = in_place;
     PageCache cache(10000, settings);
     cache.set_checking(true);
@@ -136,6 +137,7 @@ TEST_CASE("eviction frees clean data from the least recently used end", "[page_c
   // settings age the active list: C3 moves to the inactive list and 50 of it are reclaimed.
   for (const bool inactive_only : {false, true}) {
     CacheSettings settings = CacheSettings::paper();
+    settings.policy = "kernel";  // the switch is the kernel policy's parameter
     settings.reclaim_inactive_only = inactive_only;
     PageCache cache(10000, settings);
     cache.set_checking(true);
@@ -236,6 +238,7 @@ TEST_CASE("with balance_after_every_change an eviction rebalances the lists at o
   // 300 - x <= 2 (100 + x), x = 34. WRENCH-cache balances only after reads.
   for (const bool always : {true, false}) {
     CacheSettings settings = CacheSettings::paper();
+    settings.policy = "kernel";  // the switch is the kernel policy's parameter
     settings.balance_after_every_change = always;
     PageCache cache(10000, settings);
     cache.set_checking(true);

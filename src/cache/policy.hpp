@@ -1,0 +1,83 @@
+#pragma once
+// Policy: the decisions in which page-cache models differ (MODEL.md §6), kept apart from the
+// page cache's state. PageCache keeps blocks, lists, files and counters and offers the walks
+// over them; a Policy says which walks to take: what a re-read does, which clean data reclaim
+// takes next, which expired data is written back first, what the dirty limits are fractions
+// of, and whether writers are paced or flush themselves.
+//
+// Implementations live in src/cache/policies/, one file each, and are named in its
+// registry.cpp: `kernel` (the kernel's behaviour; CacheSettings' switches are its
+// parameters, the `linux` profile's ablations), `wrench_cache` (WRENCH-cache's reading of the
+// paper, the `paper` profile; ../shared/design/WRENCH-NOTES.md) and `lru` (one LRU list, no
+// activation: a plain baseline).
+
+#include "cache/block.hpp"
+
+#include <pagecache/cache_settings.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace pagecache::cache {
+
+class PageCache;
+
+class Policy {
+ public:
+  virtual ~Policy() = default;
+  /// The name a CacheSettings::policy gives it.
+  virtual std::string_view name() const noexcept = 0;
+
+  // --- Activation (mm/swap.c) -------------------------------------------------------------
+  /// Whether the read that brings data in from a device counts as its first touch (marks it
+  /// referenced, so that the next read of it may activate it).
+  virtual bool read_is_first_touch() const noexcept = 0;
+  /// What a read of cached data does to one of its blocks on the inactive list.
+  enum class Reread : std::uint8_t {
+    Activate,  ///< to the most recently used end of the active list
+    Mark,      ///< marked referenced, left in place
+    Refresh,   ///< to the most recently used end of the inactive list
+  };
+  virtual Reread reread(const Block& inactive_block) const noexcept = 0;
+  /// Whether the lists are balanced (active <= 2 x inactive) after every change, or only
+  /// after reads of cached data.
+  virtual bool balances_after_every_change() const noexcept = 0;
+
+  // --- Reclaim (mm/vmscan.c) --------------------------------------------------------------
+  /// Whether reclaim spares the files being written; PageCache then keeps each file's clean
+  /// blocks indexed (asked once, when the cache is made).
+  virtual bool spares_files_being_written() const noexcept = 0;
+  /// Evicts up to `amount` bytes of clean data, never of `excluded`, with PageCache's
+  /// reclaim walks (evict_clean, deactivate_oldest); returns how many bytes it evicted.
+  virtual std::int64_t reclaim(PageCache& cache, std::int64_t amount, FileId excluded) const = 0;
+  /// Memory a read may count on freeing by eviction before it must flush.
+  virtual std::int64_t evictable(const PageCache& cache) const noexcept = 0;
+  /// Whether making room for a read may evict and flush the file being read.
+  virtual bool reclaim_may_take_file_being_read() const noexcept = 0;
+
+  // --- Writeback (mm/page-writeback.c, fs/fs-writeback.c) ---------------------------------
+  /// The expired dirty block (entry time <= `cutoff`) the periodic flusher writes next, or
+  /// kNoBlock; PageCache has checked that some dirty data has expired.
+  virtual BlockId next_expired(PageCache& cache, double cutoff) const = 0;
+  /// Whether the written part of a dirty block flushed in part stays in place (else it moves
+  /// to the most recently used end of the inactive list).
+  virtual bool splits_flushed_block_in_place() const noexcept = 0;
+  /// Whether the flusher writes back at once above the background threshold.
+  virtual bool background_writeback() const noexcept = 0;
+  /// Whether writers at the dirty limit are paced while the flusher writes (dirty
+  /// throttling) rather than flushing data themselves.
+  virtual bool throttles_writers() const noexcept = 0;
+
+  // --- Dirty limits -----------------------------------------------------------------------
+  /// Memory the dirty ratios are fractions of.
+  virtual std::int64_t dirtyable(const PageCache& cache) const noexcept = 0;
+};
+
+/// The policy `settings.policy` names, with its parameters from `settings`. Throws
+/// ConfigError for a name not registered.
+std::unique_ptr<Policy> make_policy(const CacheSettings& settings);
+
+}  // namespace pagecache::cache

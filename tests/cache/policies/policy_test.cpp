@@ -1,0 +1,154 @@
+// The policy seam: which policy a CacheSettings names, what kernel and wrench_cache decide
+// where they differ (MODEL.md §6, WRENCH-NOTES.md), and a policy of a test's own reaching
+// every decision PageCache delegates.
+#include "cache/page_cache.hpp"
+#include "cache/policy.hpp"
+
+#include <pagecache/error.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+
+using namespace pagecache;
+using namespace pagecache::cache;
+
+namespace {
+
+constexpr auto I = ListKind::Inactive;
+constexpr auto A = ListKind::Active;
+
+}  // namespace
+
+TEST_CASE("a CacheSettings names its policy; an unknown name is refused with the known ones", "[policy]") {
+  CHECK(make_policy(CacheSettings::kernel())->name() == "kernel");
+  CHECK(make_policy(CacheSettings::paper())->name() == "wrench_cache");
+  const std::vector<std::string> names = cache_policy_names();
+  CHECK(std::find(names.begin(), names.end(), "kernel") != names.end());
+  CHECK(std::find(names.begin(), names.end(), "wrench_cache") != names.end());
+  CacheSettings s;
+  s.policy = "clock";
+  CHECK_THROWS_WITH(PageCache(1000, s), Catch::Contains("unknown page-cache policy 'clock'") && Catch::Contains("kernel"));
+}
+
+TEST_CASE("kernel and wrench_cache decide activation differently", "[policy]") {
+  // Data read from the device, then read again once. The kernel (two-touch activation): the
+  // first read referenced it, the second activates it. Written data is not referenced: read
+  // once it stays inactive, only marked. WRENCH-cache activates any re-read data. (File 2's
+  // 300 inactive bytes keep active <= 2 x inactive: no balancing.)
+  for (const bool kernel : {true, false}) {
+    PageCache cache(10000, kernel ? CacheSettings::kernel() : CacheSettings::paper());
+    cache.set_checking(true);
+    cache.add_clean(2, 300, 0.0);
+    cache.add_read(0, 100, 0.0);
+    cache.add_clean(1, 100, 0.0);
+    cache.reaccess(0, 100, 1.0);
+    cache.reaccess(1, 100, 1.0);
+    CHECK(cache.cached(0, A) == 100);
+    CHECK(cache.cached(1, A) == (kernel ? 0 : 100));
+    CHECK(cache.cached(1, I) == (kernel ? 100 : 0));
+  }
+}
+
+TEST_CASE("kernel and wrench_cache count dirtyable and evictable memory differently", "[policy]") {
+  // 1000 bytes: 100 anonymous, 200 clean and 300 dirty inactive, 50 reserved for a copy.
+  // free = 1000 - 100 - 500 - 50 = 350. Kernel: dirtyable = free + cached + reserved = 900,
+  // evictable = clean inactive = 200. WRENCH-cache: dirtyable = free + cached - dirty = 550,
+  // evictable = every inactive byte = 500.
+  for (const bool kernel : {true, false}) {
+    PageCache cache(1000, kernel ? CacheSettings::kernel() : CacheSettings::paper());
+    cache.allocate_anonymous(100);
+    cache.add_clean(0, 200, 0.0);
+    cache.add_dirty(1, 300, 0.0);
+    cache.reserve(50);
+    CHECK(cache.dirtyable() == (kernel ? 900 : 550));
+    CHECK(cache.evictable() == (kernel ? 200 : 500));
+  }
+}
+
+TEST_CASE("kernel reclaim ages the active list; wrench_cache evicts active data in place", "[policy]") {
+  // Inactive: file 0 clean 100. Active: file 1 clean 100, then file 2 clean 100 (re-read in
+  // that order). Evicting 250: both take file 0's 100, then the oldest active data, file 1's
+  // 100, then 50 of file 2's. The kernel deactivates what it reclaims from the active list:
+  // the 50 of file 2 left over was deactivated with the part evicted, so it is inactive.
+  for (const bool kernel : {true, false}) {
+    CacheSettings s = kernel ? CacheSettings::kernel() : CacheSettings::paper();
+    s.two_touch_activation = false;  // so that one re-read activates under both
+    PageCache cache(10000, s);
+    cache.set_checking(true);
+    cache.add_clean(0, 100, 0.0);
+    cache.add_clean(1, 100, 0.0);
+    cache.add_clean(2, 100, 0.0);
+    cache.reaccess(1, 100, 1.0);
+    cache.reaccess(2, 100, 1.0);
+    CHECK(cache.evict(250, kNoFile) == 250);
+    CHECK(cache.cached(0) == 0);
+    CHECK(cache.cached(1) == 0);
+    CHECK(cache.cached(2) == 50);
+    CHECK(cache.cached(2, I) == (kernel ? 50 : 0));
+    CHECK(cache.evicted_bytes() == 250);
+  }
+}
+
+namespace {
+
+// A policy of the test's own: every decision counted, answers chosen to be visible.
+class CountingPolicy final : public Policy {
+ public:
+  mutable int rereads = 0, reclaims = 0, expiries = 0, dirtyables = 0;
+  std::string_view name() const noexcept override { return "counting"; }
+  bool read_is_first_touch() const noexcept override { return false; }
+  Reread reread(const Block&) const noexcept override {
+    ++rereads;
+    return Reread::Refresh;
+  }
+  bool balances_after_every_change() const noexcept override { return false; }
+  bool spares_files_being_written() const noexcept override { return false; }
+  std::int64_t reclaim(PageCache& cache, std::int64_t amount, FileId excluded) const override {
+    ++reclaims;
+    return cache.evict_clean(ListKind::Inactive, amount, excluded, false);
+  }
+  std::int64_t evictable(const PageCache&) const noexcept override { return 7; }
+  bool reclaim_may_take_file_being_read() const noexcept override { return true; }
+  BlockId next_expired(PageCache& cache, double) const override {
+    ++expiries;
+    return cache.oldest_dirty();
+  }
+  bool splits_flushed_block_in_place() const noexcept override { return true; }
+  bool background_writeback() const noexcept override { return true; }
+  bool throttles_writers() const noexcept override { return true; }
+  std::int64_t dirtyable(const PageCache&) const noexcept override {
+    ++dirtyables;
+    return 1234;
+  }
+};
+
+}  // namespace
+
+TEST_CASE("PageCache asks its policy at each decision", "[policy]") {
+  auto owned = std::make_unique<CountingPolicy>();
+  const CountingPolicy& policy = *owned;
+  PageCache cache(1000, CacheSettings::kernel(), std::move(owned));
+  cache.set_checking(true);
+  CHECK(cache.policy().name() == "counting");
+  // Refresh: file 0 re-read moves to the MRU end of the inactive list, behind file 1, and
+  // nothing is active; eviction then takes file 1 first.
+  cache.add_clean(0, 100, 0.0);
+  cache.add_clean(1, 100, 0.0);
+  cache.reaccess(0, 100, 1.0);
+  CHECK(policy.rereads == 1);
+  CHECK(cache.list(A).bytes() == 0);
+  CHECK(cache.list(I).blocks().begin()->file == 1);
+  CHECK(cache.evict(100, kNoFile) == 100);
+  CHECK(policy.reclaims == 1);
+  CHECK(cache.cached(1) == 0);
+  CHECK(cache.cached(0) == 100);
+  CHECK(cache.evictable() == 7);
+  CHECK(cache.dirtyable() == 1234);
+  CHECK(policy.dirtyables == 1);
+  cache.add_dirty(2, 50, 1.0);
+  const PageCache::Flushed taken = cache.flush_expired_block(5.0);
+  CHECK(policy.expiries == 1);
+  CHECK(taken.file == 2);
+  CHECK(taken.bytes == 50);
+}

@@ -12,6 +12,7 @@ namespace pagecache::cache {
 
 std::unique_ptr<Policy> make_kernel_policy(const CacheSettings& settings);
 std::unique_ptr<Policy> make_wrench_cache_policy(const CacheSettings& settings);
+std::unique_ptr<Policy> make_lru_policy(const CacheSettings& settings);
 
 namespace {
 
@@ -23,6 +24,7 @@ struct Registration {
 constexpr Registration kPolicies[] = {
     {"kernel", &make_kernel_policy},
     {"wrench_cache", &make_wrench_cache_policy},
+    {"lru", &make_lru_policy},
 };
 
 }  // namespace

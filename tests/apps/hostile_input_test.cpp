@@ -149,6 +149,22 @@ TEST_CASE("checks across keys: the files on a disk together, the background rati
           {"key 'hosts[0].page_cache.dirty_ratio'", "dirty_background_ratio (0.1, the profile's default)"});
 }
 
+TEST_CASE("a page-cache policy is one of those registered, and the switches are the kernel policy's", "[cli][hostile]") {
+  refused(run_edited("policy", "[pipelines]", "[hosts.page_cache]\npolicy = \"clock\"\n[pipelines]"),
+          {"key 'hosts[0].page_cache.policy'", "unknown policy 'clock'", "kernel, wrench_cache, lru"});
+  refused(run_edited("switch", "[pipelines]", "[hosts.page_cache]\npolicy = \"lru\"\ntwo_touch_activation = true\n[pipelines]"),
+          {"key 'hosts[0].page_cache.two_touch_activation'", "a parameter of the kernel policy", "'lru'"});
+  // A switch alone chooses the kernel policy, the paper profile's values for the others.
+  const fs::path dir = scratch("switch_alone");
+  std::string text = kBase;
+  text.replace(text.find("[pipelines]"), 11, "[hosts.page_cache]\ntwo_touch_activation = true\n[pipelines]");
+  std::ofstream(dir / "s.toml") << text;
+  const ChildResult shown = pcsim({"show", (dir / "s.toml").string()});
+  REQUIRE(shown.status == 0);
+  CHECK_THAT(shown.output, Catch::Contains("policy = \"kernel\"\n") && Catch::Contains("two_touch_activation = true\n") &&
+                               Catch::Contains("reclaim_inactive_only = false\n"));
+}
+
 TEST_CASE("a bare fractional size rounds as the same size with units does", "[cli][hostile]") {
   for (const char* size : {"3.7", "\"3.7\"", "\"3.7 B\""}) {
     const fs::path dir = scratch("round");

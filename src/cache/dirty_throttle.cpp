@@ -34,7 +34,7 @@ DirtyThrottle::Step DirtyThrottle::Writer::next(std::int64_t remaining) {
   PageCache& cache = *t.cache_;
   // Copies in flight count: their pages are being dirtied.
   const std::int64_t in_use = cache.dirty_and_writeback() + cache.reserved();
-  const PageCache::DirtyLimits limits = cache.dirty_limits();
+  const DirtyLimits limits = dirty_limits(cache);
   if (in_use > limits.freerun) t.limit_.update(t.sim_->now(), limits.thresh, in_use, t.throttled_ > 0);
   const std::int64_t limit = t.limit_.hard_limit(limits.thresh);
   const std::int64_t setpoint = (limits.freerun + limit) / 2;

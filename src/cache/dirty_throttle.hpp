@@ -7,6 +7,7 @@
 #include "cache/dirty_limit.hpp"
 #include "cache/flusher.hpp"
 #include "cache/page_cache.hpp"
+#include "cache/plan.hpp"
 
 #include <pagecache/simulator.hpp>
 
@@ -19,7 +20,7 @@ class DirtyThrottle {
   DirtyThrottle(const Simulator& sim, PageCache& cache, Flusher& flusher) noexcept : sim_(&sim), cache_(&cache), flusher_(&flusher) {}
 
   /// The machine at rest: the dirty limit back at the threshold (DirtyLimit::reset).
-  void at_rest() { limit_.reset(cache_->dirty_limits().thresh); }
+  void at_rest() { limit_.reset(dirty_limits(*cache_).thresh); }
 
   /// What a writer does next: pause for `pause` seconds, earning `rate` bytes a second; make
   /// room by writing back; or copy `to_cache` bytes, whose pages it has reserved.

@@ -1,5 +1,7 @@
 #include "cache/flusher.hpp"
 
+#include "cache/plan.hpp"
+
 #include <cmath>
 #include <limits>
 
@@ -13,7 +15,7 @@ void Flusher::start() {
 
 bool Flusher::background_due() const {
   if (!cache_->policy().background_writeback() || cache_->dirty() == 0) return false;
-  return cache_->dirty_and_writeback() > cache_->dirty_limits().background;
+  return cache_->dirty_and_writeback() > dirty_limits(*cache_).background;
 }
 
 void Flusher::notify_dirty() {

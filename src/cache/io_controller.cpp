@@ -11,8 +11,6 @@ namespace pagecache::cache {
 
 namespace {
 
-constexpr std::int64_t kPageSize = 4096;
-
 // A whole file's read or write as Host reports it: its span and what it moved.
 IoResult file_result(double start, double end, const IoTally& t) {
   return IoResult{.start = start, .end = end, .bytes = t.bytes, .cache_bytes = t.cache_bytes, .disk_bytes = t.disk_bytes};
@@ -58,17 +56,18 @@ Task<void> IoController::wait_for_progress() {
 }
 
 void IoController::check_writer_can_wait(FileId file, std::int64_t bytes) const {
-  if (cache_->writeback() == 0 && cache_->reserved() == 0) {
+  if (nothing_can_be_freed(*cache_)) {
     throw SimulationError(fmt::format("t = {:.6f} s: writing '{}': no memory can be freed for {} bytes", sim_->now(), (*files_)[file].name, bytes));
   }
 }
 
 Task<void> IoController::make_room(std::int64_t required, FileId spared, FileId subject, const char* verb) {
+  // Planned again at each step: the writeback's transfers let others run, and eviction frees.
   for (;;) {
-    co_await write_back(required - cache_->free() - cache_->evictable(), spared, FlushCause::Reclaim);
-    cache_->evict(required - cache_->free(), spared);
-    if (required <= cache_->free()) co_return;
-    if (cache_->writeback() == 0 && cache_->reserved() == 0) {
+    co_await write_back(plan_room(*cache_, required).flush, spared, FlushCause::Reclaim);
+    cache_->evict(plan_room(*cache_, required).evict, spared);
+    if (plan_room(*cache_, required).fits) co_return;
+    if (nothing_can_be_freed(*cache_)) {
       if (subject == kNoFile) {
         throw SimulationError(fmt::format("t = {:.6f} s: {} needs {} bytes of memory, only {} can be freed", sim_->now(), verb, required,
                                           cache_->free()));
@@ -87,27 +86,22 @@ Task<void> IoController::hold_memory(std::int64_t bytes) {
   cache_->allocate_anonymous(bytes);
 }
 
-std::int64_t IoController::room_for_read_at_once(FileId file, std::int64_t file_size, std::int64_t bytes, std::int64_t anonymous) {
-  // make_room's first pass when it needs no writeback: evict, and done if that was enough.
-  const FileId spared = cache_->policy().reclaim_may_take_file_being_read() ? kNoFile : file;
-  const std::int64_t uncached = std::clamp<std::int64_t>(file_size - cache_->cached(file), 0, bytes);
-  const std::int64_t required = anonymous + uncached;
-  if (required - cache_->free() - cache_->evictable() > 0) return -1;
-  cache_->evict(required - cache_->free(), spared);
-  const std::int64_t now_uncached = std::clamp<std::int64_t>(file_size - cache_->cached(file), 0, bytes);
-  return anonymous + now_uncached <= cache_->free() ? now_uncached : -1;
+std::int64_t IoController::room_for_read_at_once(const ReadRequest& request) {
+  ReadPlan plan = plan_read(*cache_, request);
+  if (plan.room.flush > 0) return -1;
+  cache_->evict(plan.room.evict, plan.spared);
+  plan = plan_read(*cache_, request);
+  return plan.room.fits ? plan.from_disk : -1;
 }
 
-Task<std::int64_t> IoController::room_for_read(FileId file, std::int64_t bytes, std::int64_t anonymous, const char* verb) {
-  const FileInfo& info = (*files_)[file];
-  const FileId spared = cache_->policy().reclaim_may_take_file_being_read() ? kNoFile : file;
+Task<std::int64_t> IoController::room_for_read(ReadRequest request, const char* verb) {
   for (;;) {
-    // Eviction alone, if it is enough; else writeback and waiting, then the same again: while
-    // make_room waited, others may have evicted some of this file's data, and more of the
-    // chunk then comes from the device, and needs room too.
-    const std::int64_t uncached = room_for_read_at_once(file, info.size, bytes, anonymous);
-    if (uncached >= 0) co_return uncached;
-    co_await make_room(anonymous + std::clamp<std::int64_t>(info.size - cache_->cached(file), 0, bytes), spared, file, verb);
+    // While make_room waited, others may have evicted some of this file's data: more of the
+    // chunk then comes from the device and needs room too.
+    const std::int64_t from_disk = room_for_read_at_once(request);
+    if (from_disk >= 0) co_return from_disk;
+    const ReadPlan plan = plan_read(*cache_, request);
+    co_await make_room(plan.required, plan.spared, request.file, verb);
   }
 }
 
@@ -179,21 +173,17 @@ Task<IoTally> IoController::write_chunk_writeback(FileId file, std::int64_t chun
     co_return IoTally{.bytes = r.bytes, .cache_bytes = r.cache_bytes, .disk_bytes = r.disk_bytes};
   }
   std::int64_t to_memory = 0;
-  const std::int64_t remain_dirty = cache_->dirty_limits().thresh - cache_->dirty_and_writeback();
-  if (remain_dirty > 0) {
-    cache_->evict(std::min(chunk, remain_dirty) - cache_->free(), file);
-    // Not capped by remain_dirty: as in the paper, a chunk may overshoot the ratio.
-    to_memory = std::min(chunk, cache_->free());
+  if (const WriteStart start = plan_write_start(*cache_, chunk); start.under_threshold) {
+    cache_->evict(start.evict, file);
+    to_memory = plan_write_start(*cache_, chunk).to_cache;  // as memory is after the eviction
     if (to_memory > 0) co_await write_to_cache(file, to_memory);
   }
   std::int64_t remaining = chunk - to_memory;
   while (remaining > 0) {
-    const std::int64_t flushed = co_await write_back(remaining, kNoFile, FlushCause::DirtyLimit);
-    const std::int64_t evicted = cache_->evict(remaining - cache_->free(), file);
-    std::int64_t to_cache = std::min(remaining, cache_->free());
-    // Memory is handed out in pages: a sliver of free memory (other copies in flight hold the
-    // rest) is not worth a transfer of a few bytes; wait for more instead.
-    if (to_cache < remaining && to_cache < kPageSize) to_cache = 0;
+    // Planned again after the writeback (others ran meanwhile) and after the eviction.
+    const std::int64_t flushed = co_await write_back(plan_write_step(*cache_, remaining).flush, kNoFile, FlushCause::DirtyLimit);
+    const std::int64_t evicted = cache_->evict(plan_write_step(*cache_, remaining).evict, file);
+    const std::int64_t to_cache = plan_write_step(*cache_, remaining).to_cache;
     if (to_cache == 0 && flushed == 0 && evicted == 0) {
       // Nothing to flush or evict now: other writers' data may still be in flight.
       check_writer_can_wait(file, remaining);
@@ -241,8 +231,8 @@ Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_siz
       // application's buffer is fresh memory:
       // the reader faults in and zeroes each page it copies into; from the disk that overlaps
       // the device's transfer (readahead), from the cache it adds to the copy.
-      std::int64_t disk_read = room_for_read_at_once(file, size, chunk, chunk);
-      if (disk_read < 0) disk_read = co_await room_for_read(file, chunk, chunk, "reading");
+      std::int64_t disk_read = room_for_read_at_once({.file = file, .file_size = size, .bytes = chunk, .anonymous = chunk});
+      if (disk_read < 0) disk_read = co_await room_for_read({.file = file, .file_size = size, .bytes = chunk, .anonymous = chunk}, "reading");
       const std::int64_t cache_read = chunk - disk_read;
       take_chunk(file, chunk, disk_read);
       if (disk_read > 0) co_await disk->read(disk_read, memory_->fresh_copy_rate());

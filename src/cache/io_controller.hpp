@@ -1,6 +1,6 @@
 #pragma once
 // IoController: turns chunked file reads and writes into page-cache changes and timed
-// transfers (paper Algorithms 2 and 3, MODEL.md §4).
+// transfers: it carries out the plans of paper Algorithms 2 and 3 (plan.hpp, MODEL.md §4).
 //
 // Every step reads the cache state as it is when the step runs; other processes may change
 // it while this one waits for a transfer. The cache bookkeeping of a chunk (new blocks,
@@ -12,6 +12,7 @@
 #include "cache/file_table.hpp"
 #include "cache/flusher.hpp"
 #include "cache/page_cache.hpp"
+#include "cache/plan.hpp"
 
 #include <pagecache/devices.hpp>
 #include <pagecache/event.hpp>
@@ -117,14 +118,13 @@ class IoController {
   /// them and tries again. Throws SimulationError when nothing can ever free enough, naming
   /// what `verb` (e.g. "reading") was being done to `subject` (kNoFile: `verb` names what needs it).
   Task<void> make_room(std::int64_t required, FileId spared, FileId subject, const char* verb);
-  /// Makes room to read `bytes` of `file` (the part not cached is new cache data) plus
-  /// `anonymous` bytes of application memory, and returns how many bytes are not cached: the
-  /// part to read from the device, as the cache is once there is room for it.
-  Task<std::int64_t> room_for_read(FileId file, std::int64_t bytes, std::int64_t anonymous, const char* verb);
-  /// room_for_read when eviction alone makes the room: done at once, without a coroutine;
-  /// returns the part not cached, or -1 if room_for_read must run (writeback or waiting). The
-  /// file's size is the caller's copy (its record may be out of cache).
-  std::int64_t room_for_read_at_once(FileId file, std::int64_t file_size, std::int64_t bytes, std::int64_t anonymous);
+  /// Room for a chunk read as plan_read says, when eviction alone makes it: evicts, plans
+  /// again (the eviction may have taken the file's own data) and returns the part to read
+  /// from the device, or -1 if room_for_read must run (writeback or waiting). Not a coroutine:
+  /// most chunk reads need no more, and a chunk read is the most frequent operation.
+  std::int64_t room_for_read_at_once(const ReadRequest& request);
+  /// room_for_read_at_once until it succeeds, making room between tries (make_room).
+  Task<std::int64_t> room_for_read(ReadRequest request, const char* verb);
   /// Waits until memory held by transfers in flight may have been released.
   Task<void> wait_for_progress();
 

@@ -14,8 +14,8 @@ Task<IoTally> IoController::read_chunk_remote(FileId file, std::int64_t chunk) {
   // A client read (NFS): what this host's cache lacks comes from the server, over the link,
   // and is kept in this host's cache (clean); the rest is a hit in this host's cache.
   const FileInfo& info = (*files_)[file];
-  std::int64_t remote_read = room_for_read_at_once(file, info.size, chunk, chunk);
-  if (remote_read < 0) remote_read = co_await room_for_read(file, chunk, chunk, "reading");
+  std::int64_t remote_read = room_for_read_at_once({.file = file, .file_size = info.size, .bytes = chunk, .anonymous = chunk});
+  if (remote_read < 0) remote_read = co_await room_for_read({.file = file, .file_size = info.size, .bytes = chunk, .anonymous = chunk}, "reading");
   const std::int64_t cache_read = chunk - remote_read;
   take_chunk(file, chunk, remote_read);
   if (remote_read > 0) co_await serve_remote(file, remote_read);
@@ -35,8 +35,8 @@ Task<void> IoController::serve_remote(FileId file, std::int64_t bytes) {
 
 Task<void> IoController::serve_read(FileId file, std::int64_t bytes, const Route& route, FlowSpec client_copy) {
   const FileInfo& info = (*files_)[file];
-  std::int64_t disk_read = room_for_read_at_once(file, info.size, bytes, 0);
-  if (disk_read < 0) disk_read = co_await room_for_read(file, bytes, 0, "serving");
+  std::int64_t disk_read = room_for_read_at_once({.file = file, .file_size = info.size, .bytes = bytes, .anonymous = 0});
+  if (disk_read < 0) disk_read = co_await room_for_read({.file = file, .file_size = info.size, .bytes = bytes, .anonymous = 0}, "serving");
   const std::int64_t cache_read = bytes - disk_read;
   cache_->add_read(file, disk_read, sim_->now());
   cache_->reaccess(file, cache_read, sim_->now());

@@ -48,17 +48,6 @@ std::int64_t PageCache::writeback() const noexcept {
 
 std::int64_t PageCache::dirty_and_writeback() const noexcept { return dirty() + writeback(); }
 
-PageCache::DirtyLimits PageCache::dirty_limits() const noexcept {
-  const double base = static_cast<double>(std::max<std::int64_t>(dirtyable(), 0));
-  DirtyLimits l;
-  l.thresh = static_cast<std::int64_t>(settings_.dirty_ratio * base);
-  l.background = settings_.dirty_background_ratio < settings_.dirty_ratio
-                     ? static_cast<std::int64_t>(settings_.dirty_background_ratio * base)
-                     : l.thresh / 2;
-  l.freerun = (l.background + l.thresh) / 2;
-  return l;
-}
-
 void PageCache::allocate_anonymous(std::int64_t bytes) {
   PC_ASSERT(bytes >= 0);
   if (bytes > free()) {

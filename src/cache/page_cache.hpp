@@ -81,16 +81,6 @@ class PageCache {
   std::int64_t dirty_and_writeback() const noexcept;
   /// Memory the dirty thresholds are fractions of (Policy::dirtyable).
   std::int64_t dirtyable() const noexcept { return policy_->dirtyable(*this); }
-  /// The dirty thresholds now, in bytes (mm/page-writeback.c, domain_dirty_limits):
-  /// `background` = dirty_background_ratio x dirtyable (half of `thresh` if that ratio is not
-  /// below dirty_ratio, as the kernel clamps it), `thresh` = dirty_ratio x dirtyable, and the
-  /// freerun ceiling (background + thresh) / 2, under which writers are never throttled.
-  struct DirtyLimits {
-    std::int64_t background = 0;
-    std::int64_t thresh = 0;
-    std::int64_t freerun = 0;
-  };
-  DirtyLimits dirty_limits() const noexcept;
   /// Memory a read may count on freeing by eviction before it must flush (Policy::evictable),
   /// the excluded file's included.
   std::int64_t evictable() const noexcept { return policy_->evictable(*this); }

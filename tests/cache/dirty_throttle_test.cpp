@@ -31,7 +31,7 @@ struct Host {
 
 TEST_CASE("the kernel's thresholds of the test host", "[throttle]") {
   Host h;
-  const PageCache::DirtyLimits l = h.cache.dirty_limits();
+  const DirtyLimits l = dirty_limits(h.cache);
   CHECK(l.thresh == 200 * MB);
   CHECK(l.background == 100 * MB);
   CHECK(l.freerun == 150 * MB);

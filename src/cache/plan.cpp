@@ -1,0 +1,54 @@
+#include "cache/plan.hpp"
+
+#include <algorithm>
+
+namespace pagecache::cache {
+
+DirtyLimits dirty_limits(const PageCache& cache) noexcept {
+  const CacheSettings& s = cache.settings();
+  const double base = static_cast<double>(std::max<std::int64_t>(cache.dirtyable(), 0));
+  DirtyLimits l;
+  l.thresh = static_cast<std::int64_t>(s.dirty_ratio * base);
+  l.background = s.dirty_background_ratio < s.dirty_ratio ? static_cast<std::int64_t>(s.dirty_background_ratio * base) : l.thresh / 2;
+  l.freerun = (l.background + l.thresh) / 2;
+  return l;
+}
+
+std::int64_t room_under_dirty_threshold(const PageCache& cache) noexcept {
+  return dirty_limits(cache).thresh - cache.dirty_and_writeback();
+}
+
+RoomPlan plan_room(const PageCache& cache, std::int64_t required) noexcept {
+  const std::int64_t free = cache.free();
+  return RoomPlan{.flush = required - free - cache.evictable(), .evict = required - free, .fits = required <= free};
+}
+
+FileId spared_by_read(const PageCache& cache, FileId file) noexcept {
+  return cache.policy().reclaim_may_take_file_being_read() ? kNoFile : file;
+}
+
+bool nothing_can_be_freed(const PageCache& cache) noexcept { return cache.writeback() == 0 && cache.reserved() == 0; }
+
+ReadPlan plan_read(const PageCache& cache, const ReadRequest& request) noexcept {
+  const std::int64_t from_disk = std::clamp<std::int64_t>(request.file_size - cache.cached(request.file), 0, request.bytes);
+  const std::int64_t required = request.anonymous + from_disk;
+  return ReadPlan{.from_disk = from_disk,
+                  .from_cache = request.bytes - from_disk,
+                  .required = required,
+                  .room = plan_room(cache, required),
+                  .spared = spared_by_read(cache, request.file)};
+}
+
+WriteStart plan_write_start(const PageCache& cache, std::int64_t chunk) noexcept {
+  const std::int64_t remain_dirty = room_under_dirty_threshold(cache);
+  if (remain_dirty <= 0) return WriteStart{};
+  return WriteStart{.under_threshold = true, .evict = std::min(chunk, remain_dirty) - cache.free(), .to_cache = std::min(chunk, cache.free())};
+}
+
+WriteStep plan_write_step(const PageCache& cache, std::int64_t remaining) noexcept {
+  std::int64_t to_cache = std::min(remaining, cache.free());
+  if (to_cache < remaining && to_cache < kPageSize) to_cache = 0;
+  return WriteStep{.flush = remaining, .evict = remaining - cache.free(), .to_cache = to_cache};
+}
+
+}  // namespace pagecache::cache

@@ -24,7 +24,12 @@ PageCache::PageCache(std::int64_t total_memory, const CacheSettings& settings)
     : PageCache(total_memory, settings, make_policy(settings)) {}
 
 PageCache::PageCache(std::int64_t total_memory, const CacheSettings& settings, std::unique_ptr<Policy> policy)
-    : settings_(settings), policy_(std::move(policy)), index_clean_(policy_->spares_files_being_written()), total_(total_memory) {
+    : settings_(settings),
+      policy_(std::move(policy)),
+      index_clean_(policy_->spares_files_being_written()),
+      first_touch_(policy_->read_is_first_touch()),
+      balance_always_(policy_->balances_after_every_change()),
+      total_(total_memory) {
   if (total_memory <= 0) throw ConfigError(fmt::format("memory size must be > 0, got {} bytes", total_memory));
 }
 
@@ -209,7 +214,7 @@ BlockId PageCache::split_front(BlockId id, std::int64_t head_size) {
 }
 
 void PageCache::settle() {
-  if (policy_->balances_after_every_change()) balance();
+  if (balance_always_) balance();
   if (checking_) check_invariants();
   if (observer_) observer_();
 }
@@ -244,7 +249,7 @@ void PageCache::add_clean(FileId file, std::int64_t bytes, double now) { add_new
 
 void PageCache::add_read(FileId file, std::int64_t bytes, double now) {
   // The read that brought the data in is its first touch.
-  add_new(file, bytes, BlockState::Clean, now, policy_->read_is_first_touch());
+  add_new(file, bytes, BlockState::Clean, now, first_touch_);
 }
 
 void PageCache::add_dirty(FileId file, std::int64_t bytes, double now) {

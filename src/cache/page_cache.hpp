@@ -255,7 +255,10 @@ class PageCache {
 
   CacheSettings settings_;
   std::unique_ptr<Policy> policy_;
-  bool index_clean_;  // policy_->spares_files_being_written(), asked once
+  // The policy's constant answers, asked once.
+  bool index_clean_;     // spares_files_being_written()
+  bool first_touch_;     // read_is_first_touch()
+  bool balance_always_;  // balances_after_every_change()
   std::int64_t total_;
   std::int64_t anonymous_ = 0;
   std::int64_t reserved_ = 0;

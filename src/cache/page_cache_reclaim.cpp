@@ -10,7 +10,7 @@
 namespace pagecache::cache {
 
 std::int64_t PageCache::evict(std::int64_t amount, FileId excluded) {
-  const std::int64_t evicted = policy_->reclaim(*this, amount, excluded);
+  const std::int64_t evicted = amount > 0 ? policy_->reclaim(*this, amount, excluded) : 0;
   settle();
   tracer_.eviction(evicted);
   return evicted;

@@ -5,6 +5,9 @@
 // takes next, which expired data is written back first, what the dirty limits are fractions
 // of, and whether writers are paced or flush themselves.
 //
+// A policy's answers to the questions without arguments never change: PageCache asks them
+// once, when it is made.
+//
 // Implementations live in src/cache/policies/, one file each, and are named in its
 // registry.cpp: `kernel` (the kernel's behaviour; CacheSettings' switches are its
 // parameters, the `linux` profile's ablations), `wrench_cache` (WRENCH-cache's reading of the

@@ -94,7 +94,9 @@ std::int64_t IoController::room_for_read_at_once(const ReadRequest& request) {
   return plan.room.fits ? plan.from_disk : -1;
 }
 
-Task<std::int64_t> IoController::room_for_read(ReadRequest request, const char* verb) {
+Task<std::int64_t> IoController::room_for_read(FileId file, std::int64_t file_size, std::int64_t bytes, std::int64_t anonymous,
+                                               const char* verb) {
+  const ReadRequest request{.file = file, .file_size = file_size, .bytes = bytes, .anonymous = anonymous};
   for (;;) {
     // While make_room waited, others may have evicted some of this file's data: more of the
     // chunk then comes from the device and needs room too.
@@ -232,7 +234,7 @@ Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_siz
       // the reader faults in and zeroes each page it copies into; from the disk that overlaps
       // the device's transfer (readahead), from the cache it adds to the copy.
       std::int64_t disk_read = room_for_read_at_once({.file = file, .file_size = size, .bytes = chunk, .anonymous = chunk});
-      if (disk_read < 0) disk_read = co_await room_for_read({.file = file, .file_size = size, .bytes = chunk, .anonymous = chunk}, "reading");
+      if (disk_read < 0) disk_read = co_await room_for_read(file, size, chunk, chunk, "reading");
       const std::int64_t cache_read = chunk - disk_read;
       take_chunk(file, chunk, disk_read);
       if (disk_read > 0) co_await disk->read(disk_read, memory_->fresh_copy_rate());

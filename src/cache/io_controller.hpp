@@ -123,8 +123,10 @@ class IoController {
   /// from the device, or -1 if room_for_read must run (writeback or waiting). Not a coroutine:
   /// most chunk reads need no more, and a chunk read is the most frequent operation.
   std::int64_t room_for_read_at_once(const ReadRequest& request);
-  /// room_for_read_at_once until it succeeds, making room between tries (make_room).
-  Task<std::int64_t> room_for_read(ReadRequest request, const char* verb);
+  /// room_for_read_at_once until it succeeds, making room between tries (make_room). The
+  /// request comes as scalars: a ReadRequest built by the caller would sit in the caller's
+  /// frame across the wait, and a reader's frame lives as long as its read.
+  Task<std::int64_t> room_for_read(FileId file, std::int64_t file_size, std::int64_t bytes, std::int64_t anonymous, const char* verb);
   /// Waits until memory held by transfers in flight may have been released.
   Task<void> wait_for_progress();
 

@@ -15,7 +15,7 @@ Task<IoTally> IoController::read_chunk_remote(FileId file, std::int64_t chunk) {
   // and is kept in this host's cache (clean); the rest is a hit in this host's cache.
   const FileInfo& info = (*files_)[file];
   std::int64_t remote_read = room_for_read_at_once({.file = file, .file_size = info.size, .bytes = chunk, .anonymous = chunk});
-  if (remote_read < 0) remote_read = co_await room_for_read({.file = file, .file_size = info.size, .bytes = chunk, .anonymous = chunk}, "reading");
+  if (remote_read < 0) remote_read = co_await room_for_read(file, info.size, chunk, chunk, "reading");
   const std::int64_t cache_read = chunk - remote_read;
   take_chunk(file, chunk, remote_read);
   if (remote_read > 0) co_await serve_remote(file, remote_read);
@@ -36,7 +36,7 @@ Task<void> IoController::serve_remote(FileId file, std::int64_t bytes) {
 Task<void> IoController::serve_read(FileId file, std::int64_t bytes, const Route& route, FlowSpec client_copy) {
   const FileInfo& info = (*files_)[file];
   std::int64_t disk_read = room_for_read_at_once({.file = file, .file_size = info.size, .bytes = bytes, .anonymous = 0});
-  if (disk_read < 0) disk_read = co_await room_for_read({.file = file, .file_size = info.size, .bytes = bytes, .anonymous = 0}, "serving");
+  if (disk_read < 0) disk_read = co_await room_for_read(file, info.size, bytes, 0, "serving");
   const std::int64_t cache_read = bytes - disk_read;
   cache_->add_read(file, disk_read, sim_->now());
   cache_->reaccess(file, cache_read, sim_->now());

@@ -107,10 +107,11 @@ Task<std::int64_t> IoController::room_for_read(FileId file, std::int64_t file_si
   }
 }
 
-void IoController::take_chunk(FileId file, std::int64_t chunk, std::int64_t uncached) {
+ReadCursor IoController::take_chunk(FileId file, std::int64_t chunk, std::int64_t uncached, ReadCursor from) {
   cache_->add_read(file, uncached, sim_->now());
-  cache_->reaccess(file, chunk - uncached, sim_->now());
+  const ReadCursor next = cache_->reaccess(file, chunk - uncached, sim_->now(), from);
   cache_->allocate_anonymous(chunk);
+  return next;
 }
 
 Task<IoTally> IoController::write_chunk(FileId file, std::int64_t chunk) {
@@ -223,6 +224,7 @@ Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_siz
   const bool local = !info.is_remote();
   const Disk* const disk = info.disk;
   IoTally total;
+  ReadCursor cursor;  // where the next chunk's re-access starts: each page once
   for (std::int64_t offset = 0; offset < size; offset += chunk_size) {
     const std::int64_t chunk = std::min(chunk_size, size - offset);
     ++chunks_;
@@ -236,7 +238,7 @@ Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_siz
       std::int64_t disk_read = room_for_read_at_once({.file = file, .file_size = size, .bytes = chunk, .anonymous = chunk});
       if (disk_read < 0) disk_read = co_await room_for_read(file, size, chunk, chunk, "reading");
       const std::int64_t cache_read = chunk - disk_read;
-      take_chunk(file, chunk, disk_read);
+      cursor = take_chunk(file, chunk, disk_read, cursor);
       if (disk_read > 0) co_await disk->read(disk_read, memory_->fresh_copy_rate());
       if (cache_read > 0) co_await memory_->read_into_fresh(cache_read);
       total += IoTally{.bytes = chunk, .cache_bytes = cache_read, .disk_bytes = disk_read};

@@ -112,7 +112,9 @@ class IoController {
   Task<IoTally> read_chunk_remote(FileId file, std::int64_t chunk);
   /// A chunk read's cache bookkeeping, done when it starts: the `uncached` part is new
   /// cache data, the rest is re-accessed, and the whole chunk's copy is application memory.
-  void take_chunk(FileId file, std::int64_t chunk, std::int64_t uncached);
+  /// `from`: where the read's previous chunk left off in the cache (PageCache::reaccess);
+  /// returns where the next one starts.
+  ReadCursor take_chunk(FileId file, std::int64_t chunk, std::int64_t uncached, ReadCursor from = {});
   /// Makes room for `required` bytes (flush, then evict), sparing `spared`; if that is not
   /// enough while other transfers still hold memory (writebacks, copies in flight), waits for
   /// them and tries again. Throws SimulationError when nothing can ever free enough, naming

@@ -146,6 +146,7 @@ bool PageCache::extend_tail(ListKind kind, FileId file, std::int64_t bytes, bool
 void PageCache::destroy(BlockId id) {
   unlink(id);
   if (blocks_[id].state == BlockState::Dirty) dirty_by_age_.erase(blocks_, id);
+  blocks_[id].size = 0;  // no longer a block (a ReadCursor may still name it)
   blocks_.give_back(id);
 }
 
@@ -271,7 +272,7 @@ void PageCache::commit_dirty(FileId file, std::int64_t bytes, double now) {
   if (progress_hook_) progress_hook_();
 }
 
-void PageCache::reaccess(FileId file, std::int64_t bytes, double now) {
+ReadCursor PageCache::reaccess(FileId file, std::int64_t bytes, double now, ReadCursor from) {
   PC_ASSERT(bytes >= 0 && bytes <= cached(file));
   FileEntry& entry = file_entry(file);
   std::int64_t left = bytes;
@@ -289,21 +290,38 @@ void PageCache::reaccess(FileId file, std::int64_t bytes, double now) {
       append(id, to);
     }
   };
-  // Inactive blocks, least recently used first; each as the policy says.
-  const BlockId last = entry.inactive.back();
-  BlockId at = entry.inactive.front();
-  while (left > 0 && at != kNoBlock) {
-    const BlockId id = blocks_[at].size > left ? split_front(at, left) : at;
-    at = FileOrder::next(blocks_, id);
-    Block& block = blocks_[id];
-    left -= block.size;
-    switch (policy_->reread(block)) {
-      case Policy::Reread::Mark: block.referenced = true; break;
-      case Policy::Reread::Activate: move(id, ListKind::Active); break;
-      case Policy::Reread::Refresh: move(id, ListKind::Inactive); break;
+  // Inactive blocks, least recently used first, from `start`; each as the policy says.
+  // Returns where a next chunk of the same read starts.
+  auto touch_inactive = [&](BlockId start) {
+    const BlockId last = entry.inactive.back();
+    BlockId at = start;
+    while (left > 0 && at != kNoBlock) {
+      const BlockId id = blocks_[at].size > left ? split_front(at, left) : at;
+      at = FileOrder::next(blocks_, id);
+      Block& block = blocks_[id];
+      left -= block.size;
+      const Policy::Reread what = policy_->reread(block);
+      switch (what) {
+        case Policy::Reread::Mark: block.referenced = true; break;
+        case Policy::Reread::Activate: move(id, ListKind::Active); break;
+        case Policy::Reread::Refresh: move(id, ListKind::Inactive); break;
+      }
+      if (id == last) {
+        // The blocks refreshed are behind it; data added later comes after it, if it stayed.
+        return what == Policy::Reread::Mark ? ReadCursor{id, block.order, true} : ReadCursor{};
+      }
     }
-    if (id == last) break;  // the blocks refreshed are behind it
+    return at != kNoBlock ? ReadCursor{at, blocks_[at].order, false} : ReadCursor{};
+  };
+  // Where this read left off, if that block is still there, unmoved.
+  BlockId start = entry.inactive.front();
+  if (from.block != kNoBlock) {
+    const Block& b = blocks_[from.block];
+    if (b.size > 0 && b.file == file && b.list == ListKind::Inactive && b.order == from.order) {
+      start = from.after ? FileOrder::next(blocks_, from.block) : from.block;
+    }
   }
+  ReadCursor cursor = touch_inactive(start);
   // Active blocks: taken from the front of the file's active list and moved to the back, so
   // that none is met twice.
   while (left > 0 && !entry.active.empty()) {
@@ -312,6 +330,12 @@ void PageCache::reaccess(FileId file, std::int64_t bytes, double now) {
     left -= blocks_[id].size;
     move(id, ListKind::Active);
   }
+  // More than this read left untouched (others read or evicted meanwhile): the blocks it
+  // touched before, again.
+  if (left > 0) {
+    touch_inactive(entry.inactive.front());
+    cursor = {};
+  }
   PC_ASSERT(left == 0);
   for (ListKind to : {ListKind::Active, ListKind::Inactive}) {
     const std::int64_t merged = merged_clean[static_cast<int>(to)];
@@ -319,6 +343,7 @@ void PageCache::reaccess(FileId file, std::int64_t bytes, double now) {
   }
   balance();  // after every read, under every policy
   settle();
+  return cursor;
 }
 
 }  // namespace pagecache::cache

@@ -40,6 +40,13 @@ namespace pagecache::cache {
 
 inline constexpr FileId kNoFile = std::numeric_limits<FileId>::max();
 
+/// Where a read of a file in chunks left off in the page cache (PageCache::reaccess).
+struct ReadCursor {
+  BlockId block = kNoBlock;  ///< the file's first inactive block not yet touched, or the last one touched
+  std::uint64_t order = 0;   ///< its order key then: a block moved or reused since has another
+  bool after = false;        ///< start after `block` (it was the last inactive block, touched)
+};
+
 class PageCache {
  public:
   /// A cache under the policy `settings.policy` names (make_policy).
@@ -120,7 +127,12 @@ class PageCache {
   /// times. A block read only in part is split and only the part read moves. What happens
   /// to each inactive block is the policy's call (Policy::reread): activated, only marked
   /// referenced, or moved to the MRU end of the inactive list.
-  void reaccess(FileId file, std::int64_t bytes, double now);
+  ///
+  /// A read of a file in chunks touches each page once: a chunk's re-access starts where the
+  /// previous chunk's ended, past the blocks it only marked (`from`, as the previous call
+  /// returned; the default starts at the least recently used block). Returns where the next
+  /// chunk of the same read starts.
+  ReadCursor reaccess(FileId file, std::int64_t bytes, double now, ReadCursor from = {});
 
   /// Bytes of one file taken for writing to its device.
   struct Flushed {

@@ -490,3 +490,35 @@ TEST_CASE("the first touch of fresh memory slows reads into new buffers, not rea
     }
   }
 }
+
+TEST_CASE("two-touch activation: a file written and then read once in chunks has nothing active", "[host][activation]") {
+  // Kernel (mark_page_accessed): written pages are not referenced; one read references each
+  // page once, and activates none. A read in chunks touches each page once: chunk k must not
+  // touch again the pages chunk k - 1 only marked (which would activate every other chunk).
+  // Read a second time, every page was referenced: all of it is activated (the lists are
+  // then balanced, active <= 2 x inactive: a third moves back, active 1 GB less (1 GB + 2) / 3).
+  // WRENCH-cache activates at the first re-read.
+  for (const bool two_touch : {true, false}) {
+    CacheSettings settings = CacheSettings::kernel();
+    settings.two_touch_activation = two_touch;
+    Simulator sim;
+    FairShare share(sim);
+    Host host(sim, share, small_host(settings));
+    const FileRef file = host.add_file("f", 1000 * MB, host.add_disk("d", 100e6, 100e6));
+    std::vector<std::int64_t> active;
+    auto write_read_read = [](Host& h, FileRef f, std::vector<std::int64_t>& out) -> Task<void> {
+      co_await h.write_file(f, 64 * MB);
+      for (int i = 0; i < 2; ++i) {
+        const IoResult r = co_await h.read_file(f, 64 * MB);
+        h.release_memory(r.bytes);
+        out.push_back(h.memory().active);
+      }
+    };
+    sim.spawn(write_read_read(host, file, active));
+    sim.run();
+    REQUIRE(active.size() == 2);
+    INFO("two_touch " << two_touch);
+    CHECK(active[0] == (two_touch ? 0 : 666'666'666));
+    CHECK(active[1] == 666'666'666);
+  }
+}

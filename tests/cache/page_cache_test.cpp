@@ -294,3 +294,44 @@ TEST_CASE("files being written keep their pages while other clean data is left",
     cache.set_being_written(0, false);
   }
 }
+
+TEST_CASE("a read in chunks touches each page once: its cursor skips what it marked, and starts over when stale", "[page_cache][activation]") {
+  // Kernel, file 0 written as three dirty blocks of 100 (not referenced). Three chunks of 100
+  // with the cursor: each marks the next block; none is activated. A block written afterwards
+  // comes after the last one touched: the next chunk marks it. A fourth chunk then starts
+  // past the end, finds nothing left, and falls back to the file's oldest data (read twice
+  // now: activated). Without the cursor every chunk would start at the oldest block: the
+  // second would activate it.
+  CacheSettings settings = CacheSettings::kernel();
+  settings.balance_after_every_change = false;
+  PageCache cache(10000, settings);
+  cache.set_checking(true);
+  cache.add_clean(9, 1000, 0.0);  // keeps active <= 2 x inactive
+  for (int i = 0; i < 3; ++i) cache.add_dirty(0, 100, i);
+  ReadCursor cursor;
+  for (int i = 0; i < 3; ++i) cursor = cache.reaccess(0, 100, 10.0 + i, cursor);
+  CHECK(cache.cached(0, A) == 0);
+  CHECK(cursor.after);
+  cache.add_dirty(0, 100, 20.0);
+  cursor = cache.reaccess(0, 100, 21.0, cursor);
+  CHECK(cache.cached(0, A) == 0);
+  cache.reaccess(0, 100, 22.0, cursor);
+  CHECK(cache.cached(0, A) == 100);
+  CHECK(blocks(cache, A) == std::vector<Seen>{{0, 100, D}});
+
+  // A cursor naming a block that has gone (evicted, its id reused by another file's data)
+  // starts at the file's oldest data again.
+  PageCache other(10000, settings);
+  other.set_checking(true);
+  other.add_clean(9, 1000, 0.0);
+  other.add_read(1, 100, 0.0);  // referenced by this read
+  other.add_clean(1, 100, 0.0);  // a second block of file 1, not referenced
+  const ReadCursor stale = other.reaccess(1, 50, 1.0, {});  // activates half the first block
+  REQUIRE(stale.block != kNoBlock);
+  CHECK(other.cached(1, A) == 50);
+  other.evict(1000 + 150, kNoFile);  // everything clean and inactive goes, the cursor's block too
+  other.add_clean(2, 100, 2.0);      // may take the freed id
+  other.add_read(1, 100, 3.0);
+  other.reaccess(1, 100, 4.0, stale);  // the new block of file 1, referenced: activated
+  CHECK(other.cached(1, A) == 150);
+}

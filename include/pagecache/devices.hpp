@@ -3,7 +3,9 @@
 // (MODEL.md §5). Bandwidths are bytes per second, sizes bytes, latencies seconds.
 //
 //   Disk    one time-shared resource with separate read and write bandwidths: a read at rate r
-//           uses r / read_bw of the disk, a write r / write_bw.
+//           uses r / aggregate_read of the disk, a write r / aggregate_write; one stream (one
+//           transfer) goes at most at read / write (many devices serve several streams faster
+//           than one; by default the two are equal).
 //   Memory  an aggregate resource (what all cores together can move, read and write
 //           bandwidths) plus a per-flow bound (what one thread can copy).
 //   Link    a network link: bandwidth, plus a latency paid once per transfer; shared by its
@@ -23,21 +25,38 @@
 
 namespace pagecache {
 
+/// Disk bandwidths: what one stream gets alone, and what all streams together get.
+struct DiskBandwidth {
+  double read = 0.0;             ///< one stream, reading
+  double write = 0.0;            ///< one stream, writing
+  double aggregate_read = 0.0;   ///< all streams together, reading; 0: as one stream
+  double aggregate_write = 0.0;  ///< all streams together, writing; 0: as one stream
+};
+
 class Disk {
  public:
-  /// `capacity` is the storage size in bytes (0: unlimited).
+  /// `capacity` is the storage size in bytes (0: unlimited). One stream may take the whole disk.
   Disk(FairShare& share, std::string name, double read_bw, double write_bw, std::int64_t capacity = 0);
+  /// A disk whose streams together may go faster than one (aggregates >= the stream rates).
+  Disk(FairShare& share, std::string name, DiskBandwidth bandwidth, std::int64_t capacity = 0);
 
   /// `bound`: the most the reader can take (e.g. Memory::fresh_copy_rate()).
   FlowAwaiter read(std::int64_t bytes, double bound = kUnbounded) const;
   FlowAwaiter write(std::int64_t bytes) const;
-  Usage read_usage() const noexcept { return {resource_, 1.0 / read_bw_}; }
-  Usage write_usage() const noexcept { return {resource_, 1.0 / write_bw_}; }
+  /// Adds a read (a write) of the disk to a flow through other resources too: its share of
+  /// the disk and, if a stream is slower than the disk, the stream's bound.
+  FlowSpec& reading(FlowSpec& spec) const;
+  FlowSpec& writing(FlowSpec& spec) const;
+  Usage read_usage() const noexcept { return {resource_, 1.0 / aggregate_read_bw_}; }
+  Usage write_usage() const noexcept { return {resource_, 1.0 / aggregate_write_bw_}; }
 
   const std::string& name() const { return share_->name(resource_); }
   ResourceId resource() const noexcept { return resource_; }
+  /// One stream's rates.
   double read_bandwidth() const noexcept { return read_bw_; }
   double write_bandwidth() const noexcept { return write_bw_; }
+  double aggregate_read_bandwidth() const noexcept { return aggregate_read_bw_; }
+  double aggregate_write_bandwidth() const noexcept { return aggregate_write_bw_; }
   std::int64_t capacity() const noexcept { return capacity_; }
 
  private:
@@ -45,6 +64,8 @@ class Disk {
   ResourceId resource_;
   double read_bw_;
   double write_bw_;
+  double aggregate_read_bw_;
+  double aggregate_write_bw_;
   std::int64_t capacity_;
 };
 

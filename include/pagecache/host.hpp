@@ -68,6 +68,8 @@ class Host {
   const CacheSettings& cache_settings() const noexcept;
 
   DiskRef add_disk(std::string name, double read_bw, double write_bw, std::int64_t capacity = 0);
+  /// A disk whose streams together may go faster than one.
+  DiskRef add_disk(std::string name, DiskBandwidth bandwidth, std::int64_t capacity = 0);
   const Disk& disk(DiskRef disk) const;
   /// A file of `size` bytes on `disk`; `cached_at_start` puts it in the page cache (clean,
   /// inactive) at time 0.

@@ -26,8 +26,10 @@ std::vector<std::pair<std::string, bool*>> cache_switches(CacheSettings& setting
 
 struct DiskSpec {
   std::string name;
-  double read_bw = 0.0;
-  double write_bw = 0.0;
+  double read_bw = 0.0;   ///< one stream
+  double write_bw = 0.0;  ///< one stream
+  double aggregate_read_bw = 0.0;   ///< all streams together; 0: as one stream
+  double aggregate_write_bw = 0.0;  ///< all streams together; 0: as one stream
   std::int64_t capacity = 0;  ///< bytes; 0: unlimited
 };
 

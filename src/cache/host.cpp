@@ -52,7 +52,11 @@ const std::string& Host::name() const noexcept { return impl_->spec.name; }
 const CacheSettings& Host::cache_settings() const noexcept { return impl_->cache.settings(); }
 
 DiskRef Host::add_disk(std::string name, double read_bw, double write_bw, std::int64_t capacity) {
-  impl_->disks.emplace_back(impl_->share, std::move(name), read_bw, write_bw, capacity);
+  return add_disk(std::move(name), DiskBandwidth{.read = read_bw, .write = write_bw}, capacity);
+}
+
+DiskRef Host::add_disk(std::string name, DiskBandwidth bandwidth, std::int64_t capacity) {
+  impl_->disks.emplace_back(impl_->share, std::move(name), bandwidth, capacity);
   return DiskRef{static_cast<std::uint32_t>(impl_->disks.size() - 1)};
 }
 

@@ -45,7 +45,7 @@ Task<void> IoController::serve_read(FileId file, std::int64_t bytes, const Route
   if (disk_read > 0) {
     FlowSpec spec = client_copy;
     spec.work = static_cast<double>(disk_read);
-    co_await route.send_through(spec.through(info.disk->read_usage()));
+    co_await route.send_through(info.disk->reading(spec));
   }
   if (cache_read > 0) {
     const FlowSpec server_copy = memory_->read_spec(cache_read);
@@ -59,7 +59,8 @@ Task<void> IoController::serve_read(FileId file, std::int64_t bytes, const Route
 Task<void> IoController::serve_write(FileId file, std::int64_t bytes, const Route& route) {
   const FileInfo& info = (*files_)[file];
   if (cache_->settings().write_mode == WriteMode::Writethrough) {
-    co_await route.send_through(FlowSpec{.work = static_cast<double>(bytes)}.through(info.disk->write_usage()));
+    FlowSpec spec{.work = static_cast<double>(bytes)};
+    co_await route.send_through(info.disk->writing(spec));
     cache_->evict(bytes - cache_->free(), file);
     cache_->add_clean(file, std::min(bytes, cache_->free()), sim_->now());
     co_return;

@@ -226,6 +226,14 @@ HostConfig read_host(const toml::table& table, std::string path, std::size_t ind
     disk.name = name;
     disk.read_bw = amend ? d.optional_bandwidth("read_bw").value_or(disk.read_bw) : d.required_bandwidth("read_bw");
     disk.write_bw = amend ? d.optional_bandwidth("write_bw").value_or(disk.write_bw) : d.required_bandwidth("write_bw");
+    // Several streams together (absent: as fast as one); never below one stream's.
+    for (auto [key, aggregate, stream] : {std::tuple{"aggregate_read_bw", &disk.aggregate_read_bw, disk.read_bw},
+                                          std::tuple{"aggregate_write_bw", &disk.aggregate_write_bw, disk.write_bw}}) {
+      *aggregate = d.optional_bandwidth(key).value_or(*aggregate);
+      if (*aggregate > 0.0 && *aggregate < stream) {
+        d.fail(key, fmt::format("must not be below one stream's bandwidth ({} B/s), got {} B/s", stream, *aggregate));
+      }
+    }
     disk.capacity = d.optional_size("capacity").value_or(disk.capacity);
     d.finish();
     const Origin origin{disks[i], d.path(), &file};

@@ -81,8 +81,11 @@ std::string to_toml(const Scenario& s) {
       for (const auto& [key, flag] : cache_switches(settings)) out += fmt::format("{} = {}\n", key, *flag);
     }
     for (const DiskSpec& d : h.disks) {
-      out += fmt::format("\n[[hosts.disks]]\nname = {}\nread_bw = {}\nwrite_bw = {}\ncapacity = {}\n", quoted(d.name),
-                         quoted(units::format_bandwidth(d.read_bw)), quoted(units::format_bandwidth(d.write_bw)),
+      out += fmt::format("\n[[hosts.disks]]\nname = {}\nread_bw = {}\nwrite_bw = {}\n", quoted(d.name),
+                         quoted(units::format_bandwidth(d.read_bw)), quoted(units::format_bandwidth(d.write_bw)));
+      if (d.aggregate_read_bw > 0.0) out += fmt::format("aggregate_read_bw = {}\n", quoted(units::format_bandwidth(d.aggregate_read_bw)));
+      if (d.aggregate_write_bw > 0.0) out += fmt::format("aggregate_write_bw = {}\n", quoted(units::format_bandwidth(d.aggregate_write_bw)));
+      out += fmt::format("capacity = {}\n",
                          quoted(units::format_size(d.capacity)));
     }
   }

@@ -22,21 +22,48 @@ void require_bytes(std::int64_t bytes, const char* operation) {
 }  // namespace
 
 Disk::Disk(FairShare& share, std::string name, double read_bw, double write_bw, std::int64_t capacity)
-    : share_(&share), read_bw_(read_bw), write_bw_(write_bw), capacity_(capacity) {
-  require_positive(read_bw, name, "read bandwidth");
-  require_positive(write_bw, name, "write bandwidth");
+    : Disk(share, std::move(name), DiskBandwidth{.read = read_bw, .write = write_bw}, capacity) {}
+
+Disk::Disk(FairShare& share, std::string name, DiskBandwidth bw, std::int64_t capacity)
+    : share_(&share),
+      read_bw_(bw.read),
+      write_bw_(bw.write),
+      aggregate_read_bw_(bw.aggregate_read > 0.0 ? bw.aggregate_read : bw.read),
+      aggregate_write_bw_(bw.aggregate_write > 0.0 ? bw.aggregate_write : bw.write),
+      capacity_(capacity) {
+  require_positive(read_bw_, name, "read bandwidth");
+  require_positive(write_bw_, name, "write bandwidth");
+  require_positive(aggregate_read_bw_, name, "aggregate read bandwidth");
+  require_positive(aggregate_write_bw_, name, "aggregate write bandwidth");
+  if (aggregate_read_bw_ < read_bw_ || aggregate_write_bw_ < write_bw_) {
+    throw ConfigError(fmt::format("{}: an aggregate bandwidth is below one stream's (read {} < {} or write {} < {} B/s)", name,
+                                  aggregate_read_bw_, read_bw_, aggregate_write_bw_, write_bw_));
+  }
   if (capacity < 0) throw ConfigError(fmt::format("{}: negative capacity {} bytes", name, capacity));
   resource_ = share.add_resource(std::move(name));
 }
 
+// A stream as fast as the whole disk needs no bound of its own: its share of the disk is one.
+FlowSpec& Disk::reading(FlowSpec& spec) const {
+  if (read_bw_ < aggregate_read_bw_) spec.bound = std::min(spec.bound, read_bw_);
+  return spec.through(read_usage());
+}
+
+FlowSpec& Disk::writing(FlowSpec& spec) const {
+  if (write_bw_ < aggregate_write_bw_) spec.bound = std::min(spec.bound, write_bw_);
+  return spec.through(write_usage());
+}
+
 FlowAwaiter Disk::read(std::int64_t bytes, double bound) const {
   require_bytes(bytes, "disk read");
-  return share_->transfer(FlowSpec{.work = static_cast<double>(bytes), .bound = bound}.through(read_usage()));
+  FlowSpec spec{.work = static_cast<double>(bytes), .bound = bound};
+  return share_->transfer(reading(spec));
 }
 
 FlowAwaiter Disk::write(std::int64_t bytes) const {
   require_bytes(bytes, "disk write");
-  return share_->transfer(FlowSpec{.work = static_cast<double>(bytes)}.through(write_usage()));
+  FlowSpec spec{.work = static_cast<double>(bytes)};
+  return share_->transfer(writing(spec));
 }
 
 Memory::Memory(FairShare& share, std::string name, MemoryBandwidth bandwidth)

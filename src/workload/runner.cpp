@@ -56,7 +56,12 @@ class Runner {
       auto host = std::make_unique<Host>(
           sim_, share_, HostSpec{config.name, config.cores, config.memory, config.memory_bandwidth, config.cache, config.memory_in_use});
       std::map<std::string, DiskRef> disks;
-      for (const DiskSpec& d : config.disks) disks[d.name] = host->add_disk(config.name + ":" + d.name, d.read_bw, d.write_bw, d.capacity);  // named as the host's cpu and memory are
+      for (const DiskSpec& d : config.disks) disks[d.name] = host->add_disk(config.name + ":" + d.name,
+                                                                  DiskBandwidth{.read = d.read_bw,
+                                                                                .write = d.write_bw,
+                                                                                .aggregate_read = d.aggregate_read_bw,
+                                                                                .aggregate_write = d.aggregate_write_bw},
+                                                                  d.capacity);  // named as the host's cpu and memory are
       disks_[config.name] = std::move(disks);
       // A profile of every change is recorded as the changes happen; sampled profiles are
       // taken by sample_memory().

@@ -149,6 +149,18 @@ TEST_CASE("checks across keys: the files on a disk together, the background rati
           {"key 'hosts[0].page_cache.dirty_ratio'", "dirty_background_ratio (0.1, the profile's default)"});
 }
 
+TEST_CASE("a disk's aggregate bandwidth is not below one stream's, and pcsim show prints it", "[cli][hostile]") {
+  refused(run_edited("aggregate", "capacity = \"10 GB\"", "capacity = \"10 GB\"\naggregate_read_bw = \"1 MB/s\""),
+          {"key 'hosts[0].disks[0].aggregate_read_bw'", "must not be below one stream's bandwidth"});
+  const fs::path dir = scratch("aggregate_shown");
+  std::string text = kBase;
+  text.replace(text.find("capacity = \"10 GB\""), 18, "capacity = \"10 GB\"\naggregate_write_bw = \"5 GB/s\"");
+  std::ofstream(dir / "s.toml") << text;
+  const ChildResult shown = pcsim({"show", (dir / "s.toml").string()});
+  REQUIRE(shown.status == 0);
+  CHECK_THAT(shown.output, Catch::Contains("aggregate_write_bw = \"5 GB/s\"") && !Catch::Contains(" aggregate_read_bw"));
+}
+
 TEST_CASE("a page-cache policy is one of those registered, and the switches are the kernel policy's", "[cli][hostile]") {
   refused(run_edited("policy", "[pipelines]", "[hosts.page_cache]\npolicy = \"clock\"\n[pipelines]"),
           {"key 'hosts[0].page_cache.policy'", "unknown policy 'clock'", "kernel, wrench_cache, lru"});

@@ -9,6 +9,7 @@
 #include <catch2/catch.hpp>
 
 #include <array>
+#include <vector>
 
 using namespace pagecache;
 using pagecache::testing::bytes_through;
@@ -44,6 +45,45 @@ TEST_CASE("four equal reads on a 100 MB/s disk each finish at 4 s", "[fair_share
   sim.run();
   for (double d : done) CHECK(d == Catch::Detail::Approx(4.0).epsilon(1e-12));
   CHECK(share.active_flows() == 0);
+}
+
+TEST_CASE("streams on a disk whose aggregate is above one stream's: each capped, together up to the aggregate", "[fair_share][disk_streams]") {
+  // One stream at most 100 MB/s, all streams together 250 MB/s (reads). One read of 100 MB:
+  // 1 s (its stream's cap, not the disk's 0.4 s). Two reads: 100 MB/s each (both capped,
+  // 200 < 250): 1 s. Three reads: 250 / 3 MB/s each, the disk saturated: 300 MB in 1.2 s.
+  // A write, streams 50 and aggregate 100 MB/s, beside a read: the read at r, the write at w
+  // with w <= 50, r <= 100 and r / 250 + w / 100 <= 1: max-min raises both to 50 together
+  // (50/250 + 50/100 = 0.7), then the read alone to its cap 100 (0.4 + 0.5 = 0.9): 100 MB of
+  // each: the read done at 1 s, the write then alone at 50 MB/s: 100 MB at 2 s.
+  for (const int n : {1, 2, 3}) {
+    Simulator sim;
+    FairShare share(sim);
+    const Disk disk(share, "disk", DiskBandwidth{.read = 100 * MB, .write = 50 * MB, .aggregate_read = 250 * MB, .aggregate_write = 100 * MB});
+    std::vector<double> done(static_cast<std::size_t>(n));
+    for (auto& d : done) sim.spawn(read_at(sim, disk, 0.0, 100 * MB, d));
+    sim.run();
+    INFO(n << " streams");
+    for (double d : done) CHECK(d == Catch::Detail::Approx(n == 3 ? 1.2 : 1.0).epsilon(1e-12));
+  }
+  Simulator sim;
+  FairShare share(sim);
+  const Disk disk(share, "disk", DiskBandwidth{.read = 100 * MB, .write = 50 * MB, .aggregate_read = 250 * MB, .aggregate_write = 100 * MB});
+  double read_done = 0, write_done = 0;
+  sim.spawn(read_at(sim, disk, 0.0, 100 * MB, read_done));
+  sim.spawn(write_at(sim, disk, 0.0, 100 * MB, write_done));
+  sim.run();
+  CHECK(read_done == Catch::Detail::Approx(1.0).epsilon(1e-12));
+  CHECK(write_done == Catch::Detail::Approx(2.0).epsilon(1e-12));
+  // Equal rates (the default) are one stream taking the whole disk: two reads share 100 MB/s.
+  Simulator sim2;
+  FairShare share2(sim2);
+  const Disk plain(share2, "disk", 100 * MB, 100 * MB);
+  std::array<double, 2> both{};
+  for (auto& d : both) sim2.spawn(read_at(sim2, plain, 0.0, 100 * MB, d));
+  sim2.run();
+  for (double d : both) CHECK(d == Catch::Detail::Approx(2.0).epsilon(1e-12));
+  CHECK_THROWS_WITH(Disk(share2, "slow", DiskBandwidth{.read = 100 * MB, .write = 100 * MB, .aggregate_read = 50 * MB}),
+                    Catch::Contains("aggregate bandwidth is below one stream's"));
 }
 
 TEST_CASE("a read and a write on a disk with read 200 and write 100 MB/s get the same rate", "[fair_share]") {

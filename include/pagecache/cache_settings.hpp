@@ -77,6 +77,11 @@ struct CacheSettings {
   /// The lists are balanced (active <= 2 x inactive) after every change. Off, as
   /// WRENCH-cache: after reads only.
   bool balance_after_every_change = true;
+  /// Copies into and out of the page cache hold a core of their host while they run,
+  /// competing with computations for the cores (Memory::copy_on). Off, as the paper and
+  /// until 2026-12-03: copies take memory bandwidth only. Off in the linux profile too (see
+  /// docs/linux-profile.md).
+  bool copies_hold_cores = false;
 
   /// The paper's model as WRENCH-cache implements it: dirty ratio 0.4, 5 s interval, 30 s
   /// expiry, and WRENCH-cache's reading of the paper where the paper is ambiguous.

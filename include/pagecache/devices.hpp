@@ -84,9 +84,19 @@ struct MemoryBandwidth {
   static MemoryBandwidth shared_channel(double bandwidth) { return {bandwidth, bandwidth, bandwidth, bandwidth, 0.0}; }
 };
 
+class Cpu;
+
 class Memory {
  public:
   Memory(FairShare& share, std::string name, MemoryBandwidth bandwidth);
+
+  /// Copies (read, write, read_into_fresh) are done by a thread of `cpu` and hold one of its
+  /// cores while they run, sharing the cores with computations as the kernel's scheduler
+  /// shares them among runnable threads: a copy also crosses the CPU, a core's worth at its
+  /// bound, and weighs its bound so that a copy and a computation each get an equal share of
+  /// a core. nullptr (the default): copies take no CPU. The specs (read_spec ...) are not
+  /// charged: they are parts of transfers through other devices.
+  void copy_on(const Cpu* cpu) noexcept { cpu_ = cpu; }
 
   FlowAwaiter read(std::int64_t bytes) const;
   FlowAwaiter write(std::int64_t bytes) const;
@@ -106,9 +116,13 @@ class Memory {
   const MemoryBandwidth& bandwidth() const noexcept { return bandwidth_; }
 
  private:
+  /// `spec` as a copy by a thread on cpu_ (copy_on), if any.
+  FlowSpec on_core(FlowSpec spec) const;
+
   FairShare* share_;
   ResourceId resource_;
   MemoryBandwidth bandwidth_;
+  const Cpu* cpu_ = nullptr;
 };
 
 enum class LinkSharing {

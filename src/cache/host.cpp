@@ -20,7 +20,9 @@ struct Host::Impl {
         memory(fs, spec.name + ":memory", spec.memory_bandwidth),
         cache(spec.memory, spec.cache),
         flusher(s, cache, files),
-        io(s, cache, memory, files, flusher) {}
+        io(s, cache, memory, files, flusher) {
+    if (cache.policy().copies_hold_cores()) memory.copy_on(&cpu);
+  }
 
   Simulator& sim;
   FairShare& share;

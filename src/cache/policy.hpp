@@ -74,6 +74,10 @@ class Policy {
   /// throttling) rather than flushing data themselves.
   virtual bool throttles_writers() const noexcept = 0;
 
+  // --- The host ---------------------------------------------------------------------------
+  /// Whether copies into and out of the cache hold a core (Memory::copy_on). Not by default.
+  virtual bool copies_hold_cores() const noexcept { return false; }
+
   // --- Dirty limits -----------------------------------------------------------------------
   /// Memory the dirty ratios are fractions of.
   virtual std::int64_t dirtyable(const PageCache& cache) const noexcept = 0;

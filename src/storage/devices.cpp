@@ -103,9 +103,17 @@ double Memory::fresh_copy_rate() const noexcept {
   return 1.0 / (1.0 / bandwidth_.read + 1.0 / bandwidth_.first_touch);
 }
 
-FlowAwaiter Memory::read(std::int64_t bytes) const { return share_->transfer(read_spec(bytes)); }
-FlowAwaiter Memory::read_into_fresh(std::int64_t bytes) const { return share_->transfer(read_into_fresh_spec(bytes)); }
-FlowAwaiter Memory::write(std::int64_t bytes) const { return share_->transfer(write_spec(bytes)); }
+FlowSpec Memory::on_core(FlowSpec spec) const {
+  if (cpu_ == nullptr) return spec;
+  // At its bound the copy keeps one core busy: 1 / (cores x bound) of the CPU per byte. Its
+  // weight is its bound, in bytes per second per core, so that max-min gives it the same
+  // share of the cores as a computation (weight 1, in core-seconds per second).
+  return spec.through({cpu_->resource(), 1.0 / (cpu_->cores() * spec.bound)}).with_weight(spec.bound);
+}
+
+FlowAwaiter Memory::read(std::int64_t bytes) const { return share_->transfer(on_core(read_spec(bytes))); }
+FlowAwaiter Memory::read_into_fresh(std::int64_t bytes) const { return share_->transfer(on_core(read_into_fresh_spec(bytes))); }
+FlowAwaiter Memory::write(std::int64_t bytes) const { return share_->transfer(on_core(write_spec(bytes))); }
 
 Link::Link(FairShare& share, std::string name, double bandwidth, double latency, LinkSharing sharing)
     : share_(&share), bandwidth_(bandwidth), latency_(latency), sharing_(sharing) {

@@ -40,7 +40,8 @@ std::vector<std::pair<std::string, bool*>> cache_switches(CacheSettings& s) {
           {"reclaim_inactive_only", &s.reclaim_inactive_only},
           {"reclaim_may_take_file_being_read", &s.reclaim_may_take_file_being_read},
           {"flush_splits_in_place", &s.flush_splits_in_place},
-          {"balance_after_every_change", &s.balance_after_every_change}};
+          {"balance_after_every_change", &s.balance_after_every_change},
+          {"copies_hold_cores", &s.copies_hold_cores}};
 }
 
 }  // namespace pagecache

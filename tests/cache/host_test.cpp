@@ -10,6 +10,7 @@
 #include <cmath>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
 
 using namespace pagecache;
@@ -520,5 +521,39 @@ TEST_CASE("two-touch activation: a file written and then read once in chunks has
     INFO("two_touch " << two_touch);
     CHECK(active[0] == (two_touch ? 0 : 666'666'666));
     CHECK(active[1] == 666'666'666);
+  }
+}
+
+TEST_CASE("a copy out of the page cache waits for a core while a computation holds it", "[host][copies_hold_cores]") {
+  // 1 GB cached, read in 100 MB chunks at 1 GB/s (one thread's copy); beside it a task
+  // computing 1 core-second. Copies holding cores, on 1 core: the copy (weight 1 GB/s per
+  // core) and the computation (weight 1) share the core, half each: the read at 500 MB/s and
+  // the computation at half a core, both done at 2 s. On 2 cores each has its own: 1 s. With
+  // the switch off the copy needs no core: 1 s on 1 core too.
+  for (const auto& [cores, hold, expected] : {std::tuple{1, true, 2.0}, std::tuple{2, true, 1.0}, std::tuple{1, false, 1.0}}) {
+    CacheSettings settings = CacheSettings::kernel();
+    settings.copies_hold_cores = hold;
+    HostSpec spec = small_host(settings);
+    spec.cores = cores;
+    Simulator sim;
+    FairShare share(sim);
+    Host host(sim, share, spec);
+    const FileRef file = host.add_file("cached", 1000 * MB, host.add_disk("d", 100e6, 100e6), true);
+    double read_done = 0, compute_done = 0;
+    auto read = [](Simulator& s, Host& h, FileRef f, double& done) -> Task<void> {
+      const IoResult r = co_await h.read_file(f, 100 * MB);
+      CHECK(r.cache_bytes == 1000 * MB);
+      done = s.now();
+    };
+    auto compute = [](Simulator& s, Host& h, double& done) -> Task<void> {
+      co_await h.compute(1.0);
+      done = s.now();
+    };
+    sim.spawn(read(sim, host, file, read_done));
+    sim.spawn(compute(sim, host, compute_done));
+    sim.run();
+    INFO(cores << " cores, copies_hold_cores " << hold);
+    CHECK(read_done == Catch::Detail::Approx(expected).epsilon(1e-9));
+    CHECK(compute_done == Catch::Detail::Approx(expected).epsilon(1e-9));
   }
 }

@@ -52,6 +52,9 @@ class KernelPolicy final : public Policy {
   // Throttled writers wait for the flusher's background writeback; without it, they flush.
   bool throttles_writers() const noexcept override { return s_.dirty_throttling && s_.background_writeback; }
 
+  // The copy is a memcpy by the application's thread (copy_page_to_iter, copy_page_from_iter).
+  bool copies_hold_cores() const noexcept override { return s_.copies_hold_cores; }
+
   // global_dirtyable_memory: free + file pages; copies into the cache in flight (reserved)
   // are file pages already, as the kernel dirties pages one by one while the copy runs.
   std::int64_t dirtyable(const PageCache& cache) const noexcept override {

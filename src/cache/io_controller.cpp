@@ -224,7 +224,10 @@ Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_siz
   const bool local = !info.is_remote();
   const Disk* const disk = info.disk;
   IoTally total;
-  ReadCursor cursor;  // where the next chunk's re-access starts: each page once
+  // Where the next chunk's re-access starts, each page once: in this host's cache, and for a
+  // remote file in its server's.
+  ReadCursor cursor;
+  ReadCursor server_cursor;
   for (std::int64_t offset = 0; offset < size; offset += chunk_size) {
     const std::int64_t chunk = std::min(chunk_size, size - offset);
     ++chunks_;
@@ -245,7 +248,7 @@ Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_siz
       continue;
     }
     if (!direct) {
-      total += co_await read_chunk_remote(file, chunk);
+      total += co_await read_chunk_remote(file, chunk, cursor, server_cursor);
       continue;
     }
     // O_DIRECT: only the application's buffer takes memory; the data comes from the disk, or
@@ -256,7 +259,7 @@ Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_siz
     if (local) {
       co_await disk->read(chunk, memory_->fresh_copy_rate());
     } else {
-      co_await serve_remote(file, chunk);
+      co_await serve_remote(file, chunk, &server_cursor);
     }
     total += IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
   }

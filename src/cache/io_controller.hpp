@@ -71,7 +71,9 @@ class IoController {
   /// from this host's page cache or, for what is not cached, from its disk (then cached).
   /// `client_copy` is the client's side of the transfer (its copy into its own page cache):
   /// each part is one flow through the source device, the link and the client's memory.
-  Task<void> serve_read(FileId file, std::int64_t bytes, const Route& route, FlowSpec client_copy);
+  /// `cursor`: where the client's read of the file left off in this host's cache (each page
+  /// once per read, PageCache::reaccess), updated; nullptr: a read of its own.
+  Task<void> serve_read(FileId file, std::int64_t bytes, const Route& route, FlowSpec client_copy, ReadCursor* cursor = nullptr);
   /// Receives `bytes` of `file` over `link` and writes them as this host's cache mode says
   /// (writethrough: to disk, then cached clean; writeback: into the cache, dirty).
   Task<void> serve_write(FileId file, std::int64_t bytes, const Route& route);
@@ -89,8 +91,9 @@ class IoController {
  private:
   /// Throws ConfigError for a chunk size <= 0.
   void check_request(std::int64_t chunk_size) const;
-  /// Reads `bytes` of a remote file from its server into this host's fresh memory.
-  Task<void> serve_remote(FileId file, std::int64_t bytes);
+  /// Reads `bytes` of a remote file from its server into this host's fresh memory;
+  /// `server_cursor` as serve_read's.
+  Task<void> serve_remote(FileId file, std::int64_t bytes, ReadCursor* server_cursor);
   Task<IoResult> read_whole_file(FileId file, std::int64_t chunk_size, bool direct);
   /// Flushes up to `amount` dirty bytes (skipping `excluded`) and waits for their writes.
   Task<std::int64_t> write_back(std::int64_t amount, FileId excluded, FlushCause cause);
@@ -109,7 +112,9 @@ class IoController {
   /// Copies `bytes` into the cache: the memory transfer, then a new dirty block.
   Task<void> write_to_cache(FileId file, std::int64_t bytes);
   Task<IoTally> write_chunk_writethrough(FileId file, std::int64_t chunk);
-  Task<IoTally> read_chunk_remote(FileId file, std::int64_t chunk);
+  /// A chunk of a client's read of a remote file; `cursor` and `server_cursor`: where the read
+  /// left off in this host's cache and in the server's, updated.
+  Task<IoTally> read_chunk_remote(FileId file, std::int64_t chunk, ReadCursor& cursor, ReadCursor& server_cursor);
   /// A chunk read's cache bookkeeping, done when it starts: the `uncached` part is new
   /// cache data, the rest is re-accessed, and the whole chunk's copy is application memory.
   /// `from`: where the read's previous chunk left off in the cache (PageCache::reaccess);

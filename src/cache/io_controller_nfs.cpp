@@ -10,36 +10,37 @@
 
 namespace pagecache::cache {
 
-Task<IoTally> IoController::read_chunk_remote(FileId file, std::int64_t chunk) {
+Task<IoTally> IoController::read_chunk_remote(FileId file, std::int64_t chunk, ReadCursor& cursor, ReadCursor& server_cursor) {
   // A client read (NFS): what this host's cache lacks comes from the server, over the link,
   // and is kept in this host's cache (clean); the rest is a hit in this host's cache.
   const FileInfo& info = (*files_)[file];
   std::int64_t remote_read = room_for_read_at_once({.file = file, .file_size = info.size, .bytes = chunk, .anonymous = chunk});
   if (remote_read < 0) remote_read = co_await room_for_read(file, info.size, chunk, chunk, "reading");
   const std::int64_t cache_read = chunk - remote_read;
-  take_chunk(file, chunk, remote_read);
-  if (remote_read > 0) co_await serve_remote(file, remote_read);
+  cursor = take_chunk(file, chunk, remote_read, cursor);
+  if (remote_read > 0) co_await serve_remote(file, remote_read, &server_cursor);
   if (cache_read > 0) co_await memory_->read_into_fresh(cache_read);
   // From this host's point of view, data from the server is not from its own cache.
   co_return IoTally{.bytes = chunk, .cache_bytes = cache_read, .disk_bytes = remote_read};
 }
 
-Task<void> IoController::serve_remote(FileId file, std::int64_t bytes) {
+Task<void> IoController::serve_remote(FileId file, std::int64_t bytes, ReadCursor* server_cursor) {
   // The data lands in this host's memory (its cache, or with O_DIRECT the application's
   // buffer), fresh memory either way.
   const FileInfo& info = (*files_)[file];
   FlowSpec client_copy = memory_->write_spec(bytes);
   client_copy.bound = std::min(client_copy.bound, memory_->fresh_copy_rate());
-  co_await info.remote.server->serve_read(info.remote.server_file, bytes, *info.remote.route, client_copy);
+  co_await info.remote.server->serve_read(info.remote.server_file, bytes, *info.remote.route, client_copy, server_cursor);
 }
 
-Task<void> IoController::serve_read(FileId file, std::int64_t bytes, const Route& route, FlowSpec client_copy) {
+Task<void> IoController::serve_read(FileId file, std::int64_t bytes, const Route& route, FlowSpec client_copy, ReadCursor* cursor) {
   const FileInfo& info = (*files_)[file];
   std::int64_t disk_read = room_for_read_at_once({.file = file, .file_size = info.size, .bytes = bytes, .anonymous = 0});
   if (disk_read < 0) disk_read = co_await room_for_read(file, info.size, bytes, 0, "serving");
   const std::int64_t cache_read = bytes - disk_read;
   cache_->add_read(file, disk_read, sim_->now());
-  cache_->reaccess(file, cache_read, sim_->now());
+  const ReadCursor next = cache_->reaccess(file, cache_read, sim_->now(), cursor != nullptr ? *cursor : ReadCursor{});
+  if (cursor != nullptr) *cursor = next;
   // Each part is one flow through the source device, the link and the client's memory: the
   // most loaded of them sets the pace.
   if (disk_read > 0) {

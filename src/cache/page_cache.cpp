@@ -308,10 +308,10 @@ ReadCursor PageCache::reaccess(FileId file, std::int64_t bytes, double now, Read
       }
       if (id == last) {
         // The blocks refreshed are behind it; data added later comes after it, if it stayed.
-        return what == Policy::Reread::Mark ? ReadCursor{id, block.order, true} : ReadCursor{};
+        return what == Policy::Reread::Mark ? ReadCursor{.block = id, .after = true, .order = block.order} : ReadCursor{};
       }
     }
-    return at != kNoBlock ? ReadCursor{at, blocks_[at].order, false} : ReadCursor{};
+    return at != kNoBlock ? ReadCursor{.block = at, .after = false, .order = blocks_[at].order} : ReadCursor{};
   };
   // Where this read left off, if that block is still there, unmoved.
   BlockId start = entry.inactive.front();

@@ -43,8 +43,8 @@ inline constexpr FileId kNoFile = std::numeric_limits<FileId>::max();
 /// Where a read of a file in chunks left off in the page cache (PageCache::reaccess).
 struct ReadCursor {
   BlockId block = kNoBlock;  ///< the file's first inactive block not yet touched, or the last one touched
-  std::uint64_t order = 0;   ///< its order key then: a block moved or reused since has another
   bool after = false;        ///< start after `block` (it was the last inactive block, touched)
+  std::uint64_t order = 0;   ///< its order key then: a block moved or reused since has another
 };
 
 class PageCache {

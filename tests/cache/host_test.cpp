@@ -557,3 +557,31 @@ TEST_CASE("a copy out of the page cache waits for a core while a computation hol
     CHECK(compute_done == Catch::Detail::Approx(expected).epsilon(1e-9));
   }
 }
+
+TEST_CASE("a client's read over NFS touches each page of the server's cache once", "[host][activation][nfs]") {
+  // 1 GB cached on the server from the start (not referenced). A client reads it once in
+  // 100 MB chunks: under two-touch activation the server only marks each page; the chunk
+  // requests come one by one, and each must start where the last left off, or every other
+  // one would activate what the one before marked. Read a second time: all activated (then
+  // balanced: active 1 GB less (1 GB + 2) / 3).
+  Simulator sim;
+  FairShare share(sim);
+  Host client(sim, share, small_host(CacheSettings::kernel()));
+  Host server(sim, share, small_host(CacheSettings::kernel()));
+  const FileRef exported = server.add_file("exported", 1000 * MB, server.add_disk("d", 100e6, 100e6), true);
+  const Link link(share, "l", 1000e6, 0.0);
+  const FileRef remote = client.add_remote_file(server, exported, link);
+  std::vector<std::int64_t> server_active;
+  auto read_twice = [](Host& c, Host& s, FileRef f, std::vector<std::int64_t>& out) -> Task<void> {
+    for (int i = 0; i < 2; ++i) {
+      const IoResult r = co_await c.read_file(f, 100 * MB, true);  // O_DIRECT: the client caches nothing
+      c.release_memory(r.bytes);
+      out.push_back(s.memory().active);
+    }
+  };
+  sim.spawn(read_twice(client, server, remote, server_active));
+  sim.run();
+  REQUIRE(server_active.size() == 2);
+  CHECK(server_active[0] == 0);
+  CHECK(server_active[1] == 666'666'666);
+}

@@ -53,17 +53,30 @@ std::int64_t PageCache::writeback() const noexcept {
 
 std::int64_t PageCache::dirty_and_writeback() const noexcept { return dirty() + writeback(); }
 
-void PageCache::allocate_anonymous(std::int64_t bytes) {
+void PageCache::allocate_anonymous(std::int64_t bytes, GroupId group) {
   PC_ASSERT(bytes >= 0);
   if (bytes > free()) {
     throw SimulationError(fmt::format("out of memory: {} bytes of application memory requested, {} free", bytes, free()));
+  }
+  if (!groups_.empty()) {
+    if (group != kRootGroup && bytes > group_room(group)) {
+      throw SimulationError(fmt::format("memory group {} over its limit: {} bytes of application memory requested, {} of {} used", group,
+                                        bytes, group_usage(group), groups_[group].max));
+    }
+    groups_[group].anonymous += bytes;
+  } else {
+    PC_ASSERT(group == kRootGroup);
   }
   anonymous_ += bytes;
   settle();
 }
 
-void PageCache::release_anonymous(std::int64_t bytes) {
+void PageCache::release_anonymous(std::int64_t bytes, GroupId group) {
   PC_ASSERT(bytes >= 0 && bytes <= anonymous_);
+  if (!groups_.empty()) {
+    PC_ASSERT(bytes <= groups_[group].anonymous);
+    groups_[group].anonymous -= bytes;
+  }
   anonymous_ -= bytes;
   settle();
   if (progress_hook_) progress_hook_();
@@ -111,6 +124,7 @@ void PageCache::append(BlockId id, ListKind kind) {
   file_list(entry, kind).push_back(blocks_, id);
   ++entry.blocks;
   (kind == ListKind::Inactive ? entry.inactive_bytes : entry.active_bytes) += block.size;
+  charge(block.file, block.size);
   if (block.state == BlockState::Dirty) entry.dirty_bytes += block.size;
   if (block.state == BlockState::Clean) on_clean_linked(id);
 }
@@ -124,6 +138,7 @@ void PageCache::unlink(BlockId id) {
   file_list(entry, block.list).erase(blocks_, id);
   --entry.blocks;
   (block.list == ListKind::Inactive ? entry.inactive_bytes : entry.active_bytes) -= block.size;
+  charge(block.file, -block.size);
   if (block.state == BlockState::Dirty) entry.dirty_bytes -= block.size;
 }
 
@@ -140,6 +155,7 @@ bool PageCache::extend_tail(ListKind kind, FileId file, std::int64_t bytes, bool
   list.resize(tail_id, tail.size + bytes);
   FileEntry& entry = files_[file];
   (kind == ListKind::Inactive ? entry.inactive_bytes : entry.active_bytes) += bytes;
+  charge(file, bytes);
   return true;
 }
 

@@ -40,6 +40,12 @@ namespace pagecache::cache {
 
 inline constexpr FileId kNoFile = std::numeric_limits<FileId>::max();
 
+/// A memory group (a cgroup's memory controller): 0 is the root group, which has no limit.
+using GroupId = std::uint16_t;
+inline constexpr GroupId kRootGroup = 0;
+/// As a reclaim or flush target: every group.
+inline constexpr GroupId kAnyGroup = std::numeric_limits<GroupId>::max();
+
 /// Where a read of a file in chunks left off in the page cache (PageCache::reaccess).
 struct ReadCursor {
   BlockId block = kNoBlock;  ///< the file's first inactive block not yet touched, or the last one touched
@@ -94,8 +100,25 @@ class PageCache {
 
   /// Takes `bytes` of free memory for application buffers. Throws SimulationError if there
   /// is not that much free memory (the caller makes room first).
-  void allocate_anonymous(std::int64_t bytes);
-  void release_anonymous(std::int64_t bytes);
+  void allocate_anonymous(std::int64_t bytes, GroupId group = kRootGroup);
+  void release_anonymous(std::int64_t bytes, GroupId group = kRootGroup);
+
+  // --- Memory groups (cgroup v2 memory.max; mm/memcontrol.c) ------------------------------
+  /// A group whose memory (the anonymous memory allocated for it and the page cache charged
+  /// to it) may not exceed `max` bytes. Returns its id: 1, 2, ...
+  GroupId add_group(std::int64_t max);
+  std::size_t group_count() const noexcept { return groups_.size(); }
+  /// Charges the data of `file` to `group` unless a group has it already. The kernel charges
+  /// each page to the group of the task that brought it in (first touch); pcsim charges a
+  /// whole file to the first group that caches any of it.
+  void charge_file(FileId file, GroupId group);
+  GroupId group_of(FileId file) const noexcept { return file < file_group_.size() ? file_group_[file] : kRootGroup; }
+  /// The group's memory: anonymous + cached (the root group's: every byte not in a group).
+  std::int64_t group_usage(GroupId group) const noexcept;
+  std::int64_t group_cached(GroupId group) const noexcept { return groups_[group].cached; }
+  std::int64_t group_max(GroupId group) const noexcept { return groups_[group].max; }
+  /// What the group may still take before its limit, as far as free memory allows.
+  std::int64_t group_room(GroupId group) const noexcept;
 
   // --- Per file ---------------------------------------------------------------------------
   std::int64_t cached(FileId file) const noexcept;
@@ -144,7 +167,8 @@ class PageCache {
   /// list then active list, skipping `excluded`: they are in writeback (neither dirty nor
   /// evictable) until end_writeback. Appends what was taken, per file, to `out` and returns
   /// the total. The caller writes them to their devices, then calls end_writeback.
-  std::int64_t flush(std::int64_t amount, FileId excluded, std::vector<Flushed>& out);
+  /// `group`: only that group's data (a group's own reclaim at its limit).
+  std::int64_t flush(std::int64_t amount, FileId excluded, std::vector<Flushed>& out, GroupId group = kAnyGroup);
   /// Takes for writing back a dirty block whose entry time is <= `cutoff` (the one
   /// Policy::next_expired chooses), or returns {kNoFile, 0}. The periodic flusher writes
   /// expired data one block at a time.
@@ -161,8 +185,10 @@ class PageCache {
   /// discarded. None of it may be in writeback (wait for it first).
   void drop_file(FileId file);
   /// Deletes up to `amount` bytes of clean data, skipping `excluded`, as Policy::reclaim
-  /// chooses. Returns how many. Takes no simulated time.
-  std::int64_t evict(std::int64_t amount, FileId excluded);
+  /// chooses; `group`: only that group's data (the kernel's memcg reclaim,
+  /// try_to_free_mem_cgroup_pages, scans the group's own lists). Returns how many. Takes no
+  /// simulated time.
+  std::int64_t evict(std::int64_t amount, FileId excluded, GroupId group = kAnyGroup);
   /// A write of `file` starts (true) or ends (false): a policy may spare files being written.
   void set_being_written(FileId file, bool writing);
   /// Bytes evicted so far.
@@ -290,6 +316,22 @@ class PageCache {
   };
   ExpiryScan expiry_scan_;
   std::vector<FileEntry> files_;
+  // Memory groups: each group's limit and charges; every file's group (only when there are
+  // groups: a run without them pays nothing). The walks of a reclaim or flush skip the data
+  // of other groups than target_ (kAnyGroup: none skipped).
+  struct Group {
+    std::int64_t max = 0;
+    std::int64_t anonymous = 0;
+    std::int64_t cached = 0;
+  };
+  std::vector<Group> groups_;
+  std::vector<GroupId> file_group_;
+  GroupId target_ = kAnyGroup;
+  bool in_target(const Block& block) const noexcept { return target_ == kAnyGroup || group_of(block.file) == target_; }
+  /// Adds `bytes` to the cached bytes of the file's group.
+  void charge(FileId file, std::int64_t bytes) noexcept {
+    if (!groups_.empty()) groups_[group_of(file)].cached += bytes;
+  }
   // Per LRU list, with the clean index: where an eviction that spares the files
   // being written finds its next victim without walking past their clean blocks. Every file
   // not being written that has clean data in the list is in it, under a key no higher than

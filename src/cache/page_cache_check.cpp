@@ -69,6 +69,18 @@ void PageCache::check_invariants() const {
     blocks_in_files += blocks;
   }
   PC_ASSERT_MSG(blocks_in_files == inactive_.size() + active_.size(), "a block is missing from its file's list");
+  if (!groups_.empty()) {
+    // Each group's charges are its files' cached bytes and its anonymous memory.
+    std::vector<std::int64_t> charged(groups_.size(), 0);
+    std::int64_t anonymous = 0;
+    for (std::size_t f = 0; f < files_.size(); ++f) charged[group_of(static_cast<FileId>(f))] += cached(static_cast<FileId>(f));
+    for (std::size_t g = 0; g < groups_.size(); ++g) {
+      PC_ASSERT_MSG(groups_[g].cached == charged[g], fmt::format("group {}: {} bytes charged, its files hold {}", g, groups_[g].cached, charged[g]));
+      anonymous += groups_[g].anonymous;
+    }
+    PC_ASSERT_MSG(anonymous == anonymous_, "the groups' anonymous memory is not the host's");
+  }
+  PC_ASSERT(target_ == kAnyGroup);
   for (const FileHeap& files : reclaimable_) {
     files.check();
     PC_ASSERT(index_clean_ || files.empty());

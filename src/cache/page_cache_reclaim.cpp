@@ -9,8 +9,10 @@
 
 namespace pagecache::cache {
 
-std::int64_t PageCache::evict(std::int64_t amount, FileId excluded) {
+std::int64_t PageCache::evict(std::int64_t amount, FileId excluded, GroupId group) {
+  target_ = group;
   const std::int64_t evicted = amount > 0 ? policy_->reclaim(*this, amount, excluded) : 0;
+  target_ = kAnyGroup;
   settle();
   tracer_.eviction(evicted);
   return evicted;
@@ -25,7 +27,7 @@ std::int64_t PageCache::evict_clean(ListKind kind, std::int64_t budget, FileId e
     evicted_total_ += blocks_[victim].size;
     destroy(victim);
   };
-  if (spare_written) {
+  if (spare_written && target_ == kAnyGroup) {
     // The same victims in the same order as the walk below, without walking past the clean
     // blocks of the files being written.
     bool set_aside = false;
@@ -42,7 +44,8 @@ std::int64_t PageCache::evict_clean(ListKind kind, std::int64_t budget, FileId e
   BlockId id = list.front(BlockState::Clean);
   while (id != kNoBlock && evicted < budget) {
     const BlockId next = list.next_in_state(id);
-    if (blocks_[id].file != excluded) take(id);
+    const Block& block = blocks_[id];
+    if (block.file != excluded && in_target(block) && !(spare_written && files_[block.file].writers > 0)) take(id);
     id = next;
   }
   return evicted;
@@ -50,10 +53,15 @@ std::int64_t PageCache::evict_clean(ListKind kind, std::int64_t budget, FileId e
 
 std::int64_t PageCache::deactivate_oldest(std::int64_t budget, FileId excluded, bool spare_written) {
   std::int64_t evicted = 0;
-  while (evicted < budget && !active_.empty()) {
-    const BlockId oldest = active_.front();
-    unlink(oldest);
+  // The oldest active data of the target: the list's front, or with a group target the first
+  // of the group's blocks from the front (others' blocks stay where they are).
+  BlockId at = active_.front();
+  while (evicted < budget && at != kNoBlock) {
+    const BlockId oldest = at;
+    at = active_.next(oldest);
     Block& block = blocks_[oldest];
+    if (!in_target(block)) continue;
+    unlink(oldest);
     block.referenced = false;
     append(oldest, ListKind::Inactive);
     const bool spared = block.file == excluded || (spare_written && files_[block.file].writers > 0);

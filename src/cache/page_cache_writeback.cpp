@@ -9,7 +9,8 @@
 
 namespace pagecache::cache {
 
-std::int64_t PageCache::flush(std::int64_t amount, FileId excluded, std::vector<Flushed>& out) {
+std::int64_t PageCache::flush(std::int64_t amount, FileId excluded, std::vector<Flushed>& out, GroupId group) {
+  target_ = group;
   std::int64_t flushed = 0;
   const std::uint64_t token = next_token_++;
   for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
@@ -17,7 +18,7 @@ std::int64_t PageCache::flush(std::int64_t amount, FileId excluded, std::vector<
     BlockId id = list.front(BlockState::Dirty);
     while (id != kNoBlock && flushed < amount) {
       const BlockId next = list.next_in_state(id);
-      if (blocks_[id].file != excluded) {
+      if (blocks_[id].file != excluded && in_target(blocks_[id])) {
         const bool partial = blocks_[id].size > amount - flushed;
         const BlockId target = partial ? split_front(id, amount - flushed) : id;
         const Block& block = blocks_[target];
@@ -33,6 +34,7 @@ std::int64_t PageCache::flush(std::int64_t amount, FileId excluded, std::vector<
       id = next;
     }
   }
+  target_ = kAnyGroup;
   settle();
   return flushed;
 }

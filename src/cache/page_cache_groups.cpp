@@ -1,0 +1,45 @@
+// PageCache: memory groups (cgroup v2 memory.max, first cut): a group's limit and charges.
+
+#include "cache/page_cache.hpp"
+
+#include "engine/check.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <limits>
+
+namespace pagecache::cache {
+
+GroupId PageCache::add_group(std::int64_t max) {
+  if (max <= 0) throw ConfigError(fmt::format("a memory group's limit must be > 0, got {} bytes", max));
+  if (groups_.empty()) {
+    // The root group holds everything so far.
+    groups_.push_back(Group{.max = std::numeric_limits<std::int64_t>::max(), .anonymous = anonymous_, .cached = cached()});
+  }
+  if (groups_.size() == kAnyGroup) throw ConfigError("too many memory groups");
+  groups_.push_back(Group{.max = max});
+  return static_cast<GroupId>(groups_.size() - 1);
+}
+
+void PageCache::charge_file(FileId file, GroupId group) {
+  if (groups_.empty() || group == kRootGroup || group_of(file) != kRootGroup) return;
+  PC_ASSERT(group < groups_.size());
+  if (file >= file_group_.size()) file_group_.resize(static_cast<std::size_t>(file) + 1, kRootGroup);
+  const std::int64_t bytes = cached(file);
+  groups_[kRootGroup].cached -= bytes;
+  groups_[group].cached += bytes;
+  file_group_[file] = group;
+}
+
+std::int64_t PageCache::group_usage(GroupId group) const noexcept {
+  if (groups_.empty()) return anonymous_ + cached();
+  return groups_[group].anonymous + groups_[group].cached;
+}
+
+std::int64_t PageCache::group_room(GroupId group) const noexcept {
+  if (groups_.empty() || group == kRootGroup) return free();
+  return std::min(groups_[group].max - group_usage(group), free());
+}
+
+}  // namespace pagecache::cache

@@ -42,6 +42,10 @@ struct HostSpec {
 struct DiskRef {
   std::uint32_t index = 0;
 };
+/// A memory group of a host (add_memory_group); the default, 0, is no group (the root).
+struct GroupRef {
+  std::uint16_t index = 0;
+};
 /// A file known to a host (index in the order of add_file).
 struct FileRef {
   std::uint32_t index = 0;
@@ -90,10 +94,10 @@ class Host {
   /// cache (an NFS server still serves from, and fills, its own). Throws ConfigError at the
   /// call for a file unknown here or a chunk size <= 0; SimulationError from the task when the
   /// read cannot proceed.
-  Task<IoResult> read_file(FileRef file, std::int64_t chunk_size, bool direct = false);
+  Task<IoResult> read_file(FileRef file, std::int64_t chunk_size, bool direct = false, GroupRef group = {});
   /// Writes the file's whole size in chunks of `chunk_size` bytes. `direct`: O_DIRECT (on an
   /// NFS mount the same as without: there is no client write cache). Errors as read_file's.
-  Task<IoResult> write_file(FileRef file, std::int64_t chunk_size, bool direct = false);
+  Task<IoResult> write_file(FileRef file, std::int64_t chunk_size, bool direct = false, GroupRef group = {});
   /// fsync(2): returns when every dirty byte of the file is on its disk.
   Task<void> fsync(FileRef file);
   /// Deletes the file's data from the page cache (unlink): dirty data is discarded unwritten.
@@ -103,9 +107,21 @@ class Host {
   /// Takes `bytes` of application memory (a task's working memory), writing back and evicting
   /// cached data to make room; give it back with release_memory(). SimulationError from the
   /// task when the host cannot free enough.
-  Task<void> hold_memory(std::int64_t bytes);
-  /// Frees application memory (a task's buffers at its end).
-  void release_memory(std::int64_t bytes);
+  Task<void> hold_memory(std::int64_t bytes, GroupRef group = {});
+  /// Frees application memory (a task's buffers at its end), of the group that held it.
+  void release_memory(std::int64_t bytes, GroupRef group = {});
+
+  /// A memory group (a cgroup with memory.max = `max` bytes, as Slurm or Kubernetes give each
+  /// job): the application memory of the reads, writes and hold_memory calls given it, and
+  /// the page cache of the files it touches first (a whole file is charged to the first group
+  /// that caches it; the kernel charges each page), may not exceed `max`. At the limit the
+  /// group reclaims its own data, writing back its dirty data if it must, whatever the host's
+  /// free memory (mm/memcontrol.c, try_charge); when nothing can free enough, the operation
+  /// fails with a SimulationError naming the group and the time (the kernel's OOM kill).
+  /// Not yet modelled: memory.high, the group's own dirty limits.
+  GroupRef add_memory_group(std::int64_t max);
+  /// The group's memory now: its application memory and the cache charged to it.
+  std::int64_t group_usage(GroupRef group) const;
 
   MemoryState memory() const noexcept;
   std::int64_t cached(FileRef file) const noexcept;

@@ -36,6 +36,10 @@ struct Host::Impl {
   cache::IoController io;
   std::deque<Route> one_link_routes;  // of add_remote_file over a link: stable addresses
 
+  cache::GroupId group(GroupRef g) const {
+    if (g.index != 0 && g.index >= cache.group_count()) throw ConfigError(fmt::format("host '{}': unknown memory group #{}", spec.name, g.index));
+    return g.index;
+  }
   cache::FileId id(FileRef file) const {
     if (file.index >= files.size()) throw ConfigError(fmt::format("host '{}': unknown file #{}", spec.name, file.index));
     return file.index;
@@ -96,13 +100,13 @@ std::size_t Host::file_count() const noexcept { return impl_->files.size(); }
 
 // IoController's tasks are handed out as they are: a coroutine here would be one frame more
 // per file read or written.
-Task<IoResult> Host::read_file(FileRef file, std::int64_t chunk_size, bool direct) {
-  return impl_->io.read_file(impl_->id(file), chunk_size, direct);
+Task<IoResult> Host::read_file(FileRef file, std::int64_t chunk_size, bool direct, GroupRef group) {
+  return impl_->io.read_file(impl_->id(file), chunk_size, direct, impl_->group(group));
 }
 
-Task<IoResult> Host::write_file(FileRef file, std::int64_t chunk_size, bool direct) {
+Task<IoResult> Host::write_file(FileRef file, std::int64_t chunk_size, bool direct, GroupRef group) {
   const cache::FileId id = impl_->id(file);
-  return impl_->io.write_file(id, impl_->files[id].size, chunk_size, direct);
+  return impl_->io.write_file(id, impl_->files[id].size, chunk_size, direct, impl_->group(group));
 }
 
 Task<void> Host::fsync(FileRef file) { co_await impl_->io.fsync(impl_->id(file)); }
@@ -111,9 +115,13 @@ Task<void> Host::delete_file(FileRef file) { co_await impl_->io.drop(impl_->id(f
 
 Task<void> Host::compute(double core_seconds) { co_await impl_->cpu.compute(core_seconds); }
 
-Task<void> Host::hold_memory(std::int64_t bytes) { co_await impl_->io.hold_memory(bytes); }
+Task<void> Host::hold_memory(std::int64_t bytes, GroupRef group) { co_await impl_->io.hold_memory(bytes, impl_->group(group)); }
 
-void Host::release_memory(std::int64_t bytes) { impl_->cache.release_anonymous(bytes); }
+void Host::release_memory(std::int64_t bytes, GroupRef group) { impl_->cache.release_anonymous(bytes, impl_->group(group)); }
+
+GroupRef Host::add_memory_group(std::int64_t max) { return GroupRef{impl_->cache.add_group(max)}; }
+
+std::int64_t Host::group_usage(GroupRef group) const { return impl_->cache.group_usage(impl_->group(group)); }
 
 MemoryState Host::memory() const noexcept { return impl_->cache.memory(); }
 std::int64_t Host::cached(FileRef file) const noexcept { return impl_->cache.cached(file.index); }

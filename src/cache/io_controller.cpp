@@ -18,10 +18,10 @@ IoResult file_result(double start, double end, const IoTally& t) {
 
 }  // namespace
 
-Task<std::int64_t> IoController::write_back(std::int64_t amount, FileId excluded, FlushCause cause) {
+Task<std::int64_t> IoController::write_back(std::int64_t amount, FileId excluded, FlushCause cause, GroupId group) {
   if (amount <= 0) co_return 0;
   std::vector<PageCache::Flushed> taken;
-  const std::int64_t total = cache_->flush(amount, excluded, taken);
+  const std::int64_t total = cache_->flush(amount, excluded, taken, group);
   flushed_ += total;
   cache_->tracer().flush(cause, total);
   // The data may belong to files on different devices: one write per device, in the order
@@ -80,10 +80,36 @@ Task<void> IoController::make_room(std::int64_t required, FileId spared, FileId 
   }
 }
 
-Task<void> IoController::hold_memory(std::int64_t bytes) {
+Task<void> IoController::hold_memory(std::int64_t bytes, GroupId group) {
   if (bytes <= 0) co_return;
-  co_await make_room(bytes, kNoFile, kNoFile, "the task's memory");
-  cache_->allocate_anonymous(bytes);
+  // Room in the group, then in the host; while the host's waited, others of the group may
+  // have taken its room again.
+  do {
+    co_await make_group_room(group, bytes, kNoFile, "the task's memory");
+    co_await make_room(bytes, kNoFile, kNoFile, "the task's memory");
+  } while (cache_->group_headroom(group) < bytes);
+  cache_->allocate_anonymous(bytes, group);
+}
+
+Task<void> IoController::make_group_room(GroupId group, std::int64_t bytes, FileId subject, const char* verb) {
+  for (;;) {
+    std::int64_t over = bytes - cache_->group_headroom(group);
+    if (over <= 0) co_return;
+    const std::int64_t evicted = cache_->evict(over, kNoFile, group);
+    over -= evicted;
+    if (over <= 0) co_return;
+    // Dirty data of the group is written back, then evicted on the next round.
+    const std::int64_t flushed = co_await write_back(over, kNoFile, FlushCause::Reclaim, group);
+    if (evicted > 0 || flushed > 0) continue;
+    if (!nothing_can_be_freed(*cache_)) {
+      co_await wait_for_progress();
+      continue;
+    }
+    throw SimulationError(fmt::format(
+        "t = {:.6f} s: {} {}: memory group {} is at its limit (memory.max {} bytes, {} in use) and cannot free {} bytes (out of memory in the group)",
+        sim_->now(), verb, subject == kNoFile ? std::string() : "'" + (*files_)[subject].name + "'", group, cache_->group_max(group),
+        cache_->group_usage(group), over));
+  }
 }
 
 std::int64_t IoController::room_for_read_at_once(const ReadRequest& request) {
@@ -107,11 +133,24 @@ Task<std::int64_t> IoController::room_for_read(FileId file, std::int64_t file_si
   }
 }
 
-ReadCursor IoController::take_chunk(FileId file, std::int64_t chunk, std::int64_t uncached, ReadCursor from) {
+ReadCursor IoController::take_chunk(FileId file, std::int64_t chunk, std::int64_t uncached, ReadCursor from, GroupId group) {
+  cache_->charge_file(file, group);
   cache_->add_read(file, uncached, sim_->now());
   const ReadCursor next = cache_->reaccess(file, chunk - uncached, sim_->now(), from);
-  cache_->allocate_anonymous(chunk);
+  cache_->allocate_anonymous(chunk, group);
   return next;
+}
+
+Task<std::int64_t> IoController::room_for_read_in_group(FileId file, std::int64_t file_size, std::int64_t chunk, GroupId group) {
+  cache_->charge_file(file, group);
+  const bool owned = cache_->group_of(file) == group;
+  auto charged = [&] { return chunk + (owned ? plan_read(*cache_, {.file = file, .file_size = file_size, .bytes = chunk, .anonymous = chunk}).from_disk : 0); };
+  for (;;) {
+    co_await make_group_room(group, charged(), file, "reading");
+    std::int64_t disk_read = room_for_read_at_once({.file = file, .file_size = file_size, .bytes = chunk, .anonymous = chunk});
+    if (disk_read < 0) disk_read = co_await room_for_read(file, file_size, chunk, chunk, "reading");
+    if (cache_->group_headroom(group) >= chunk + (owned ? disk_read : 0)) co_return disk_read;
+  }
 }
 
 Task<IoTally> IoController::write_chunk(FileId file, std::int64_t chunk) {
@@ -125,13 +164,19 @@ Task<IoTally> IoController::write_chunk(FileId file, std::int64_t chunk) {
   co_return co_await write_chunk_writeback(file, chunk);
 }
 
-Task<void> IoController::write_to_cache(FileId file, std::int64_t bytes) {
+Task<std::int64_t> IoController::write_to_cache(FileId file, std::int64_t bytes) {
   // The pages are taken now and hold the data once the copy is done: the dirty block's entry
-  // time is the end of the copy.
+  // time is the end of the copy. The file's group is charged for them.
+  if (const GroupId group = cache_->group_of(file); group != kRootGroup) {
+    co_await make_group_room(group, bytes, file, "writing");
+    bytes = std::min(bytes, cache_->free());  // others may have taken memory meanwhile
+    if (bytes == 0) co_return 0;
+  }
   cache_->reserve(bytes);
   co_await memory_->write(bytes);
   cache_->commit_dirty(file, bytes, sim_->now());
   flusher_->notify_dirty();
+  co_return bytes;
 }
 
 // The whole file is written here, chunk after chunk, rather than a coroutine per chunk: with
@@ -159,6 +204,7 @@ Task<IoResult> IoController::write_file_throttled(FileId file, std::int64_t byte
           co_await wait_for_progress();
         }
       } else {
+        if (const GroupId group = cache_->group_of(file); group != kRootGroup) co_await make_group_room(group, step.to_cache, file, "writing");
         co_await memory_->write(step.to_cache);
         cache_->commit_dirty(file, step.to_cache, sim_->now());
         flusher_->notify_dirty();
@@ -179,20 +225,20 @@ Task<IoTally> IoController::write_chunk_writeback(FileId file, std::int64_t chun
   if (const WriteStart start = plan_write_start(*cache_, chunk); start.under_threshold) {
     cache_->evict(start.evict, file);
     to_memory = plan_write_start(*cache_, chunk).to_cache;  // as memory is after the eviction
-    if (to_memory > 0) co_await write_to_cache(file, to_memory);
+    if (to_memory > 0) to_memory = co_await write_to_cache(file, to_memory);
   }
   std::int64_t remaining = chunk - to_memory;
   while (remaining > 0) {
     // Planned again after the writeback (others ran meanwhile) and after the eviction.
     const std::int64_t flushed = co_await write_back(plan_write_step(*cache_, remaining).flush, kNoFile, FlushCause::DirtyLimit);
     const std::int64_t evicted = cache_->evict(plan_write_step(*cache_, remaining).evict, file);
-    const std::int64_t to_cache = plan_write_step(*cache_, remaining).to_cache;
+    std::int64_t to_cache = plan_write_step(*cache_, remaining).to_cache;
     if (to_cache == 0 && flushed == 0 && evicted == 0) {
       // Nothing to flush or evict now: other writers' data may still be in flight.
       check_writer_can_wait(file, remaining);
       co_await wait_for_progress();
     }
-    if (to_cache > 0) co_await write_to_cache(file, to_cache);
+    if (to_cache > 0) to_cache = co_await write_to_cache(file, to_cache);
     remaining -= to_cache;
   }
   co_return IoTally{.bytes = chunk, .cache_bytes = chunk, .disk_bytes = 0};
@@ -210,64 +256,66 @@ void IoController::check_request(std::int64_t chunk_size) const {
   if (chunk_size <= 0) throw ConfigError(fmt::format("chunk size must be > 0, got {}", chunk_size));
 }
 
-Task<IoResult> IoController::read_file(FileId file, std::int64_t chunk_size, bool direct) {
+Task<IoResult> IoController::read_file(FileId file, std::int64_t chunk_size, bool direct, GroupId group) {
   check_request(chunk_size);
-  return read_whole_file(file, chunk_size, direct);
+  if ((*files_)[file].is_remote()) return read_remote_file(file, chunk_size, direct, group);
+  return read_whole_file(file, chunk_size, direct, group);
 }
 
-Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_size, bool direct) {
+Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_size, bool direct, GroupId group) {
   const double start = sim_->now();
   const FileInfo& info = (*files_)[file];
   // What the loop needs of the file, kept here: with many readers the file's record is out of
   // cache at every chunk, this frame is not.
   const std::int64_t size = info.size;
-  const bool local = !info.is_remote();
   const Disk* const disk = info.disk;
   IoTally total;
-  // Where the next chunk's re-access starts, each page once: in this host's cache, and for a
-  // remote file in its server's.
-  ReadCursor cursor;
-  ReadCursor server_cursor;
+  ReadCursor cursor;  // where the next chunk's re-access starts: each page once
   for (std::int64_t offset = 0; offset < size; offset += chunk_size) {
     const std::int64_t chunk = std::min(chunk_size, size - offset);
     ++chunks_;
-    if (!direct && local) {
-      // One chunk (paper Algorithm 2): room for the application's copy and the new cache copy
-      // of what is not cached, then the device and cache reads. Here rather than in a
-      // coroutine of its own: a chunk read is the simulator's most frequent operation. The
-      // application's buffer is fresh memory:
-      // the reader faults in and zeroes each page it copies into; from the disk that overlaps
-      // the device's transfer (readahead), from the cache it adds to the copy.
-      std::int64_t disk_read = room_for_read_at_once({.file = file, .file_size = size, .bytes = chunk, .anonymous = chunk});
-      if (disk_read < 0) disk_read = co_await room_for_read(file, size, chunk, chunk, "reading");
-      const std::int64_t cache_read = chunk - disk_read;
-      cursor = take_chunk(file, chunk, disk_read, cursor);
-      if (disk_read > 0) co_await disk->read(disk_read, memory_->fresh_copy_rate());
-      if (cache_read > 0) co_await memory_->read_into_fresh(cache_read);
-      total += IoTally{.bytes = chunk, .cache_bytes = cache_read, .disk_bytes = disk_read};
-      continue;
-    }
-    if (!direct) {
-      total += co_await read_chunk_remote(file, chunk, cursor, server_cursor);
-      continue;
-    }
-    // O_DIRECT: only the application's buffer takes memory; the data comes from the disk, or
-    // over NFS from the server, which serves it as any read: from its cache or its disk, then
-    // cached there (the server does not see the client's O_DIRECT).
-    co_await make_room(chunk, kNoFile, file, "reading");
-    cache_->allocate_anonymous(chunk);
-    if (local) {
+    if (direct) {
+      // O_DIRECT: only the application's buffer takes memory; the data comes from the disk.
+      co_await take_buffer(chunk, group, file);
       co_await disk->read(chunk, memory_->fresh_copy_rate());
-    } else {
-      co_await serve_remote(file, chunk, &server_cursor);
+      total += IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
+      continue;
     }
-    total += IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
+    // One chunk (paper Algorithm 2): room for the application's copy and the new cache copy
+    // of what is not cached, then the device and cache reads. Here rather than in a
+    // coroutine of its own: a chunk read is the simulator's most frequent operation. The
+    // application's buffer is fresh memory: the reader faults in and zeroes each page it
+    // copies into; from the disk that overlaps the device's transfer (readahead), from the
+    // cache it adds to the copy.
+    std::int64_t disk_read = -1;
+    if (group != kRootGroup) {
+      disk_read = co_await room_for_read_in_group(file, size, chunk, group);
+    } else {
+      disk_read = room_for_read_at_once({.file = file, .file_size = size, .bytes = chunk, .anonymous = chunk});
+      if (disk_read < 0) disk_read = co_await room_for_read(file, size, chunk, chunk, "reading");
+    }
+    const std::int64_t cache_read = chunk - disk_read;
+    cursor = take_chunk(file, chunk, disk_read, cursor, group);
+    if (disk_read > 0) co_await disk->read(disk_read, memory_->fresh_copy_rate());
+    if (cache_read > 0) co_await memory_->read_into_fresh(cache_read);
+    total += IoTally{.bytes = chunk, .cache_bytes = cache_read, .disk_bytes = disk_read};
   }
   co_return file_result(start, sim_->now(), total);
 }
 
-Task<IoResult> IoController::write_file(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool direct) {
+Task<void> IoController::take_buffer(std::int64_t bytes, GroupId group, FileId file) {
+  // Room in the group, then in the host; while the host's waited, others of the group may
+  // have taken its room again.
+  do {
+    co_await make_group_room(group, bytes, file, "reading");
+    co_await make_room(bytes, kNoFile, file, "reading");
+  } while (cache_->group_headroom(group) < bytes);
+  cache_->allocate_anonymous(bytes, group);
+}
+
+Task<IoResult> IoController::write_file(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool direct, GroupId group) {
   check_request(chunk_size);
+  cache_->charge_file(file, group);
   const FileInfo& info = (*files_)[file];
   if (!direct && !info.is_remote() && cache_->settings().write_mode == WriteMode::Writeback && throttles_writers()) {
     chunks_ += static_cast<std::uint64_t>((bytes + chunk_size - 1) / chunk_size);

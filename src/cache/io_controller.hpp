@@ -52,14 +52,22 @@ class IoController {
   /// Its result is Host::read_file's: Host hands this task out as its own, a frame fewer per
   /// file read. Not a coroutine itself: it checks the request (ConfigError at the call) and
   /// hands out the read.
-  Task<IoResult> read_file(FileId file, std::int64_t chunk_size, bool direct = false);
+  /// `group`: the reader's memory group, charged with its buffers (and with the new cache data
+  /// if the file is the group's, PageCache::charge_file).
+  Task<IoResult> read_file(FileId file, std::int64_t chunk_size, bool direct = false, GroupId group = kRootGroup);
   /// Writes `bytes` to `file` in chunks of `chunk_size` bytes; `direct`: straight to the disk.
   /// Not a coroutine itself: it checks the request as read_file does and hands out the task
   /// that writes the file (throttled or not).
-  Task<IoResult> write_file(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool direct = false);
+  /// `group`: the writer's memory group, which the file is charged to if no group has it.
+  Task<IoResult> write_file(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool direct = false, GroupId group = kRootGroup);
   /// Takes `bytes` of application memory (a task's working memory), writing back and
   /// evicting cached data to make room. Throws SimulationError when nothing can free enough.
-  Task<void> hold_memory(std::int64_t bytes);
+  Task<void> hold_memory(std::int64_t bytes, GroupId group = kRootGroup);
+  /// Makes `group` able to take `bytes` more (the kernel's try_charge): evicts the group's
+  /// clean data, writes back its dirty data, waits for writebacks in flight. Throws
+  /// SimulationError, with the time and the group, when nothing can free enough (the kernel
+  /// would invoke the OOM killer in the group). Nothing to do for the root group.
+  Task<void> make_group_room(GroupId group, std::int64_t bytes, FileId subject, const char* verb);
   /// fsync: writes back every dirty byte of `file` and waits for it, and for writebacks of it
   /// already in progress.
   Task<void> fsync(FileId file);
@@ -94,9 +102,18 @@ class IoController {
   /// Reads `bytes` of a remote file from its server into this host's fresh memory;
   /// `server_cursor` as serve_read's.
   Task<void> serve_remote(FileId file, std::int64_t bytes, ReadCursor* server_cursor);
-  Task<IoResult> read_whole_file(FileId file, std::int64_t chunk_size, bool direct);
+  /// A local file's read (read_file).
+  Task<IoResult> read_whole_file(FileId file, std::int64_t chunk_size, bool direct, GroupId group);
+  /// A remote file's read (read_file): from this host's cache and the server.
+  Task<IoResult> read_remote_file(FileId file, std::int64_t chunk_size, bool direct, GroupId group);
+  /// Takes `bytes` of application memory for `group` (an O_DIRECT read's buffer), making room
+  /// in the group and in the host.
+  Task<void> take_buffer(std::int64_t bytes, GroupId group, FileId file);
+  /// room_for_read for a reader in a memory group: room in the group for its buffer and the
+  /// new cache data it is charged with, then in the host, until both hold at once.
+  Task<std::int64_t> room_for_read_in_group(FileId file, std::int64_t file_size, std::int64_t chunk, GroupId group);
   /// Flushes up to `amount` dirty bytes (skipping `excluded`) and waits for their writes.
-  Task<std::int64_t> write_back(std::int64_t amount, FileId excluded, FlushCause cause);
+  Task<std::int64_t> write_back(std::int64_t amount, FileId excluded, FlushCause cause, GroupId group = kAnyGroup);
   /// A writer short of `bytes` of memory, with nothing to flush or evict, waits for copies and
   /// writebacks in flight; with none, nothing will ever free memory: throws SimulationError.
   void check_writer_can_wait(FileId file, std::int64_t bytes) const;
@@ -110,16 +127,18 @@ class IoController {
   /// write_file chunk by chunk (not throttled), or straight to the disk.
   Task<IoResult> write_file_in_chunks(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool direct);
   /// Copies `bytes` into the cache: the memory transfer, then a new dirty block.
-  Task<void> write_to_cache(FileId file, std::int64_t bytes);
+  /// Returns the bytes copied: all of them, unless the file's memory group had to make room
+  /// and others took the memory meanwhile.
+  Task<std::int64_t> write_to_cache(FileId file, std::int64_t bytes);
   Task<IoTally> write_chunk_writethrough(FileId file, std::int64_t chunk);
   /// A chunk of a client's read of a remote file; `cursor` and `server_cursor`: where the read
   /// left off in this host's cache and in the server's, updated.
-  Task<IoTally> read_chunk_remote(FileId file, std::int64_t chunk, ReadCursor& cursor, ReadCursor& server_cursor);
+  Task<IoTally> read_chunk_remote(FileId file, std::int64_t chunk, ReadCursor& cursor, ReadCursor& server_cursor, GroupId group);
   /// A chunk read's cache bookkeeping, done when it starts: the `uncached` part is new
   /// cache data, the rest is re-accessed, and the whole chunk's copy is application memory.
   /// `from`: where the read's previous chunk left off in the cache (PageCache::reaccess);
   /// returns where the next one starts.
-  ReadCursor take_chunk(FileId file, std::int64_t chunk, std::int64_t uncached, ReadCursor from = {});
+  ReadCursor take_chunk(FileId file, std::int64_t chunk, std::int64_t uncached, ReadCursor from = {}, GroupId group = kRootGroup);
   /// Makes room for `required` bytes (flush, then evict), sparing `spared`; if that is not
   /// enough while other transfers still hold memory (writebacks, copies in flight), waits for
   /// them and tries again. Throws SimulationError when nothing can ever free enough, naming

@@ -10,14 +10,44 @@
 
 namespace pagecache::cache {
 
-Task<IoTally> IoController::read_chunk_remote(FileId file, std::int64_t chunk, ReadCursor& cursor, ReadCursor& server_cursor) {
+Task<IoResult> IoController::read_remote_file(FileId file, std::int64_t chunk_size, bool direct, GroupId group) {
+  const double start = sim_->now();
+  const std::int64_t size = (*files_)[file].size;
+  IoTally total;
+  // Where the next chunk's re-access starts, each page once: in this host's cache and in the
+  // server's.
+  ReadCursor cursor;
+  ReadCursor server_cursor;
+  for (std::int64_t offset = 0; offset < size; offset += chunk_size) {
+    const std::int64_t chunk = std::min(chunk_size, size - offset);
+    ++chunks_;
+    if (!direct) {
+      total += co_await read_chunk_remote(file, chunk, cursor, server_cursor, group);
+      continue;
+    }
+    // O_DIRECT: the server serves it as any read, from its cache or its disk, then cached
+    // there (the server does not see the client's O_DIRECT); here only the buffer takes memory.
+    co_await take_buffer(chunk, group, file);
+    co_await serve_remote(file, chunk, &server_cursor);
+    total += IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
+  }
+  co_return IoResult{.start = start, .end = sim_->now(), .bytes = total.bytes, .cache_bytes = total.cache_bytes, .disk_bytes = total.disk_bytes};
+}
+
+Task<IoTally> IoController::read_chunk_remote(FileId file, std::int64_t chunk, ReadCursor& cursor, ReadCursor& server_cursor,
+                                              GroupId group) {
   // A client read (NFS): what this host's cache lacks comes from the server, over the link,
   // and is kept in this host's cache (clean); the rest is a hit in this host's cache.
   const FileInfo& info = (*files_)[file];
-  std::int64_t remote_read = room_for_read_at_once({.file = file, .file_size = info.size, .bytes = chunk, .anonymous = chunk});
-  if (remote_read < 0) remote_read = co_await room_for_read(file, info.size, chunk, chunk, "reading");
+  std::int64_t remote_read = -1;
+  if (group != kRootGroup) {
+    remote_read = co_await room_for_read_in_group(file, info.size, chunk, group);
+  } else {
+    remote_read = room_for_read_at_once({.file = file, .file_size = info.size, .bytes = chunk, .anonymous = chunk});
+    if (remote_read < 0) remote_read = co_await room_for_read(file, info.size, chunk, chunk, "reading");
+  }
   const std::int64_t cache_read = chunk - remote_read;
-  cursor = take_chunk(file, chunk, remote_read, cursor);
+  cursor = take_chunk(file, chunk, remote_read, cursor, group);
   if (remote_read > 0) co_await serve_remote(file, remote_read, &server_cursor);
   if (cache_read > 0) co_await memory_->read_into_fresh(cache_read);
   // From this host's point of view, data from the server is not from its own cache.

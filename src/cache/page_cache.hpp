@@ -119,6 +119,11 @@ class PageCache {
   std::int64_t group_max(GroupId group) const noexcept { return groups_[group].max; }
   /// What the group may still take before its limit, as far as free memory allows.
   std::int64_t group_room(GroupId group) const noexcept;
+  /// What the group may still take before its limit (free memory aside); the root group's
+  /// is unlimited.
+  std::int64_t group_headroom(GroupId group) const noexcept {
+    return groups_.empty() || group == kRootGroup ? std::numeric_limits<std::int64_t>::max() : groups_[group].max - group_usage(group);
+  }
 
   // --- Per file ---------------------------------------------------------------------------
   std::int64_t cached(FileId file) const noexcept;

@@ -98,6 +98,10 @@ struct AppSpec {
   std::string name;
   std::string host;
   std::vector<TaskSpec> tasks;
+  /// Its memory group's limit (a cgroup's memory.max, as a batch system gives each job): its
+  /// tasks' memory and the page cache of the files it touches first may not exceed it
+  /// (Host::add_memory_group). 0: no group.
+  std::int64_t memory_max = 0;
 };
 
 /// A workflow: a DAG of tasks, each started when its inputs are ready (the tasks that write

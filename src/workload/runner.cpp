@@ -47,6 +47,7 @@ struct TaskPlan {
   double compute = 0.0;
   bool fsync = false;
   bool direct_io = false;
+  GroupRef group;  // its application's memory group, if it has one
 };
 
 class Runner {
@@ -101,8 +102,13 @@ class Runner {
       file_order_.push_back(&it->second);
     }
     for (const AppSpec& app : scenario.apps) {
-      host_named(app.host, "application", app.name);
-      for (const TaskSpec& task : app.tasks) plan_task(task);
+      Host& host = host_named(app.host, "application", app.name);
+      // An application with a memory limit is a memory group of its host (a job's cgroup).
+      const GroupRef group = app.memory_max > 0 ? host.add_memory_group(app.memory_max) : GroupRef{};
+      for (const TaskSpec& task : app.tasks) {
+        plan_task(task);
+        task_plans_.back().group = group;
+      }
     }
     for (const WorkflowSpec& w : scenario.workflows) {
       if (w.hosts.empty()) throw ConfigError(fmt::format("workflow '{}': no host to run on", w.name));
@@ -410,17 +416,18 @@ class Runner {
   }
 
   static Task<IoResult> transfer(Host& host, FileRef file, const TaskPlan& plan, bool reading) {
-    return reading ? host.read_file(file, plan.chunk_size, plan.direct_io) : host.write_file(file, plan.chunk_size, plan.direct_io);
+    return reading ? host.read_file(file, plan.chunk_size, plan.direct_io, plan.group)
+                   : host.write_file(file, plan.chunk_size, plan.direct_io, plan.group);
   }
 
   Task<void> run_task(const std::string& app, const TaskSpec& task, const TaskPlan& plan, Host& host) {
-    if (plan.memory > 0) co_await host.hold_memory(plan.memory);
+    if (plan.memory > 0) co_await host.hold_memory(plan.memory, plan.group);
     const std::int64_t read_bytes = co_await io_phase(app, task, plan, host, true);
     const double compute_start = sim_.now();
     if (plan.compute > 0.0) co_await host.compute(plan.compute);
     report_phase(app, task.name, host, PhaseKind::Compute, compute_start, IoResult{});
     co_await io_phase(app, task, plan, host, false);
-    host.release_memory(read_bytes + plan.memory);  // the task's memory is freed when it ends
+    host.release_memory(read_bytes + plan.memory, plan.group);  // the task's memory is freed when it ends
     for (const PlacedFile& stored : planned(plan.deletes, plan.end)) {
       co_await host.delete_file(file_on(host, stored));
       if (stored.host != &host) co_await stored.host->delete_file(stored.ref);  // on the server too

@@ -149,6 +149,18 @@ TEST_CASE("checks across keys: the files on a disk together, the background rati
           {"key 'hosts[0].page_cache.dirty_ratio'", "dirty_background_ratio (0.1, the profile's default)"});
 }
 
+TEST_CASE("a memory limit is a positive size, and pcsim show prints an application's", "[cli][hostile]") {
+  refused(run_edited("memory_max", "[pipelines]", "[pipelines]\nmemory_max = \"0 GB\""),
+          {"key 'pipelines.memory_max'", "must be > 0"});
+  const fs::path dir = scratch("memory_max_shown");
+  std::string text = kBase;
+  text.replace(text.find("[pipelines]"), 11, "[pipelines]\nmemory_max = \"3 GB\"");
+  std::ofstream(dir / "s.toml") << text;
+  const ChildResult shown = pcsim({"show", (dir / "s.toml").string()});
+  REQUIRE(shown.status == 0);
+  CHECK_THAT(shown.output, Catch::Contains("memory_max = \"3 GB\""));
+}
+
 TEST_CASE("a disk's aggregate bandwidth is not below one stream's, and pcsim show prints it", "[cli][hostile]") {
   refused(run_edited("aggregate", "capacity = \"10 GB\"", "capacity = \"10 GB\"\naggregate_read_bw = \"1 MB/s\""),
           {"key 'hosts[0].disks[0].aggregate_read_bw'", "must not be below one stream's bandwidth"});

@@ -118,8 +118,10 @@ class Host {
   /// group reclaims its own data, writing back its dirty data if it must, whatever the host's
   /// free memory (mm/memcontrol.c, try_charge); when nothing can free enough, the operation
   /// fails with a SimulationError naming the group and the time (the kernel's OOM kill).
-  /// Not yet modelled: memory.high, the group's own dirty limits.
-  GroupRef add_memory_group(std::int64_t max);
+  /// Not yet modelled: the group's own dirty limits, memory.high's penalty sleep.
+  /// `high`: memory.high (0: none): above it the group reclaims its own data at each charge
+  /// but is never refused.
+  GroupRef add_memory_group(std::int64_t max, std::int64_t high = 0);
   /// The group's memory now: its application memory and the cache charged to it.
   std::int64_t group_usage(GroupRef group) const;
 

@@ -102,6 +102,8 @@ struct AppSpec {
   /// tasks' memory and the page cache of the files it touches first may not exceed it
   /// (Host::add_memory_group). 0: no group.
   std::int64_t memory_max = 0;
+  /// memory.high (0: none; needs memory_max): above it the group reclaims its own data.
+  std::int64_t memory_high = 0;
 };
 
 /// A workflow: a DAG of tasks, each started when its inputs are ready (the tasks that write

@@ -119,7 +119,7 @@ Task<void> Host::hold_memory(std::int64_t bytes, GroupRef group) { co_await impl
 
 void Host::release_memory(std::int64_t bytes, GroupRef group) { impl_->cache.release_anonymous(bytes, impl_->group(group)); }
 
-GroupRef Host::add_memory_group(std::int64_t max) { return GroupRef{impl_->cache.add_group(max)}; }
+GroupRef Host::add_memory_group(std::int64_t max, std::int64_t high) { return GroupRef{impl_->cache.add_group(max, high)}; }
 
 std::int64_t Host::group_usage(GroupRef group) const { return impl_->cache.group_usage(impl_->group(group)); }
 

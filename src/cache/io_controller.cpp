@@ -92,6 +92,15 @@ Task<void> IoController::hold_memory(std::int64_t bytes, GroupId group) {
 }
 
 Task<void> IoController::make_group_room(GroupId group, std::int64_t bytes, FileId subject, const char* verb) {
+  // Above memory.high the group reclaims its own clean data, and writes back its dirty data
+  // once, but is never refused (mm/memcontrol.c, reclaim_high; the penalty sleep is not
+  // modelled).
+  if (const std::int64_t over_high = cache_->group_over_high(group, bytes); over_high > 0) {
+    const std::int64_t evicted = cache_->evict(over_high, kNoFile, group);
+    if (evicted < over_high && co_await write_back(over_high - evicted, kNoFile, FlushCause::Reclaim, group) > 0) {
+      cache_->evict(cache_->group_over_high(group, bytes), kNoFile, group);
+    }
+  }
   for (;;) {
     std::int64_t over = bytes - cache_->group_headroom(group);
     if (over <= 0) co_return;

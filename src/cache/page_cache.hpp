@@ -106,7 +106,9 @@ class PageCache {
   // --- Memory groups (cgroup v2 memory.max; mm/memcontrol.c) ------------------------------
   /// A group whose memory (the anonymous memory allocated for it and the page cache charged
   /// to it) may not exceed `max` bytes. Returns its id: 1, 2, ...
-  GroupId add_group(std::int64_t max);
+  /// `high` (memory.high; 0: none): above it the group reclaims its own data at each charge
+  /// but is never refused.
+  GroupId add_group(std::int64_t max, std::int64_t high = 0);
   std::size_t group_count() const noexcept { return groups_.size(); }
   /// Charges the data of `file` to `group` unless a group has it already. The kernel charges
   /// each page to the group of the task that brought it in (first touch); pcsim charges a
@@ -117,6 +119,11 @@ class PageCache {
   std::int64_t group_usage(GroupId group) const noexcept;
   std::int64_t group_cached(GroupId group) const noexcept { return groups_[group].cached; }
   std::int64_t group_max(GroupId group) const noexcept { return groups_[group].max; }
+  /// How far the group is above memory.high after taking `bytes` more (<= 0: not above).
+  std::int64_t group_over_high(GroupId group, std::int64_t bytes) const noexcept {
+    if (groups_.empty() || group == kRootGroup || groups_[group].high == 0) return 0;
+    return group_usage(group) + bytes - groups_[group].high;
+  }
   /// What the group may still take before its limit, as far as free memory allows.
   std::int64_t group_room(GroupId group) const noexcept;
   /// What the group may still take before its limit (free memory aside); the root group's
@@ -326,6 +333,7 @@ class PageCache {
   // of other groups than target_ (kAnyGroup: none skipped).
   struct Group {
     std::int64_t max = 0;
+    std::int64_t high = 0;  // 0: none
     std::int64_t anonymous = 0;
     std::int64_t cached = 0;
   };

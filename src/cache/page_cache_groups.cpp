@@ -11,14 +11,15 @@
 
 namespace pagecache::cache {
 
-GroupId PageCache::add_group(std::int64_t max) {
+GroupId PageCache::add_group(std::int64_t max, std::int64_t high) {
   if (max <= 0) throw ConfigError(fmt::format("a memory group's limit must be > 0, got {} bytes", max));
+  if (high < 0 || high > max) throw ConfigError(fmt::format("a memory group's high limit must be between 0 and its limit ({} bytes), got {}", max, high));
   if (groups_.empty()) {
     // The root group holds everything so far.
     groups_.push_back(Group{.max = std::numeric_limits<std::int64_t>::max(), .anonymous = anonymous_, .cached = cached()});
   }
   if (groups_.size() == kAnyGroup) throw ConfigError("too many memory groups");
-  groups_.push_back(Group{.max = max});
+  groups_.push_back(Group{.max = max, .high = high});
   return static_cast<GroupId>(groups_.size() - 1);
 }
 

@@ -306,6 +306,10 @@ void expand_pipelines(const toml::table& table, Scenario& s, const std::string& 
   const bool cached = r.optional_bool("inputs_cached").value_or(false);
   const std::int64_t memory_max = r.optional_size("memory_max").value_or(0);
   if (r.has("memory_max") && memory_max <= 0) r.fail("memory_max", "must be > 0 (a pipeline's memory group's limit)");
+  const std::int64_t memory_high = r.optional_size("memory_high").value_or(0);
+  if (r.has("memory_high") && (memory_high <= 0 || memory_max == 0 || memory_high > memory_max)) {
+    r.fail("memory_high", "must be > 0 and at most memory_max, which it needs");
+  }
   r.finish();
   if (std::none_of(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == host; })) {
     r.fail("host", fmt::format("no host named '{}'", host));
@@ -321,7 +325,7 @@ void expand_pipelines(const toml::table& table, Scenario& s, const std::string& 
   for (std::int64_t i = 1; i <= count; ++i) {
     auto file_name = [&](std::int64_t k) { return count == 1 ? fmt::format("file_{}", k) : fmt::format("p{}_file_{}", i, k); };
     for (std::int64_t k = 1; k <= tasks + 1; ++k) s.files.push_back({file_name(k), size, files_host, disk, k == 1 && cached});
-    AppSpec app{std::to_string(i), host, {}, memory_max};
+    AppSpec app{std::to_string(i), host, {}, memory_max, memory_high};
     app.tasks.reserve(static_cast<std::size_t>(tasks));
     for (std::int64_t k = 1; k <= tasks; ++k) {
       TaskSpec& task = app.tasks.emplace_back();
@@ -805,6 +809,10 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
     if (chunk <= 0) a.fail("chunk_size", "must be > 0");
     app.memory_max = a.optional_size("memory_max").value_or(0);
     if (a.has("memory_max") && app.memory_max <= 0) a.fail("memory_max", "must be > 0 (the application's memory group's limit)");
+    app.memory_high = a.optional_size("memory_high").value_or(0);
+    if (a.has("memory_high") && (app.memory_high <= 0 || app.memory_max == 0 || app.memory_high > app.memory_max)) {
+      a.fail("memory_high", "must be > 0 and at most memory_max, which it needs");
+    }
     const auto tasks = a.tables("tasks");
     if (tasks.empty()) a.fail_table("an application needs at least one [[" + a.path() + ".tasks]]");
     for (std::size_t t = 0; t < tasks.size(); ++t) {

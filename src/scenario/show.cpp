@@ -105,6 +105,7 @@ std::string to_toml(const Scenario& s) {
   for (const AppSpec& a : s.apps) {
     out += fmt::format("\n[[apps]]\nname = {}\nhost = {}\n", quoted(a.name), quoted(a.host));
     if (a.memory_max > 0) out += fmt::format("memory_max = {}\n", quoted(units::format_size(a.memory_max)));
+    if (a.memory_high > 0) out += fmt::format("memory_high = {}\n", quoted(units::format_size(a.memory_high)));
     for (const TaskSpec& t : a.tasks) write_task(out, "apps.tasks", t, false);
   }
   for (const WorkflowSpec& w : s.workflows) {

@@ -104,7 +104,7 @@ class Runner {
     for (const AppSpec& app : scenario.apps) {
       Host& host = host_named(app.host, "application", app.name);
       // An application with a memory limit is a memory group of its host (a job's cgroup).
-      const GroupRef group = app.memory_max > 0 ? host.add_memory_group(app.memory_max) : GroupRef{};
+      const GroupRef group = app.memory_max > 0 ? host.add_memory_group(app.memory_max, app.memory_high) : GroupRef{};
       for (const TaskSpec& task : app.tasks) {
         plan_task(task);
         task_plans_.back().group = group;

@@ -99,3 +99,31 @@ TEST_CASE("a group that cannot free enough fails with the time and the group", "
                                    Catch::Contains("memory.max 150000000 bytes"));
   CHECK_THROWS_AS(host.group_usage(GroupRef{7}), ConfigError);
 }
+
+TEST_CASE("above memory.high a group reclaims its own data but is never refused", "[host][groups]") {
+  // The reader of the first case, in a group of memory.max 1.5 GB and memory.high 1 GB: each
+  // chunk whose charge (100 MB of buffer, 100 MB of new cache) would take the group above
+  // 1 GB first evicts the group's cache. Before the last chunk the group holds 900 MB of
+  // buffers and the previous chunk's 100 MB of cache: that 100 MB goes, and the last chunk
+  // leaves 1 GB of buffers and its own 100 MB cached (pcsim reclaims before a charge, the
+  // kernel right after it, on the way back to user space: one chunk apart). Never refused:
+  // the limit is not reached. memory.high above memory.max is refused.
+  Simulator sim;
+  FairShare share(sim);
+  Host host(sim, share, host_spec());
+  host.set_checking(true);
+  const FileRef file = host.add_file("in", 1000 * MB, host.add_disk("d", 100e6, 100e6));
+  const GroupRef group = host.add_memory_group(1500 * MB, 1000 * MB);
+  std::int64_t usage = 0, cached = -1;
+  auto read = [](Host& h, FileRef f, GroupRef g, std::int64_t& u, std::int64_t& c) -> Task<void> {
+    const IoResult r = co_await h.read_file(f, 100 * MB, false, g);
+    u = h.group_usage(g);
+    c = h.cached(f);
+    h.release_memory(r.bytes, g);
+  };
+  sim.spawn(read(host, file, group, usage, cached));
+  sim.run();
+  CHECK(cached == 100 * MB);
+  CHECK(usage == 1100 * MB);
+  CHECK_THROWS_AS(host.add_memory_group(100 * MB, 200 * MB), ConfigError);
+}

@@ -82,11 +82,15 @@ Task<void> IoController::make_room(std::int64_t required, FileId spared, FileId 
 
 Task<void> IoController::hold_memory(std::int64_t bytes, GroupId group) {
   if (bytes <= 0) co_return;
+  co_await take_buffer(bytes, group, kNoFile, "the task's memory");
+}
+
+Task<void> IoController::take_buffer(std::int64_t bytes, GroupId group, FileId subject, const char* verb) {
   // Room in the group, then in the host; while the host's waited, others of the group may
   // have taken its room again.
   do {
-    co_await make_group_room(group, bytes, kNoFile, "the task's memory");
-    co_await make_room(bytes, kNoFile, kNoFile, "the task's memory");
+    co_await make_group_room(group, bytes, subject, verb);
+    co_await make_room(bytes, kNoFile, subject, verb);
   } while (cache_->group_headroom(group) < bytes);
   cache_->allocate_anonymous(bytes, group);
 }
@@ -285,7 +289,7 @@ Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_siz
     ++chunks_;
     if (direct) {
       // O_DIRECT: only the application's buffer takes memory; the data comes from the disk.
-      co_await take_buffer(chunk, group, file);
+      co_await take_buffer(chunk, group, file, "reading");
       co_await disk->read(chunk, memory_->fresh_copy_rate());
       total += IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
       continue;
@@ -310,16 +314,6 @@ Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_siz
     total += IoTally{.bytes = chunk, .cache_bytes = cache_read, .disk_bytes = disk_read};
   }
   co_return file_result(start, sim_->now(), total);
-}
-
-Task<void> IoController::take_buffer(std::int64_t bytes, GroupId group, FileId file) {
-  // Room in the group, then in the host; while the host's waited, others of the group may
-  // have taken its room again.
-  do {
-    co_await make_group_room(group, bytes, file, "reading");
-    co_await make_room(bytes, kNoFile, file, "reading");
-  } while (cache_->group_headroom(group) < bytes);
-  cache_->allocate_anonymous(bytes, group);
 }
 
 Task<IoResult> IoController::write_file(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool direct, GroupId group) {

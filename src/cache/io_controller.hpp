@@ -106,9 +106,9 @@ class IoController {
   Task<IoResult> read_whole_file(FileId file, std::int64_t chunk_size, bool direct, GroupId group);
   /// A remote file's read (read_file): from this host's cache and the server.
   Task<IoResult> read_remote_file(FileId file, std::int64_t chunk_size, bool direct, GroupId group);
-  /// Takes `bytes` of application memory for `group` (an O_DIRECT read's buffer), making room
-  /// in the group and in the host.
-  Task<void> take_buffer(std::int64_t bytes, GroupId group, FileId file);
+  /// Takes `bytes` of application memory for `group` (a task's memory, an O_DIRECT read's
+  /// buffer), making room in the group and in the host; errors name `verb` and `subject`.
+  Task<void> take_buffer(std::int64_t bytes, GroupId group, FileId subject, const char* verb);
   /// room_for_read for a reader in a memory group: room in the group for its buffer and the
   /// new cache data it is charged with, then in the host, until both hold at once.
   Task<std::int64_t> room_for_read_in_group(FileId file, std::int64_t file_size, std::int64_t chunk, GroupId group);

@@ -27,7 +27,7 @@ Task<IoResult> IoController::read_remote_file(FileId file, std::int64_t chunk_si
     }
     // O_DIRECT: the server serves it as any read, from its cache or its disk, then cached
     // there (the server does not see the client's O_DIRECT); here only the buffer takes memory.
-    co_await take_buffer(chunk, group, file);
+    co_await take_buffer(chunk, group, file, "reading");
     co_await serve_remote(file, chunk, &server_cursor);
     total += IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
   }

@@ -118,7 +118,8 @@ class Host {
   /// group reclaims its own data, writing back its dirty data if it must, whatever the host's
   /// free memory (mm/memcontrol.c, try_charge); when nothing can free enough, the operation
   /// fails with a SimulationError naming the group and the time (the kernel's OOM kill).
-  /// Not yet modelled: the group's own dirty limits, memory.high's penalty sleep.
+  /// Writers of the group are throttled at its own dirty limits too (group_dirty_limits).
+  /// Not yet modelled: memory.high's penalty sleep.
   /// `high`: memory.high (0: none): above it the group reclaims its own data at each charge
   /// but is never refused.
   GroupRef add_memory_group(std::int64_t max, std::int64_t high = 0);

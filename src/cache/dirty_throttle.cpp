@@ -25,6 +25,17 @@ void DirtyThrottle::Writer::throttle(bool on) noexcept {
 //   (MAX_PAUSE); pcsim paces it per chunk, the model's unit of I/O: the writer pauses
 //   until it has earned the chunk at that rate, looking again at least every second, then
 //   writes it.
+DirtyThrottle::Domain DirtyThrottle::domain(DirtyLimit& limit, const DirtyLimits& limits, std::int64_t in_use) noexcept {
+  if (in_use > limits.freerun) limit.update(sim_->now(), limits.thresh, in_use, throttled_ > 0);
+  const std::int64_t hard = limit.hard_limit(limits.thresh);
+  return Domain{.in_use = in_use, .limits = limits, .setpoint = (limits.freerun + hard) / 2, .hard_limit = hard};
+}
+
+double DirtyThrottle::Domain::pos_ratio() const noexcept {
+  const double x = static_cast<double>(setpoint - in_use) / static_cast<double>(std::max<std::int64_t>(hard_limit - setpoint, 1));
+  return std::clamp(1.0 + x * x * x, 0.0, 2.0);
+}
+
 DirtyThrottle::Step DirtyThrottle::Writer::next(std::int64_t remaining) {
   constexpr double kMaxPause = 1.0;
   // Memory is handed out in pages; slivers of free memory left by copies in flight are not
@@ -33,21 +44,23 @@ DirtyThrottle::Step DirtyThrottle::Writer::next(std::int64_t remaining) {
   DirtyThrottle& t = *throttle_;
   PageCache& cache = *t.cache_;
   // Copies in flight count: their pages are being dirtied.
-  const std::int64_t in_use = cache.dirty_and_writeback() + cache.reserved();
-  const DirtyLimits limits = dirty_limits(cache);
-  if (in_use > limits.freerun) t.limit_.update(t.sim_->now(), limits.thresh, in_use, t.throttled_ > 0);
-  const std::int64_t limit = t.limit_.hard_limit(limits.thresh);
-  const std::int64_t setpoint = (limits.freerun + limit) / 2;
-  // Under the background threshold nothing would write back to pace the writer by: it goes
-  // on (a setpoint within a chunk of it only happens on tiny memories).
-  if (in_use + remaining <= setpoint || in_use <= limits.background) {
+  const Domain host = t.domain(t.limit_, dirty_limits(cache), cache.dirty_and_writeback() + cache.reserved());
+  bool free = host.runs_free(remaining);
+  double pos_ratio = host.pos_ratio();
+  // In a memory group the writer runs free only if both domains let it, and is paced by the
+  // stricter of the two (balance_dirty_pages with a memcg domain, the kernel's cgroup writeback).
+  if (group_ != kRootGroup) {
+    if (t.group_limits_.size() <= group_) t.group_limits_.resize(static_cast<std::size_t>(group_) + 1);
+    const Domain group = t.domain(t.group_limits_[group_], group_dirty_limits(cache, group_), cache.group_dirty_and_writeback(group_));
+    pos_ratio = std::min(pos_ratio, group.pos_ratio());
+    free = free && group.runs_free(remaining);
+  }
+  if (free) {
     throttle(false);
   } else {
     throttle(true);
     t.flusher_->notify_dirty();
     if (credit_ < static_cast<double>(remaining)) {
-      const double x = static_cast<double>(setpoint - in_use) / static_cast<double>(std::max<std::int64_t>(limit - setpoint, 1));
-      const double pos_ratio = std::clamp(1.0 + x * x * x, 0.0, 2.0);
       const double rate = device_bw_ * pos_ratio / static_cast<double>(t.throttled_);
       const double pause = rate > 0.0 ? std::min(kMaxPause, (static_cast<double>(remaining) - credit_) / rate) : kMaxPause;
       return {Step::Pause, 0, pause, rate};

@@ -12,6 +12,7 @@
 #include <pagecache/simulator.hpp>
 
 #include <cstdint>
+#include <vector>
 
 namespace pagecache::cache {
 
@@ -36,7 +37,9 @@ class DirtyThrottle {
   class Writer {
    public:
     /// `device_bw`: the write bandwidth of the file's device, which the throttled writers share.
-    Writer(DirtyThrottle& throttle, double device_bw) noexcept : throttle_(&throttle), device_bw_(device_bw) {}
+    /// `group`: the memory group the file is charged to, whose own dirty limits hold too.
+    Writer(DirtyThrottle& throttle, double device_bw, GroupId group = kRootGroup) noexcept
+        : throttle_(&throttle), device_bw_(device_bw), group_(group) {}
     ~Writer();
     Writer(const Writer&) = delete;
     Writer& operator=(const Writer&) = delete;
@@ -51,16 +54,32 @@ class DirtyThrottle {
 
     DirtyThrottle* throttle_;
     double device_bw_;
+    GroupId group_;
     double credit_ = 0.0;  // bytes this writer's pauses have earned for this chunk
     bool throttled_ = false;
   };
 
  private:
+  /// A writeback domain as one writer sees it: the host's, or its memory group's.
+  struct Domain {
+    std::int64_t in_use;      // dirty + writeback (+ copies in flight, for the host)
+    DirtyLimits limits;
+    std::int64_t setpoint;    // halfway between the freerun ceiling and the hard limit
+    std::int64_t hard_limit;
+    /// Writing `remaining` more keeps the writer free of this domain's throttling.
+    bool runs_free(std::int64_t remaining) const noexcept { return in_use + remaining <= setpoint || in_use <= limits.background; }
+    /// The kernel's position ratio (pos_ratio_polynom), 1 at the setpoint and 0 at the limit.
+    double pos_ratio() const noexcept;
+  };
+  /// The domain of `limits` with `in_use` bytes, its dirty limit `limit` moved first.
+  Domain domain(DirtyLimit& limit, const DirtyLimits& limits, std::int64_t in_use) noexcept;
+
   const Simulator* sim_;
   PageCache* cache_;
   Flusher* flusher_;
   std::int64_t throttled_ = 0;  // writers held now
   DirtyLimit limit_;
+  std::vector<DirtyLimit> group_limits_;  // by GroupId, made when a group's writer first asks
 };
 
 }  // namespace pagecache::cache

@@ -18,8 +18,38 @@ bool Flusher::background_due() const {
   return cache_->dirty_and_writeback() > dirty_limits(*cache_).background;
 }
 
+bool Flusher::group_background_due(GroupId group) const {
+  return cache_->group_dirty_and_writeback(group) > group_dirty_limits(*cache_, group).background;
+}
+
+bool Flusher::any_group_background_due() const {
+  if (!cache_->policy().background_writeback()) return false;
+  for (std::size_t g = 1; g < cache_->group_count(); ++g) {
+    if (group_background_due(static_cast<GroupId>(g))) return true;
+  }
+  return false;
+}
+
 void Flusher::notify_dirty() {
-  if (wake_ && !wake_->triggered() && (parked_ || background_due())) wake_->trigger();
+  if (wake_ && !wake_->triggered() && (parked_ || background_due() || any_group_background_due())) wake_->trigger();
+}
+
+Task<std::int64_t> Flusher::write_groups() {
+  std::int64_t total = 0;
+  std::vector<PageCache::Flushed> taken;
+  for (std::size_t g = 1; g < cache_->group_count(); ++g) {
+    const auto group = static_cast<GroupId>(g);
+    if (!group_background_due(group)) continue;
+    taken.clear();
+    total += cache_->flush(cache_->group_dirty_and_writeback(group) - group_dirty_limits(*cache_, group).background, kNoFile, taken, group);
+    for (const PageCache::Flushed& part : taken) {
+      flushed_ += part.bytes;
+      cache_->tracer().flush(FlushCause::Background, part.bytes);
+      co_await (*files_)[part.file].disk->write(part.bytes);
+      cache_->end_writeback(part);
+    }
+  }
+  co_return total;
 }
 
 Task<void> Flusher::write_block(double cutoff) {
@@ -43,6 +73,9 @@ Task<void> Flusher::periodic() {
       co_await write_block(kAnyAge);
       continue;
     }
+    // Groups over their own background thresholds; one whose data is all in writeback
+    // already waits for the next tick or wake-up like the rest.
+    if (any_group_background_due() && co_await write_groups() > 0) continue;
     if (sim_->now() >= tick) {
       // Periodic writeback of the data dirty for longer than dirty_expire at the tick.
       const double cutoff = tick - expire;

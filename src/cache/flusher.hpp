@@ -4,7 +4,9 @@
 // inactive list first, sharing the disks with everything else; then it sleeps for what is
 // left of the interval. Background writeback (the kernel's, mm/page-writeback.c; switched by
 // CacheSettings::background_writeback): whenever dirty data exceeds dirty_background_ratio of
-// dirtyable memory, it writes the oldest dirty data until it is back under that threshold.
+// dirtyable memory, it writes the oldest dirty data until it is back under that threshold;
+// and whenever a memory group's dirty data exceeds the group's own background threshold
+// (group_dirty_limits), the group's oldest dirty data (wb_over_bg_thresh with a memcg domain).
 //
 // When no dirty data is left it parks instead of ticking, and is woken by notify_dirty(); it
 // then resumes on the same cadence (its ticks stay at the same times as if it had ticked all
@@ -17,6 +19,7 @@
 #include <pagecache/simulator.hpp>
 
 #include <optional>
+#include <vector>
 
 namespace pagecache::cache {
 
@@ -37,6 +40,11 @@ class Flusher {
  private:
   Task<void> periodic();
   bool background_due() const;
+  /// Memory group `group` is over its own background threshold.
+  bool group_background_due(GroupId group) const;
+  bool any_group_background_due() const;
+  /// Writes back what each group has above its background threshold; returns how much.
+  Task<std::int64_t> write_groups();
   /// Writes back the least recently used dirty block older than `cutoff` (if any).
   Task<void> write_block(double cutoff);
 

@@ -200,9 +200,10 @@ Task<IoResult> IoController::write_file_throttled(FileId file, std::int64_t byte
   const double start = sim_->now();
   if (whole_file) cache_->set_being_written(file, true);
   const double device_bw = (*files_)[file].disk->write_bandwidth();
+  const GroupId group = cache_->group_of(file);
   for (std::int64_t offset = 0; offset < bytes; offset += chunk_size) {
     std::int64_t remaining = std::min(chunk_size, bytes - offset);
-    DirtyThrottle::Writer writer(throttle_, device_bw);
+    DirtyThrottle::Writer writer(throttle_, device_bw, group);
     while (remaining > 0) {
       const DirtyThrottle::Step step = writer.next(remaining);
       if (step.kind == DirtyThrottle::Step::Pause) {
@@ -217,7 +218,7 @@ Task<IoResult> IoController::write_file_throttled(FileId file, std::int64_t byte
           co_await wait_for_progress();
         }
       } else {
-        if (const GroupId group = cache_->group_of(file); group != kRootGroup) co_await make_group_room(group, step.to_cache, file, "writing");
+        if (group != kRootGroup) co_await make_group_room(group, step.to_cache, file, "writing");
         co_await memory_->write(step.to_cache);
         cache_->commit_dirty(file, step.to_cache, sim_->now());
         flusher_->notify_dirty();

@@ -127,6 +127,7 @@ void PageCache::append(BlockId id, ListKind kind) {
   charge(block.file, block.size);
   if (block.state == BlockState::Dirty) entry.dirty_bytes += block.size;
   if (block.state == BlockState::Clean) on_clean_linked(id);
+  else charge_dirty(block.file, block.size);
 }
 
 void PageCache::unlink(BlockId id) {
@@ -140,6 +141,7 @@ void PageCache::unlink(BlockId id) {
   (block.list == ListKind::Inactive ? entry.inactive_bytes : entry.active_bytes) -= block.size;
   charge(block.file, -block.size);
   if (block.state == BlockState::Dirty) entry.dirty_bytes -= block.size;
+  if (block.state != BlockState::Clean) charge_dirty(block.file, -block.size);
 }
 
 bool PageCache::extend_tail(ListKind kind, FileId file, std::int64_t bytes, bool referenced) {
@@ -178,6 +180,7 @@ void PageCache::set_state(BlockId id, BlockState state) {
   if (block.state == BlockState::Dirty) entry.dirty_bytes -= block.size;
   if (state == BlockState::Dirty) entry.dirty_bytes += block.size;
   const bool was_clean = block.state == BlockState::Clean;
+  if (was_clean != (state == BlockState::Clean)) charge_dirty(block.file, was_clean ? block.size : -block.size);
   if (was_clean && state != BlockState::Clean) on_clean_unlinked(id);
   // Out of writeback, the bytes that held its write are its links again.
   if (block.state == BlockState::Writeback && state != BlockState::Writeback) block.dirty_or_clean = BlockLinks{};

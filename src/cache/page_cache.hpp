@@ -118,6 +118,16 @@ class PageCache {
   /// The group's memory: anonymous + cached (the root group's: every byte not in a group).
   std::int64_t group_usage(GroupId group) const noexcept;
   std::int64_t group_cached(GroupId group) const noexcept { return groups_[group].cached; }
+  /// The group's data dirty or being written back (its writeback domain's NR_FILE_DIRTY +
+  /// NR_WRITEBACK, as mem_cgroup_wb_stats reads them).
+  std::int64_t group_dirty_and_writeback(GroupId group) const noexcept { return groups_[group].dirty; }
+  /// What the group may still take before memory.max or memory.high, whichever is lower
+  /// (mem_cgroup_wb_stats' headroom); >= 0.
+  std::int64_t group_ceiling_headroom(GroupId group) const noexcept {
+    const Group& g = groups_[group];
+    const std::int64_t ceiling = g.high > 0 ? std::min(g.max, g.high) : g.max;
+    return std::max<std::int64_t>(ceiling - group_usage(group), 0);
+  }
   std::int64_t group_max(GroupId group) const noexcept { return groups_[group].max; }
   /// How far the group is above memory.high after taking `bytes` more (<= 0: not above).
   std::int64_t group_over_high(GroupId group, std::int64_t bytes) const noexcept {
@@ -336,6 +346,7 @@ class PageCache {
     std::int64_t high = 0;  // 0: none
     std::int64_t anonymous = 0;
     std::int64_t cached = 0;
+    std::int64_t dirty = 0;  // of `cached`: dirty or in writeback
   };
   std::vector<Group> groups_;
   std::vector<GroupId> file_group_;
@@ -344,6 +355,10 @@ class PageCache {
   /// Adds `bytes` to the cached bytes of the file's group.
   void charge(FileId file, std::int64_t bytes) noexcept {
     if (!groups_.empty()) groups_[group_of(file)].cached += bytes;
+  }
+  /// Adds `bytes` to the dirty or writeback bytes of the file's group.
+  void charge_dirty(FileId file, std::int64_t bytes) noexcept {
+    if (!groups_.empty()) groups_[group_of(file)].dirty += bytes;
   }
   // Per LRU list, with the clean index: where an eviction that spares the files
   // being written finds its next victim without walking past their clean blocks. Every file

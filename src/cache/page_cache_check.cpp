@@ -72,10 +72,16 @@ void PageCache::check_invariants() const {
   if (!groups_.empty()) {
     // Each group's charges are its files' cached bytes and its anonymous memory.
     std::vector<std::int64_t> charged(groups_.size(), 0);
+    std::vector<std::int64_t> unclean(groups_.size(), 0);
     std::int64_t anonymous = 0;
-    for (std::size_t f = 0; f < files_.size(); ++f) charged[group_of(static_cast<FileId>(f))] += cached(static_cast<FileId>(f));
+    for (std::size_t f = 0; f < files_.size(); ++f) {
+      const auto file = static_cast<FileId>(f);
+      charged[group_of(file)] += cached(file);
+      unclean[group_of(file)] += dirty(file) + writeback(file);
+    }
     for (std::size_t g = 0; g < groups_.size(); ++g) {
       PC_ASSERT_MSG(groups_[g].cached == charged[g], fmt::format("group {}: {} bytes charged, its files hold {}", g, groups_[g].cached, charged[g]));
+      PC_ASSERT_MSG(groups_[g].dirty == unclean[g], fmt::format("group {}: {} bytes dirty or in writeback, its files hold {}", g, groups_[g].dirty, unclean[g]));
       anonymous += groups_[g].anonymous;
     }
     PC_ASSERT_MSG(anonymous == anonymous_, "the groups' anonymous memory is not the host's");

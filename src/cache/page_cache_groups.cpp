@@ -16,7 +16,7 @@ GroupId PageCache::add_group(std::int64_t max, std::int64_t high) {
   if (high < 0 || high > max) throw ConfigError(fmt::format("a memory group's high limit must be between 0 and its limit ({} bytes), got {}", max, high));
   if (groups_.empty()) {
     // The root group holds everything so far.
-    groups_.push_back(Group{.max = std::numeric_limits<std::int64_t>::max(), .anonymous = anonymous_, .cached = cached()});
+    groups_.push_back(Group{.max = std::numeric_limits<std::int64_t>::max(), .anonymous = anonymous_, .cached = cached(), .dirty = dirty_and_writeback()});
   }
   if (groups_.size() == kAnyGroup) throw ConfigError("too many memory groups");
   groups_.push_back(Group{.max = max, .high = high});
@@ -30,6 +30,9 @@ void PageCache::charge_file(FileId file, GroupId group) {
   const std::int64_t bytes = cached(file);
   groups_[kRootGroup].cached -= bytes;
   groups_[group].cached += bytes;
+  const std::int64_t unclean = dirty(file) + writeback(file);  // walks the file: once per file
+  groups_[kRootGroup].dirty -= unclean;
+  groups_[group].dirty += unclean;
   file_group_[file] = group;
 }
 

@@ -4,14 +4,28 @@
 
 namespace pagecache::cache {
 
-DirtyLimits dirty_limits(const PageCache& cache) noexcept {
-  const CacheSettings& s = cache.settings();
-  const double base = static_cast<double>(std::max<std::int64_t>(cache.dirtyable(), 0));
+namespace {
+
+DirtyLimits limits_of(const CacheSettings& s, std::int64_t available) noexcept {
+  const double base = static_cast<double>(std::max<std::int64_t>(available, 0));
   DirtyLimits l;
   l.thresh = static_cast<std::int64_t>(s.dirty_ratio * base);
   l.background = s.dirty_background_ratio < s.dirty_ratio ? static_cast<std::int64_t>(s.dirty_background_ratio * base) : l.thresh / 2;
   l.freerun = (l.background + l.thresh) / 2;
   return l;
+}
+
+}  // namespace
+
+DirtyLimits dirty_limits(const PageCache& cache) noexcept { return limits_of(cache.settings(), cache.dirtyable()); }
+
+DirtyLimits group_dirty_limits(const PageCache& cache, GroupId group) noexcept {
+  const std::int64_t filepages = cache.group_cached(group);
+  const std::int64_t clean = filepages - std::min(filepages, cache.group_dirty_and_writeback(group));
+  const std::int64_t global_dirtyable = std::max<std::int64_t>(cache.dirtyable(), 0);
+  const std::int64_t global_clean = global_dirtyable - std::min(global_dirtyable, cache.dirty_and_writeback());
+  const std::int64_t other_clean = global_clean - std::min(global_clean, clean);
+  return limits_of(cache.settings(), filepages + std::min(cache.group_ceiling_headroom(group), other_clean));
 }
 
 std::int64_t room_under_dirty_threshold(const PageCache& cache) noexcept {

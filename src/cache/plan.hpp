@@ -30,6 +30,11 @@ struct DirtyLimits {
 /// dirty_background_ratio for `background`, or half of `thresh` if that ratio is not below
 /// dirty_ratio (the kernel clamps it so). Truncated to whole bytes.
 DirtyLimits dirty_limits(const PageCache& cache) noexcept;
+/// The thresholds of a memory group's own writeback domain (mm/page-writeback.c,
+/// mdtc_calculate_avail and domain_dirty_limits with a memcg domain): the same ratios of what
+/// the group could hold as page cache: its cached data plus as much of its headroom under
+/// memory.max / memory.high as clean memory outside the group could give it.
+DirtyLimits group_dirty_limits(const PageCache& cache, GroupId group) noexcept;
 /// Algorithm 3's remain_dirty: how much more data may be dirty or in writeback before the
 /// dirty threshold (as balance_dirty_pages counts both); <= 0 at or over it.
 std::int64_t room_under_dirty_threshold(const PageCache& cache) noexcept;

@@ -79,9 +79,14 @@ struct MemoryBandwidth {
   /// of each page a thread writes for the first time, in bytes per second of one thread;
   /// 0: free. A read into a newly allocated buffer pays it on top of the copy.
   double first_touch = 0.0;
+  /// Writing into the page cache pages that the writer first reclaimed from clean cache (the
+  /// kernel's direct reclaim: scanning, unmapping and freeing them, then the copy), in bytes
+  /// per second of one thread; 0: as fast as into free pages (`write`, which is what a
+  /// write into a cache with free memory measures).
+  double reclaimed_write = 0.0;
 
   /// One channel shared by everything, as in the paper: the per-flow bounds equal the aggregate.
-  static MemoryBandwidth shared_channel(double bandwidth) { return {bandwidth, bandwidth, bandwidth, bandwidth, 0.0}; }
+  static MemoryBandwidth shared_channel(double bandwidth) { return {bandwidth, bandwidth, bandwidth, bandwidth, 0.0, 0.0}; }
 };
 
 class Cpu;
@@ -99,10 +104,12 @@ class Memory {
   void copy_on(const Cpu* cpu) noexcept { cpu_ = cpu; }
 
   FlowAwaiter read(std::int64_t bytes) const;
-  FlowAwaiter write(std::int64_t bytes) const;
+  /// A write of `bytes` into the page cache, `reclaimed` of them into pages the writer
+  /// reclaimed for it: one after the other, at `write` and `reclaimed_write`.
+  FlowAwaiter write(std::int64_t bytes, std::int64_t reclaimed = 0) const;
   /// Flow specs for use in a multi-resource flow (bound included).
   FlowSpec read_spec(std::int64_t bytes) const;
-  FlowSpec write_spec(std::int64_t bytes) const;
+  FlowSpec write_spec(std::int64_t bytes, std::int64_t reclaimed = 0) const;
   /// A cached read into fresh application memory: the copy and the first touch of every
   /// destination page, done one after the other by the reading thread (its rate is
   /// 1 / (1 / read + 1 / first_touch)); the zeroing also loads the aggregate as a write.

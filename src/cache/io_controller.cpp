@@ -177,16 +177,18 @@ Task<IoTally> IoController::write_chunk(FileId file, std::int64_t chunk) {
   co_return co_await write_chunk_writeback(file, chunk);
 }
 
-Task<std::int64_t> IoController::write_to_cache(FileId file, std::int64_t bytes) {
+Task<std::int64_t> IoController::write_to_cache(FileId file, std::int64_t bytes, std::int64_t reclaimed) {
   // The pages are taken now and hold the data once the copy is done: the dirty block's entry
   // time is the end of the copy. The file's group is charged for them.
   if (const GroupId group = cache_->group_of(file); group != kRootGroup) {
+    const std::int64_t evicted = cache_->evicted_bytes();
     co_await make_group_room(group, bytes, file, "writing");
+    reclaimed += cache_->evicted_bytes() - evicted;
     bytes = std::min(bytes, cache_->free());  // others may have taken memory meanwhile
     if (bytes == 0) co_return 0;
   }
   cache_->reserve(bytes);
-  co_await memory_->write(bytes);
+  co_await memory_->write(bytes, std::min(reclaimed, bytes));
   cache_->commit_dirty(file, bytes, sim_->now());
   flusher_->notify_dirty();
   co_return bytes;
@@ -205,6 +207,8 @@ Task<IoResult> IoController::write_file_throttled(FileId file, std::int64_t byte
     std::int64_t remaining = std::min(chunk_size, bytes - offset);
     DirtyThrottle::Writer writer(throttle_, device_bw, group);
     while (remaining > 0) {
+      // What is evicted from here to the copy frees the pages the copy fills.
+      std::int64_t evicted = cache_->evicted_bytes();
       const DirtyThrottle::Step step = writer.next(remaining);
       if (step.kind == DirtyThrottle::Step::Pause) {
         co_await sim_->sleep(step.pause);
@@ -219,7 +223,8 @@ Task<IoResult> IoController::write_file_throttled(FileId file, std::int64_t byte
         }
       } else {
         if (group != kRootGroup) co_await make_group_room(group, step.to_cache, file, "writing");
-        co_await memory_->write(step.to_cache);
+        evicted = cache_->evicted_bytes() - evicted;
+        co_await memory_->write(step.to_cache, std::min(evicted, step.to_cache));
         cache_->commit_dirty(file, step.to_cache, sim_->now());
         flusher_->notify_dirty();
         remaining -= step.to_cache;
@@ -237,9 +242,9 @@ Task<IoTally> IoController::write_chunk_writeback(FileId file, std::int64_t chun
   }
   std::int64_t to_memory = 0;
   if (const WriteStart start = plan_write_start(*cache_, chunk); start.under_threshold) {
-    cache_->evict(start.evict, file);
+    const std::int64_t evicted = cache_->evict(start.evict, file);
     to_memory = plan_write_start(*cache_, chunk).to_cache;  // as memory is after the eviction
-    if (to_memory > 0) to_memory = co_await write_to_cache(file, to_memory);
+    if (to_memory > 0) to_memory = co_await write_to_cache(file, to_memory, evicted);
   }
   std::int64_t remaining = chunk - to_memory;
   while (remaining > 0) {
@@ -252,7 +257,7 @@ Task<IoTally> IoController::write_chunk_writeback(FileId file, std::int64_t chun
       check_writer_can_wait(file, remaining);
       co_await wait_for_progress();
     }
-    if (to_cache > 0) to_cache = co_await write_to_cache(file, to_cache);
+    if (to_cache > 0) to_cache = co_await write_to_cache(file, to_cache, evicted);
     remaining -= to_cache;
   }
   co_return IoTally{.bytes = chunk, .cache_bytes = chunk, .disk_bytes = 0};

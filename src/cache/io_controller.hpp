@@ -126,10 +126,11 @@ class IoController {
   Task<IoResult> write_file_throttled(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool whole_file);
   /// write_file chunk by chunk (not throttled), or straight to the disk.
   Task<IoResult> write_file_in_chunks(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool direct);
-  /// Copies `bytes` into the cache: the memory transfer, then a new dirty block.
+  /// Copies `bytes` into the cache: the memory transfer, then a new dirty block; `reclaimed`:
+  /// how many of its pages the writer evicted clean data for (Memory::write).
   /// Returns the bytes copied: all of them, unless the file's memory group had to make room
   /// and others took the memory meanwhile.
-  Task<std::int64_t> write_to_cache(FileId file, std::int64_t bytes);
+  Task<std::int64_t> write_to_cache(FileId file, std::int64_t bytes, std::int64_t reclaimed);
   Task<IoTally> write_chunk_writethrough(FileId file, std::int64_t chunk);
   /// A chunk of a client's read of a remote file; `cursor` and `server_cursor`: where the read
   /// left off in this host's cache and in the server's, updated.

@@ -210,6 +210,11 @@ HostConfig read_host(const toml::table& table, std::string path, std::size_t ind
   if (bw.first_touch > 0.0 && bw.first_touch < units::kMinBandwidth) {
     r.fail("memory_first_touch_bw", fmt::format("must be 0 (free) or at least 1 B/s, got {} B/s", bw.first_touch));
   }
+  // Absent or "0 MB/s": writes into reclaimed pages as fast as into free ones.
+  bw.reclaimed_write = r.optional_bandwidth("memory_reclaimed_write_bw").value_or(bw.reclaimed_write);
+  if (bw.reclaimed_write > 0.0 && bw.reclaimed_write < units::kMinBandwidth) {
+    r.fail("memory_reclaimed_write_bw", fmt::format("must be 0 (as into free pages) or at least 1 B/s, got {} B/s", bw.reclaimed_write));
+  }
   const toml::table* page_cache = r.optional_table("page_cache");
   h.cache = read_page_cache(page_cache, r, h.cache, file);
   if (page_cache != nullptr || fresh) cache_origin = page_cache != nullptr ? Origin{page_cache, r.child_path("page_cache"), &file} : host_origin;
@@ -546,6 +551,10 @@ void apply_host_defaults(const toml::table& table, const std::string& file, cons
   if (first_touch && *first_touch > 0.0 && *first_touch < units::kMinBandwidth) {
     r.fail("memory_first_touch_bw", fmt::format("must be 0 (free) or at least 1 B/s, got {} B/s", *first_touch));
   }
+  const auto reclaimed_write = r.optional_bandwidth("memory_reclaimed_write_bw");
+  if (reclaimed_write && *reclaimed_write > 0.0 && *reclaimed_write < units::kMinBandwidth) {
+    r.fail("memory_reclaimed_write_bw", fmt::format("must be 0 (as into free pages) or at least 1 B/s, got {} B/s", *reclaimed_write));
+  }
   const toml::table* page_cache = r.optional_table("page_cache");
   for (const std::size_t i : hosts) {
     HostConfig& h = s.hosts[i];
@@ -560,6 +569,7 @@ void apply_host_defaults(const toml::table& table, const std::string& file, cons
     if (aggregate_read) bw.aggregate_read = *aggregate_read;
     if (aggregate_write) bw.aggregate_write = *aggregate_write;
     if (first_touch) bw.first_touch = *first_touch;
+    if (reclaimed_write) bw.reclaimed_write = *reclaimed_write;
     h.cache = read_page_cache(page_cache, r, h.cache, file);
     if (page_cache != nullptr) origins.page_caches[i] = Origin{page_cache, r.child_path("page_cache"), &file};
   }

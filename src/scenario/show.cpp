@@ -70,6 +70,9 @@ std::string to_toml(const Scenario& s) {
            rate("memory_aggregate_read_bw", h.memory_bandwidth.aggregate_read) +
            rate("memory_aggregate_write_bw", h.memory_bandwidth.aggregate_write);
     out += fmt::format("memory_first_touch_bw = {}\n", quoted(units::format_bandwidth(h.memory_bandwidth.first_touch)));
+    if (h.memory_bandwidth.reclaimed_write > 0.0) {
+      out += fmt::format("memory_reclaimed_write_bw = {}\n", quoted(units::format_bandwidth(h.memory_bandwidth.reclaimed_write)));
+    }
     out += fmt::format(
         "\n[hosts.page_cache]\nmode = {}\ndirty_ratio = {}\ndirty_background_ratio = {}\ndirty_expire = {}\nwriteback_interval = {}\n",
         quoted(h.cache.write_mode == WriteMode::Writeback ? "writeback" : "writethrough"), h.cache.dirty_ratio,

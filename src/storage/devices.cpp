@@ -75,6 +75,10 @@ Memory::Memory(FairShare& share, std::string name, MemoryBandwidth bandwidth)
   if (!(bandwidth.first_touch >= 0.0) || !std::isfinite(bandwidth.first_touch)) {
     throw ConfigError(fmt::format("{}: first-touch bandwidth must be >= 0 (0: free), got {}", name, bandwidth.first_touch));
   }
+  if (!(bandwidth.reclaimed_write >= 0.0) || !std::isfinite(bandwidth.reclaimed_write)) {
+    throw ConfigError(fmt::format("{}: write bandwidth into reclaimed pages must be >= 0 (0: as into free pages), got {}", name,
+                                  bandwidth.reclaimed_write));
+  }
   resource_ = share.add_resource(std::move(name));
 }
 
@@ -84,10 +88,16 @@ FlowSpec Memory::read_spec(std::int64_t bytes) const {
       {resource_, 1.0 / bandwidth_.aggregate_read});
 }
 
-FlowSpec Memory::write_spec(std::int64_t bytes) const {
+FlowSpec Memory::write_spec(std::int64_t bytes, std::int64_t reclaimed) const {
   require_bytes(bytes, "memory write");
-  return FlowSpec{.work = static_cast<double>(bytes), .bound = bandwidth_.write}.through(
-      {resource_, 1.0 / bandwidth_.aggregate_write});
+  double bound = bandwidth_.write;
+  if (reclaimed > 0 && bandwidth_.reclaimed_write > 0.0 && bytes > 0) {
+    // The fresh and the reclaimed pages one after the other: the time of both.
+    const double from_reclaim = static_cast<double>(std::min(reclaimed, bytes));
+    const double seconds = (static_cast<double>(bytes) - from_reclaim) / bandwidth_.write + from_reclaim / bandwidth_.reclaimed_write;
+    bound = static_cast<double>(bytes) / seconds;
+  }
+  return FlowSpec{.work = static_cast<double>(bytes), .bound = bound}.through({resource_, 1.0 / bandwidth_.aggregate_write});
 }
 
 FlowSpec Memory::read_into_fresh_spec(std::int64_t bytes) const {
@@ -113,7 +123,9 @@ FlowSpec Memory::on_core(FlowSpec spec) const {
 
 FlowAwaiter Memory::read(std::int64_t bytes) const { return share_->transfer(on_core(read_spec(bytes))); }
 FlowAwaiter Memory::read_into_fresh(std::int64_t bytes) const { return share_->transfer(on_core(read_into_fresh_spec(bytes))); }
-FlowAwaiter Memory::write(std::int64_t bytes) const { return share_->transfer(on_core(write_spec(bytes))); }
+FlowAwaiter Memory::write(std::int64_t bytes, std::int64_t reclaimed) const {
+  return share_->transfer(on_core(write_spec(bytes, reclaimed)));
+}
 
 Link::Link(FairShare& share, std::string name, double bandwidth, double latency, LinkSharing sharing)
     : share_(&share), bandwidth_(bandwidth), latency_(latency), sharing_(sharing) {

@@ -98,16 +98,20 @@ TEST_CASE("pcsim rejects a start state for an unknown host or larger than the me
 
 TEST_CASE("a scenario's start state replaces the platform's memory in use, and a first-touch bandwidth is read", "[cli][show]") {
   // The host of kPlatform has no memory in use and free first touch; the scenario says 2 GB
-  // were in use when the run started and a first touch of 4 GB/s: show resolves both.
+  // were in use when the run started, a first touch of 4 GB/s and writes into reclaimed
+  // pages at 500 MB/s: show resolves all three.
   const fs::path dir = scratch("start");
   std::string text = std::string(kPlatform) + kWorkload + "[start.memory_in_use]\nh = \"2 GB\"\n";
   const std::string write_bw = "memory_write_bw = \"1 GB/s\"";
-  text.replace(text.find(write_bw), write_bw.size(), write_bw + "\nmemory_first_touch_bw = \"4 GB/s\"");
+  text.replace(text.find(write_bw), write_bw.size(), write_bw + "\nmemory_first_touch_bw = \"4 GB/s\"\nmemory_reclaimed_write_bw = \"500 MB/s\"");
   std::ofstream(dir / "start.toml") << text;
   const Outcome o = pcsim(fmt::format("show '{}'", (dir / "start.toml").string()));
   INFO(o.output);
   REQUIRE(o.status == 0);
-  CHECK_THAT(o.output, Catch::Contains("memory_in_use = \"2 GB\"") && Catch::Contains("memory_first_touch_bw = \"4 GB/s\""));
+  CHECK_THAT(o.output, Catch::Contains("memory_in_use = \"2 GB\"") && Catch::Contains("memory_first_touch_bw = \"4 GB/s\"") &&
+                           Catch::Contains("memory_reclaimed_write_bw = \"500 MB/s\""));
+  text.replace(text.find("\"500 MB/s\""), 10, "\"0.5 B/s\"");
+  expect_rejected("reclaimed_write", text, {"reclaimed_write.toml:", "memory_reclaimed_write_bw", "at least 1 B/s"});
 }
 
 TEST_CASE("pcsim rejects a workflow with a dependency cycle", "[cli][errors]") {

@@ -492,6 +492,45 @@ TEST_CASE("the first touch of fresh memory slows reads into new buffers, not rea
   }
 }
 
+TEST_CASE("written data goes into free pages at one rate and into reclaimed pages at another", "[host][fresh-memory]") {
+  // The 10 GB host with 9.5 GB of an old file cached at start (clean): 500 MB free. 800 MB are
+  // written in 100 MB chunks, far under the dirty limits (ratio 0.9 of ~10 GB). The first
+  // five chunks fill free pages at memory_write_bw, 1000 MB/s: 0.5 s. Each of the last three
+  // first evicts 100 MB of the old file and fills those pages at memory_reclaimed_write_bw,
+  // 250 MB/s: 1.2 s. The write takes 1.7 s; with the rate unset (0: as free pages), 0.8 s.
+  // The same under the paper's Algorithm 3 and under the kernel's throttling. A host with
+  // nothing cached writes into free pages only: 0.8 s either way.
+  for (const bool kernel : {true, false}) {
+    for (const double reclaimed_write : {0.0, 250e6}) {
+      for (const bool old_cached : {true, false}) {
+        CacheSettings settings = kernel ? CacheSettings::kernel() : CacheSettings::paper();
+        settings.dirty_ratio = 0.9;
+        settings.dirty_background_ratio = 0.8;
+        HostSpec spec = small_host(settings);
+        spec.memory_bandwidth.reclaimed_write = reclaimed_write;
+        Simulator sim;
+        FairShare share(sim);
+        Host host(sim, share, spec);
+        host.set_checking(true);
+        const DiskRef disk = host.add_disk("d", 100e6, 100e6);
+        if (old_cached) host.add_file("old", 9500 * MB, disk, true);
+        const FileRef file = host.add_file("new", 800 * MB, disk);
+        IoResult written;
+        auto write = [](Host& h, FileRef f, IoResult& out) -> Task<void> { out = co_await h.write_file(f, 100 * MB); };
+        sim.spawn(write(host, file, written));
+        sim.run_until(10.0);
+        INFO("kernel " << kernel << ", reclaimed write " << reclaimed_write << ", old cached " << old_cached);
+        CHECK(written.cache_bytes == 800 * MB);
+        CHECK(written.end - written.start == Catch::Detail::Approx(reclaimed_write > 0 && old_cached ? 1.7 : 0.8));
+        CHECK(host.cached(file) == 800 * MB);
+      }
+    }
+  }
+  Simulator sim;
+  FairShare share(sim);
+  CHECK_THROWS_AS(Memory(share, "m", MemoryBandwidth{1e9, 1e9, 1e9, 1e9, 0.0, -1.0}), ConfigError);
+}
+
 TEST_CASE("two-touch activation: a file written and then read once in chunks has nothing active", "[host][activation]") {
   // Kernel (mark_page_accessed): written pages are not referenced; one read references each
   // page once, and activates none. A read in chunks touches each page once: chunk k must not

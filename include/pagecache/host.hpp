@@ -45,6 +45,8 @@ struct DiskRef {
 /// A memory group of a host (add_memory_group); the default, 0, is no group (the root).
 struct GroupRef {
   std::uint16_t index = 0;
+  /// The most groups a host can have (add_memory_group throws ConfigError beyond).
+  static constexpr std::size_t kMax = 65534;
 };
 /// A file known to a host (index in the order of add_file).
 struct FileRef {

@@ -74,6 +74,12 @@ struct FileSpec {
 };
 
 /// One task: read files, compute, write files, then release its buffers.
+/// A memory group's limits (a cgroup's memory.max and memory.high; 0: none).
+struct MemoryLimits {
+  std::int64_t max = 0;
+  std::int64_t high = 0;  ///< needs max
+};
+
 struct TaskSpec {
   std::string name;
   /// Where a workflow task runs; empty: on a host of its workflow's (WorkflowSpec::hosts).
@@ -91,6 +97,11 @@ struct TaskSpec {
   bool fsync = false;      ///< fsync each written file before the task ends
   bool direct_io = false;  ///< reads and writes bypass the page cache (O_DIRECT)
   std::vector<std::string> deletes;  ///< files deleted when the task ends
+  /// Workflow tasks: each task with a memory_max runs in a memory group of its own, made on
+  /// the host it runs on when it starts (as a workflow system on Kubernetes or Slurm runs
+  /// each task as a pod or job with a memory limit). The group outlives the task: its page
+  /// cache stays charged to it (the kernel's offline cgroup keeps its charges).
+  MemoryLimits memory_limits;
 };
 
 /// An application: tasks run one after the other on one host.

@@ -59,7 +59,7 @@ DirtyThrottle::Step DirtyThrottle::Writer::next(std::int64_t remaining) {
     throttle(false);
   } else {
     throttle(true);
-    t.flusher_->notify_dirty();
+    t.flusher_->notify_dirty(group_);
     if (credit_ < static_cast<double>(remaining)) {
       const double rate = device_bw_ * pos_ratio / static_cast<double>(t.throttled_);
       const double pause = rate > 0.0 ? std::min(kMaxPause, (static_cast<double>(remaining) - credit_) / rate) : kMaxPause;

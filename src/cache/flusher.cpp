@@ -22,32 +22,28 @@ bool Flusher::group_background_due(GroupId group) const {
   return cache_->group_dirty_and_writeback(group) > group_dirty_limits(*cache_, group).background;
 }
 
-bool Flusher::any_group_background_due() const {
-  if (!cache_->policy().background_writeback()) return false;
-  for (std::size_t g = 1; g < cache_->group_count(); ++g) {
-    if (group_background_due(static_cast<GroupId>(g))) return true;
-  }
-  return false;
-}
-
-void Flusher::notify_dirty() {
-  if (wake_ && !wake_->triggered() && (parked_ || background_due() || any_group_background_due())) wake_->trigger();
-}
-
-Task<std::int64_t> Flusher::write_groups() {
-  std::int64_t total = 0;
-  std::vector<PageCache::Flushed> taken;
-  for (std::size_t g = 1; g < cache_->group_count(); ++g) {
-    const auto group = static_cast<GroupId>(g);
-    if (!group_background_due(group)) continue;
-    taken.clear();
-    total += cache_->flush(cache_->group_dirty_and_writeback(group) - group_dirty_limits(*cache_, group).background, kNoFile, taken, group);
-    for (const PageCache::Flushed& part : taken) {
-      flushed_ += part.bytes;
-      cache_->tracer().flush(FlushCause::Background, part.bytes);
-      co_await (*files_)[part.file].disk->write(part.bytes);
-      cache_->end_writeback(part);
+void Flusher::notify_dirty(GroupId group) {
+  // A group over its own background threshold waits in due_groups_ (each once): the
+  // flusher never scans every group, of which a workflow may have thousands.
+  if (group != kRootGroup && cache_->policy().background_writeback() && group_background_due(group)) {
+    if (group >= queued_.size()) queued_.resize(static_cast<std::size_t>(group) + 1, false);
+    if (!queued_[group]) {
+      queued_[group] = true;
+      due_groups_.push_back(group);
     }
+  }
+  if (wake_ && !wake_->triggered() && (parked_ || background_due() || !due_groups_.empty())) wake_->trigger();
+}
+
+Task<std::int64_t> Flusher::write_group(GroupId group) {
+  std::vector<PageCache::Flushed> taken;
+  const std::int64_t total =
+      cache_->flush(cache_->group_dirty_and_writeback(group) - group_dirty_limits(*cache_, group).background, kNoFile, taken, group);
+  for (const PageCache::Flushed& part : taken) {
+    flushed_ += part.bytes;
+    cache_->tracer().flush(FlushCause::Background, part.bytes);
+    co_await (*files_)[part.file].disk->write(part.bytes);
+    cache_->end_writeback(part);
   }
   co_return total;
 }
@@ -73,9 +69,16 @@ Task<void> Flusher::periodic() {
       co_await write_block(kAnyAge);
       continue;
     }
-    // Groups over their own background thresholds; one whose data is all in writeback
-    // already waits for the next tick or wake-up like the rest.
-    if (any_group_background_due() && co_await write_groups() > 0) continue;
+    // Groups over their own background thresholds, in the order they got there; one whose
+    // data is all in writeback already is dropped until its writers dirty more.
+    if (!due_groups_.empty()) {
+      const GroupId group = due_groups_.front();
+      due_groups_.pop_front();
+      queued_[group] = false;
+      // Still over after writing some: back in the queue.
+      if (group_background_due(group) && co_await write_group(group) > 0) notify_dirty(group);
+      continue;
+    }
     if (sim_->now() >= tick) {
       // Periodic writeback of the data dirty for longer than dirty_expire at the tick.
       const double cutoff = tick - expire;
@@ -84,6 +87,10 @@ Task<void> Flusher::periodic() {
         co_await write_block(cutoff);
         if (flushed_ == before) break;
       }
+      // Each group's writeback work also wakes at the interval and looks at its background
+      // threshold (wb_workfn, wb_check_background_flush), which may have fallen under its
+      // dirty data as memory was taken: once per tick, not per write.
+      for (std::size_t g = 1; g < cache_->group_count(); ++g) notify_dirty(static_cast<GroupId>(g));
       // A tick that took longer than the interval is followed by the next one at once.
       tick = std::max(tick + interval, sim_->now());
       continue;

@@ -18,6 +18,7 @@
 #include <pagecache/event.hpp>
 #include <pagecache/simulator.hpp>
 
+#include <deque>
 #include <optional>
 #include <vector>
 
@@ -32,8 +33,9 @@ class Flusher {
 
   /// Starts the periodic process; its first tick is at now().
   void start();
-  /// New dirty data: wakes the flusher if it is parked or if background writeback is due.
-  void notify_dirty();
+  /// New dirty data (of memory group `group`): wakes the flusher if it is parked or if
+  /// background writeback is due, the group's included.
+  void notify_dirty(GroupId group = kRootGroup);
   /// Bytes written back by the flusher so far.
   std::int64_t flushed_bytes() const noexcept { return flushed_; }
 
@@ -42,9 +44,8 @@ class Flusher {
   bool background_due() const;
   /// Memory group `group` is over its own background threshold.
   bool group_background_due(GroupId group) const;
-  bool any_group_background_due() const;
-  /// Writes back what each group has above its background threshold; returns how much.
-  Task<std::int64_t> write_groups();
+  /// Writes back what the group has above its background threshold; returns how much.
+  Task<std::int64_t> write_group(GroupId group);
   /// Writes back the least recently used dirty block older than `cutoff` (if any).
   Task<void> write_block(double cutoff);
 
@@ -52,6 +53,8 @@ class Flusher {
   PageCache* cache_;
   const FileTable* files_;
   std::optional<Event> wake_;
+  std::deque<GroupId> due_groups_;  // groups over their own background threshold, to write back
+  std::vector<bool> queued_;        // by GroupId: in due_groups_
   std::int64_t flushed_ = 0;
   bool started_ = false;
   bool parked_ = false;

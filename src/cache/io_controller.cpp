@@ -190,7 +190,7 @@ Task<std::int64_t> IoController::write_to_cache(FileId file, std::int64_t bytes,
   cache_->reserve(bytes);
   co_await memory_->write(bytes, std::min(reclaimed, bytes));
   cache_->commit_dirty(file, bytes, sim_->now());
-  flusher_->notify_dirty();
+  flusher_->notify_dirty(cache_->group_of(file));
   co_return bytes;
 }
 
@@ -226,7 +226,7 @@ Task<IoResult> IoController::write_file_throttled(FileId file, std::int64_t byte
         evicted = cache_->evicted_bytes() - evicted;
         co_await memory_->write(step.to_cache, std::min(evicted, step.to_cache));
         cache_->commit_dirty(file, step.to_cache, sim_->now());
-        flusher_->notify_dirty();
+        flusher_->notify_dirty(group);
         remaining -= step.to_cache;
       }
     }

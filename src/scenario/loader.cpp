@@ -255,8 +255,21 @@ HostConfig read_host(const toml::table& table, std::string path, std::size_t ind
   return h;
 }
 
+// memory_max / memory_high: the limits of a memory group (`whose`: whose, for the message).
+// Absent: `inherited` (a workflow's for its tasks), unless memory_max is given here.
+MemoryLimits read_memory_limits(TomlReader& r, const char* whose, MemoryLimits inherited = {}) {
+  MemoryLimits m = r.has("memory_max") ? MemoryLimits{} : inherited;
+  m.max = r.optional_size("memory_max").value_or(m.max);
+  if (r.has("memory_max") && m.max <= 0) r.fail("memory_max", fmt::format("must be > 0 ({} memory group's limit)", whose));
+  m.high = r.optional_size("memory_high").value_or(m.high);
+  if (r.has("memory_high") && (m.high <= 0 || m.max == 0 || m.high > m.max)) {
+    r.fail("memory_high", "must be > 0 and at most memory_max, which it needs");
+  }
+  return m;
+}
+
 TaskSpec read_task(const toml::table& table, std::string path, std::size_t index, std::int64_t default_chunk,
-                   const std::string& file, bool in_workflow) {
+                   const std::string& file, bool in_workflow, MemoryLimits workflow_limits = {}) {
   TomlReader r(table, std::move(path), file);
   TaskSpec t;
   t.name = r.name("name", std::to_string(index + 1));
@@ -270,7 +283,10 @@ TaskSpec read_task(const toml::table& table, std::string path, std::size_t index
   t.writes = r.names("write");
   t.chunk_size = r.optional_size("chunk_size").value_or(default_chunk);
   if (t.chunk_size <= 0) r.fail("chunk_size", "must be > 0");
-  if (in_workflow) t.after = r.names("after");
+  if (in_workflow) {
+    t.after = r.names("after");
+    t.memory_limits = read_memory_limits(r, "the task's", workflow_limits);
+  }
   t.fsync = r.optional_bool("fsync").value_or(false);
   t.direct_io = r.optional_bool("direct_io").value_or(false);
   t.deletes = r.names("delete");
@@ -309,12 +325,7 @@ void expand_pipelines(const toml::table& table, Scenario& s, const std::string& 
   const std::int64_t chunk = r.optional_size("chunk_size").value_or(100'000'000);
   if (chunk <= 0) r.fail("chunk_size", "must be > 0");
   const bool cached = r.optional_bool("inputs_cached").value_or(false);
-  const std::int64_t memory_max = r.optional_size("memory_max").value_or(0);
-  if (r.has("memory_max") && memory_max <= 0) r.fail("memory_max", "must be > 0 (a pipeline's memory group's limit)");
-  const std::int64_t memory_high = r.optional_size("memory_high").value_or(0);
-  if (r.has("memory_high") && (memory_high <= 0 || memory_max == 0 || memory_high > memory_max)) {
-    r.fail("memory_high", "must be > 0 and at most memory_max, which it needs");
-  }
+  const MemoryLimits memory_limits = read_memory_limits(r, "a pipeline's");
   r.finish();
   if (std::none_of(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == host; })) {
     r.fail("host", fmt::format("no host named '{}'", host));
@@ -330,7 +341,7 @@ void expand_pipelines(const toml::table& table, Scenario& s, const std::string& 
   for (std::int64_t i = 1; i <= count; ++i) {
     auto file_name = [&](std::int64_t k) { return count == 1 ? fmt::format("file_{}", k) : fmt::format("p{}_file_{}", i, k); };
     for (std::int64_t k = 1; k <= tasks + 1; ++k) s.files.push_back({file_name(k), size, files_host, disk, k == 1 && cached});
-    AppSpec app{std::to_string(i), host, {}, memory_max, memory_high};
+    AppSpec app{std::to_string(i), host, {}, memory_limits.max, memory_limits.high};
     app.tasks.reserve(static_cast<std::size_t>(tasks));
     for (std::int64_t k = 1; k <= tasks; ++k) {
       TaskSpec& task = app.tasks.emplace_back();
@@ -602,6 +613,7 @@ void read_workflow_file(TomlReader& root, Scenario& s, const std::string& file, 
     }
     options.chunk_size = table->optional_size("chunk_size").value_or(options.chunk_size);
     if (options.chunk_size <= 0) table->fail("chunk_size", "must be > 0");
+    options.memory_limits = read_memory_limits(*table, "each task's");
   }
   const auto fail = [&](const std::string& key, const std::string& message) {
     if (table) table->fail(key, message);
@@ -817,12 +829,9 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
     app.host = a.name("host", s.hosts.front().name);
     const std::int64_t chunk = a.optional_size("chunk_size").value_or(100'000'000);
     if (chunk <= 0) a.fail("chunk_size", "must be > 0");
-    app.memory_max = a.optional_size("memory_max").value_or(0);
-    if (a.has("memory_max") && app.memory_max <= 0) a.fail("memory_max", "must be > 0 (the application's memory group's limit)");
-    app.memory_high = a.optional_size("memory_high").value_or(0);
-    if (a.has("memory_high") && (app.memory_high <= 0 || app.memory_max == 0 || app.memory_high > app.memory_max)) {
-      a.fail("memory_high", "must be > 0 and at most memory_max, which it needs");
-    }
+    const MemoryLimits memory_limits = read_memory_limits(a, "the application's");
+    app.memory_max = memory_limits.max;
+    app.memory_high = memory_limits.high;
     const auto tasks = a.tables("tasks");
     if (tasks.empty()) a.fail_table("an application needs at least one [[" + a.path() + ".tasks]]");
     for (std::size_t t = 0; t < tasks.size(); ++t) {
@@ -853,11 +862,12 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
     }
     const std::int64_t chunk = wr.optional_size("chunk_size").value_or(100'000'000);
     if (chunk <= 0) wr.fail("chunk_size", "must be > 0");
+    const MemoryLimits memory_limits = read_memory_limits(wr, "each task's");
     const auto tasks = wr.tables("tasks");
     if (tasks.empty()) wr.fail_table("a workflow needs at least one [[workflow.tasks]]");
     for (std::size_t t = 0; t < tasks.size(); ++t) {
       task_origins.push_back({tasks[t], wr.child_path("tasks", t), &file});
-      workflow.tasks.push_back(read_task(*tasks[t], wr.child_path("tasks", t), t, chunk, file, true));
+      workflow.tasks.push_back(read_task(*tasks[t], wr.child_path("tasks", t), t, chunk, file, true, memory_limits));
     }
     check_workflow_acyclic(workflow, origins.workflows.back());
     wr.finish();

@@ -44,6 +44,8 @@ void write_task(std::string& out, const std::string& table, const TaskSpec& t, b
                      list(t.reads), quoted(units::format_duration(t.compute)), list(t.writes), quoted(units::format_size(t.chunk_size)));
   out += fmt::format("fsync = {}\ndirect_io = {}\ndelete = {}\n", t.fsync, t.direct_io, list(t.deletes));
   if (in_workflow) out += fmt::format("after = {}\n", list(t.after));
+  if (t.memory_limits.max > 0) out += fmt::format("memory_max = {}\n", quoted(units::format_size(t.memory_limits.max)));
+  if (t.memory_limits.high > 0) out += fmt::format("memory_high = {}\n", quoted(units::format_size(t.memory_limits.high)));
 }
 
 }  // namespace

@@ -117,6 +117,7 @@ void add_json_workflow(const WfWorkflow& wf, const WorkflowImport& o, Scenario& 
       task.compute = t.runtime * std::min(1.0, t.avg_cpu / 100.0 / static_cast<double>(t.cores));
     }
     task.chunk_size = o.chunk_size;
+    task.memory_limits = o.memory_limits;
     task_origins.push_back(Origin::elsewhere(fmt::format("{}: task '{}'", json, t.id)));
   }
   s.workflows.push_back(std::move(w));

@@ -42,6 +42,7 @@ struct WorkflowImport {
   bool inputs_cached = false;      ///< the files no task writes start in the files host's page cache
   ComputeFrom compute = ComputeFrom::Runtime;
   std::int64_t chunk_size = 100'000'000;
+  MemoryLimits memory_limits;  ///< of each task's memory group (none by default)
 };
 
 /// Adds `workflow` and its files to `s` (whose hosts are read), their origins to `origins`.

@@ -110,6 +110,16 @@ class Runner {
         task_plans_.back().group = group;
       }
     }
+    // Memory groups are never removed: a run may make at most so many (on one host).
+    std::size_t groups = 0;
+    for (const AppSpec& app : scenario.apps) groups += app.memory_max > 0 ? 1 : 0;
+    for (const WorkflowSpec& w : scenario.workflows) {
+      groups += static_cast<std::size_t>(std::count_if(w.tasks.begin(), w.tasks.end(), [](const TaskSpec& t) { return t.memory_limits.max > 0; }));
+    }
+    if (groups > GroupRef::kMax) {
+      throw ConfigError(fmt::format("{} applications and workflow tasks with a memory_max: a run may have at most {} memory groups", groups,
+                                    GroupRef::kMax));
+    }
     for (const WorkflowSpec& w : scenario.workflows) {
       if (w.hosts.empty()) throw ConfigError(fmt::format("workflow '{}': no host to run on", w.name));
       for (const std::string& h : w.hosts) host_named(h, "workflow", w.name);
@@ -482,7 +492,14 @@ class Runner {
                                std::vector<Event*> prerequisites, Event& done) {
     for (Event* prerequisite : prerequisites) co_await prerequisite->wait();
     const std::size_t host = co_await hosts.cores->acquire(hosts.own[index], task.cores);
-    co_await run_task(w.name, task, plan, *hosts.hosts[host]);
+    if (task.memory_limits.max > 0) {
+      // Its own memory group, on the host it got (a pod's or job's cgroup).
+      TaskPlan in_group = plan;
+      in_group.group = hosts.hosts[host]->add_memory_group(task.memory_limits.max, task.memory_limits.high);
+      co_await run_task(w.name, task, in_group, *hosts.hosts[host]);
+    } else {
+      co_await run_task(w.name, task, plan, *hosts.hosts[host]);
+    }
     hosts.cores->release(host, task.cores);
     done.trigger();
     finish_one();

@@ -119,6 +119,70 @@ TEST_CASE("run_scenario rejects a workflow with two tasks of one name or an unkn
   CHECK_THROWS_WITH(run_scenario(unknown), Catch::Contains("task 'b' comes after an unknown task 'z'"));
 }
 
+TEST_CASE("workflow tasks run in memory groups of their own, from the workflow's limits or their own", "[run][groups]") {
+  // Task a (the workflow's memory_max, 1.5 GB) reads its 1 GB input in 100 MB chunks and
+  // holds the buffers: as host_groups_test derives, its group keeps 500 MB of the file cached
+  // (1 GB of buffers + 500 MB). Task b, after a, has its own 3 GB: its 1 GB input and 1 GB of
+  // buffers fit, all of it stays cached. The 4 GB host never runs short. Without limits both
+  // inputs stay whole. show names the limits; a task's memory_high above its memory_max is
+  // refused by key.
+  const std::string text = R"(
+[[hosts]]
+name = "node"
+cores = 1
+memory = "4 GB"
+memory_read_bw = "6 GB/s"
+memory_write_bw = "3 GB/s"
+[[hosts.disks]]
+name = "disk"
+read_bw = "500 MB/s"
+write_bw = "400 MB/s"
+[[files]]
+name = "in_a"
+size = "1 GB"
+[[files]]
+name = "in_b"
+size = "1 GB"
+[workflow]
+memory_max = "1.5 GB"
+[[workflow.tasks]]
+name = "a"
+read = "in_a"
+[[workflow.tasks]]
+name = "b"
+read = "in_b"
+after = ["a"]
+memory_max = "3 GB"
+)";
+  for (const bool limited : {true, false}) {
+    std::string scenario = text;
+    if (!limited) {
+      for (const std::string key : {"memory_max = \"1.5 GB\"\n", "memory_max = \"3 GB\"\n"}) scenario.erase(scenario.find(key), key.size());
+    }
+    const RunResult r = run_scenario(parse_scenario(scenario, "<test>"));
+    INFO("limited " << limited);
+    REQUIRE(r.files == std::vector<std::string>{"in_a", "in_b"});
+    // The cached bytes of a file after the read phase of a task.
+    const auto cached_after_read = [&](const std::string& task, std::size_t file) {
+      for (const auto& row : r.cache) {
+        if (row.file == file && r.timeline.at(row.phase).task == task && r.timeline.at(row.phase).phase == "read") return row.cached;
+      }
+      FAIL("no cache row for task " << task);
+      return std::int64_t{-1};
+    };
+    CHECK(cached_after_read("a", 0) == (limited ? 500'000'000 : 1'000'000'000));
+    CHECK(cached_after_read("b", 1) == 1'000'000'000);
+    CHECK(cached_after_read("b", 0) == (limited ? 500'000'000 : 1'000'000'000));
+  }
+  const Scenario s = parse_scenario(text, "<test>");
+  CHECK(s.workflows.at(0).tasks.at(0).memory_limits.max == 1'500'000'000);
+  CHECK(s.workflows.at(0).tasks.at(1).memory_limits.max == 3'000'000'000);
+  std::string high = text;
+  const std::string own = "memory_max = \"3 GB\"";
+  high.replace(high.find(own), own.size(), own + "\nmemory_high = \"4 GB\"");
+  CHECK_THROWS_WITH(parse_scenario(high, "<test>"), Catch::Contains("workflow.tasks[1]") && Catch::Contains("memory_high"));
+}
+
 // One pipeline on a node whose files are on a server across a link, so that two hosts' memory
 // is sampled: 300 MB read from the server (0.6 s at its disk's 500 MB/s), `compute` seconds of
 // CPU, 300 MB written back over the link, in 10 MB chunks. Times are not multiples of the

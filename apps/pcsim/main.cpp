@@ -16,6 +16,7 @@
 #include "report/trace_json.hpp"
 #include "scenario/closest.hpp"
 #include "validate/validation.hpp"
+#include "calibrate_command.hpp"
 #include "status_line.hpp"
 #include "sweep_command.hpp"
 
@@ -265,6 +266,8 @@ int main(int argc, char** argv) {
 
   pcsim::SweepCommand sweep;
   pcsim::add_sweep_command(app, sweep);
+  pcsim::CalibrateCommand calibrate;
+  pcsim::add_calibrate_command(app, calibrate);
 
   auto* help = app.add_subcommand("help", "show this help, or a command's: pcsim help run");
   std::string help_topic;
@@ -294,6 +297,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (sweep.sweep->parsed()) return pcsim::run_sweep_command(sweep);
+    if (calibrate.app->parsed()) return pcsim::run_calibrate_command(calibrate);
     if (validate->parsed()) {
       if (!json_path.empty()) pagecache::report::check_output_file(json_path);
       pagecache::report::check_output_file(report_path);

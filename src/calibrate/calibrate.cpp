@@ -1,0 +1,337 @@
+#include "calibrate/calibrate.hpp"
+
+#include "calibrate/measure.hpp"
+
+#include <pagecache/error.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <ctime>
+#include <fstream>
+#include <sstream>
+#include <system_error>
+
+#include <unistd.h>
+
+namespace pagecache::calibrate {
+
+namespace {
+
+constexpr std::int64_t MiB = 1 << 20;
+constexpr std::int64_t GiB = 1LL << 30;
+
+std::string utc_now() {
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  ::gmtime_r(&now, &tm);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return text;
+}
+
+std::string size_text(std::int64_t bytes) {
+  if (bytes >= GiB) return fmt::format("{:.1f} GiB", static_cast<double>(bytes) / GiB);
+  return fmt::format("{} MiB", bytes / MiB);
+}
+
+std::string rate_text(double bytes_per_s) { return fmt::format("{:.0f} MB/s", bytes_per_s / 1e6); }
+
+// The files of one calibration, in a folder of their own inside the user's, removed whole
+// when it goes (an interruption included): nothing else is touched.
+class Scratch {
+ public:
+  explicit Scratch(const std::filesystem::path& dir) {
+    std::string pattern = (dir / "pcsim-calibrate-XXXXXX").string();
+    if (::mkdtemp(pattern.data()) == nullptr) {
+      throw ConfigError(fmt::format("--dir '{}': cannot make a folder there ({})", dir.string(), std::strerror(errno)));
+    }
+    path_ = pattern;
+  }
+  ~Scratch() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  Scratch(const Scratch&) = delete;
+  Scratch& operator=(const Scratch&) = delete;
+  std::filesystem::path file(const std::string& name) const { return path_ / name; }
+  void remove(const std::filesystem::path& file) const {
+    std::error_code ignored;
+    std::filesystem::remove(file, ignored);
+  }
+
+ private:
+  std::filesystem::path path_;
+};
+
+std::int64_t meminfo_now(std::string_view key) {
+  std::ifstream in("/proc/meminfo");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return meminfo_bytes(text.str(), key);
+}
+
+Figure figure(const Rate& r, std::string how) {
+  if (r.bytes <= 0 || r.seconds <= 0.0) return Figure{0.0, how + ": nothing measured (interrupted?)", false};
+  return Figure{r.per_second(), fmt::format("{} ({} in {:.2f} s)", how, size_text(r.bytes), r.seconds), true};
+}
+
+void check_stopped() {
+  if (stop_requested()) throw std::runtime_error("interrupted: the files made so far are removed");
+}
+
+// The dirty limits the kernel applies now, in bytes (of the memory available to the page cache).
+std::int64_t background_limit(const SystemInfo& s) {
+  if (s.dirty_background_bytes > 0) return s.dirty_background_bytes;
+  return static_cast<std::int64_t>(s.dirty_background_ratio * static_cast<double>(s.memory_available));
+}
+
+}  // namespace
+
+Calibration calibrate(const Options& options) {
+  const auto started = std::chrono::steady_clock::now();
+  std::error_code ec;
+  if (!std::filesystem::is_directory(options.dir, ec)) throw ConfigError(fmt::format("--dir '{}': not a folder", options.dir.string()));
+  if (::access(options.dir.c_str(), W_OK) != 0) throw ConfigError(fmt::format("--dir '{}': not writable by this user", options.dir.string()));
+
+  Calibration c;
+  c.system = read_system_info(options.dir);
+  c.date = utc_now();
+  c.quick = options.quick;
+  c.size = options.size > 0 ? options.size : (options.quick ? 64 * MiB : GiB);
+  c.streams = options.streams > 0 ? options.streams : (options.quick ? 2 : 4);
+  c.request = std::min<std::int64_t>(options.quick ? 4 * MiB : 16 * MiB, c.size);
+  c.size = std::max(c.request, c.size / c.request * c.request);  // whole requests (O_DIRECT)
+  const double disk_seconds = options.quick ? 0.6 : 5.0;
+  const double memory_seconds = options.quick ? 0.3 : 1.5;
+  const SystemInfo& sys = c.system;
+
+  // Room: the single stream's file and the streams' files at once, plus the cache files.
+  const std::int64_t need = (1 + static_cast<std::int64_t>(c.streams)) * c.size + c.size;
+  if (sys.file_system_free < need) {
+    throw ConfigError(fmt::format("--dir '{}': its file system has {} free for this user; calibrate writes up to {} there (--size {} per file, "
+                                  "{} streams; a smaller --size needs less)",
+                                  options.dir.string(), size_text(sys.file_system_free), size_text(need), size_text(c.size), c.streams));
+  }
+  // Memory: the cache files and the fresh buffers must fit in what is available.
+  // (At least 256 MiB, so that a copy at memory speed takes a measurable time.)
+  const std::int64_t cache_file = std::max(16 * MiB, std::min(std::max(c.size, 256 * MiB), background_limit(sys) / 2));
+  if (sys.memory_available < 4 * cache_file) {
+    throw ConfigError(fmt::format("only {} of memory available: calibrate needs {} (a smaller --size needs less)", size_text(sys.memory_available),
+                                  size_text(4 * cache_file)));
+  }
+
+  const Scratch scratch(options.dir);
+  const int steps = options.quick ? 11 : 12;
+  int step = 0;
+  const auto next = [&](const std::string& name) {
+    check_stopped();
+    if (options.progress) options.progress(name, ++step, steps);
+  };
+
+  // --- The device: O_DIRECT, large requests; one stream, then several at once.
+  const std::filesystem::path one = scratch.file("stream-0");
+  std::vector<std::filesystem::path> many;
+  for (int i = 1; i <= c.streams; ++i) many.push_back(scratch.file(fmt::format("stream-{}", i)));
+  bool direct = true;
+  try {
+    next("device: write, one stream");
+    c.disk_write = figure(direct_write(one, c.size, c.request, Deadline(disk_seconds)),
+                          fmt::format("O_DIRECT sequential write, one stream, {} requests, then fdatasync", size_text(c.request)));
+    next("device: read, one stream");
+    c.disk_read = figure(direct_read(one, c.request, Deadline(disk_seconds)), fmt::format("O_DIRECT sequential read, one stream, {} requests", size_text(c.request)));
+    next(fmt::format("device: write, {} streams", c.streams));
+    const Deadline together(disk_seconds);
+    c.disk_aggregate_write = figure(concurrently(many, [&](const std::filesystem::path& f) { return direct_write(f, c.size, c.request, together); }),
+                                    fmt::format("O_DIRECT sequential writes, {} streams at once, then fdatasync", c.streams));
+    next(fmt::format("device: read, {} streams", c.streams));
+    const Deadline read_together(disk_seconds);
+    c.disk_aggregate_read = figure(concurrently(many, [&](const std::filesystem::path& f) { return direct_read(f, c.request, read_together); }),
+                                   fmt::format("O_DIRECT sequential reads, {} streams at once", c.streams));
+  } catch (const DirectIoUnsupported& e) {
+    direct = false;
+    c.notes.push_back(fmt::format("{}: the device is measured through the page cache instead (buffered, synced or dropped)", e.what()));
+    step = 4;
+  }
+  for (const auto& f : many) scratch.remove(f);
+  check_stopped();
+  next("device: buffered read and write, for comparison");
+  if (!direct) buffered_write_synced(one, c.size, c.request, Deadline(disk_seconds));
+  c.buffered_read = figure(buffered_read_cold(one, c.request, Deadline(disk_seconds)),
+                           "buffered read of a file dropped from the cache (POSIX_FADV_DONTNEED), kernel readahead");
+  scratch.remove(one);
+  c.buffered_write_synced = figure(buffered_write_synced(one, c.size, c.request, Deadline(disk_seconds)), "buffered write, then fsync, both timed");
+  if (!direct) {
+    c.disk_read = c.buffered_read;
+    c.disk_write = c.buffered_write_synced;
+    c.disk_aggregate_read = c.disk_read;
+    c.disk_aggregate_write = c.disk_write;
+  }
+  scratch.remove(one);
+
+  // --- Memory and the page cache. The cache file is under half the background dirty
+  // threshold, so that writing it is a copy into free pages, not throttled.
+  const std::filesystem::path cached = scratch.file("cached");
+  const std::int64_t chunk = std::min<std::int64_t>(64 * MiB, cache_file);
+  next("page cache: write into free memory");
+  c.memory_write = figure(cache_write(cached, cache_file, chunk, Deadline(memory_seconds * 4)),
+                          fmt::format("write() into the page cache with free memory, one thread, {} requests, not synced", size_text(chunk)));
+  sync_file(cached);  // clean, and still cached
+  next("page cache: cached reads");
+  c.memory_read = figure(cached_read(cached, chunk, false, Deadline(memory_seconds)),
+                         fmt::format("read() of cached data into a reused {} buffer, one thread", size_text(chunk)));
+  c.memory_read_fresh = figure(cached_read(cached, chunk, true, Deadline(memory_seconds)), "read() of cached data into new memory, one thread");
+  next("memory: first touch");
+  const std::int64_t touch = std::min(GiB, sys.memory_available / 8);
+  c.first_touch = figure(first_touch(touch, sys.page_size, Deadline(memory_seconds)),
+                         fmt::format("one byte written per {}-byte page of new anonymous memory, one thread (transparent huge pages: {})",
+                                     sys.page_size, sys.transparent_hugepages.empty() ? "absent" : sys.transparent_hugepages));
+  next("memory: copies, one thread and every core");
+  const std::int64_t copy = options.quick ? 32 * MiB : 256 * MiB;
+  c.copy_one = figure(memory_copy(copy, Deadline(memory_seconds)), fmt::format("memcpy of {}, one thread", size_text(copy)));
+  c.copy_all = figure(in_threads(sys.cores, [&](int) { return memory_copy(copy / 2, Deadline(memory_seconds)); }),
+                      fmt::format("memcpy of {} per thread, {} threads at once", size_text(copy / 2), sys.cores));
+  next("page cache: every core at once");
+  c.memory_aggregate_read = figure(in_threads(sys.cores, [&](int) { return cached_read(cached, chunk, false, Deadline(memory_seconds)); }),
+                                   fmt::format("read() of cached data into reused buffers, {} threads at once", sys.cores));
+  std::vector<std::filesystem::path> written;
+  for (int i = 0; i < sys.cores; ++i) written.push_back(scratch.file(fmt::format("cached-{}", i)));
+  const std::int64_t share = std::max<std::int64_t>(chunk, cache_file / sys.cores / chunk * chunk);
+  c.memory_aggregate_write = figure(concurrently(written, [&](const std::filesystem::path& f) { return cache_write(f, share, chunk, Deadline(memory_seconds * 4)); }),
+                                    fmt::format("write() into the page cache with free memory, {} threads at once", sys.cores));
+  for (const auto& f : written) {
+    sync_and_drop(f);
+    scratch.remove(f);
+  }
+  sync_and_drop(cached);
+  scratch.remove(cached);
+
+  // --- Writing into pages reclaimed from clean cache: memory held so that little is free,
+  // clean cache filling the rest, then a write. Not with --quick, nor in a memory cgroup with
+  // a limit (holding memory there could end in the group's OOM killer).
+  if (options.quick) {
+    c.memory_reclaimed_write = Figure{0.0, "not measured with --quick", false};
+  } else if (sys.memory_limited) {
+    c.memory_reclaimed_write = Figure{0.0, "not measured: this process is in a memory cgroup with a limit", false};
+    c.notes.push_back("in a memory cgroup with a limit: the write into reclaimed pages was not measured");
+  } else {
+    next("page cache: write while reclaiming clean cache");
+    // Clean cache first, large enough that writing `target` stays under the freerun ceiling
+    // of the dirty limits (the fill is dirtyable memory); then memory held, step by step,
+    // until free memory is just above the kernel's watermarks (min_free_kbytes), so that the
+    // write must take most of its pages from the clean cache.
+    const std::int64_t target = std::min<std::int64_t>(c.size, 512 * MiB);
+    const double freerun = sys.dirty_bytes > 0 ? 0.0 : (sys.dirty_ratio + sys.dirty_background_ratio) / 2.0;
+    const std::int64_t fill = freerun > 0.0 ? static_cast<std::int64_t>(static_cast<double>(target) / freerun * 1.5) : 4 * target;
+    const std::int64_t available = meminfo_now("MemAvailable");
+    const std::int64_t floor = 2 * sys.min_free + 64 * MiB;  // stop holding here
+    if (sys.file_system_free < need + fill || available < fill + target + floor + 512 * MiB) {
+      c.memory_reclaimed_write = Figure{0.0, "not measured: too little memory or disk to fill the cache", false};
+    } else {
+      const std::filesystem::path filled = scratch.file("fill");
+      const std::filesystem::path after = scratch.file("after");
+      buffered_write_synced(filled, fill, chunk, Deadline(120.0));  // clean cache
+      MemoryHold hold(sys.page_size);
+      // Never more than what was available less the write and a margin: the hold may push out
+      // clean cache (the fill's too), never more.
+      const std::int64_t most = available - target - 512 * MiB;
+      for (std::int64_t free = meminfo_now("MemFree"); free > floor + 64 * MiB && hold.bytes() < most && !stop_requested();
+           free = meminfo_now("MemFree")) {
+        hold.add(std::min({free - floor, most - hold.bytes(), GiB}));
+      }
+      check_stopped();
+      const std::int64_t free_before = meminfo_now("MemFree");
+      const Rate r = cache_write(after, target, chunk, Deadline(30.0));
+      const std::int64_t free_after = meminfo_now("MemFree");
+      const std::int64_t from_free = std::clamp<std::int64_t>(free_before - free_after, 0, r.bytes);
+      const std::int64_t reclaimed = r.bytes - from_free;
+      const double free_seconds = c.memory_write.measured ? static_cast<double>(from_free) / c.memory_write.value : 0.0;
+      if (reclaimed < r.bytes / 4 || r.seconds <= free_seconds) {
+        c.memory_reclaimed_write = Figure{0.0, fmt::format("not measured: only {} of {} written needed reclaim ({} free before, {} after)",
+                                                           size_text(reclaimed), size_text(r.bytes), size_text(free_before), size_text(free_after)),
+                                          false};
+      } else {
+        c.memory_reclaimed_write = Figure{static_cast<double>(reclaimed) / (r.seconds - free_seconds),
+                                          fmt::format("write() into the page cache with {} clean cached and {} free: {} of it into reclaimed pages "
+                                                      "({} in {:.2f} s, the part into free pages taken at memory_write_bw)",
+                                                      size_text(fill), size_text(free_before), size_text(reclaimed), size_text(r.bytes), r.seconds),
+                                          true};
+      }
+      sync_and_drop(after);
+      sync_and_drop(filled);
+    }
+  }
+
+  // What makes these figures less than they seem.
+  if (sys.hypervisor) {
+    c.notes.push_back("a virtual machine: the device rates may be the host's cache rather than its disk, and first touches may include the "
+                      "host's own page faults (free page reporting, ballooning)");
+  }
+  if (!sys.root) {
+    c.notes.push_back("not root: the whole page cache could not be dropped; each measuring file was dropped by itself (POSIX_FADV_DONTNEED), "
+                      "which needs no root");
+  }
+  if (c.disk_read.measured && c.disk_read.value > 8e9) {
+    c.notes.push_back(fmt::format("the device read at {}: faster than most disks; a cache below the file system may have served it",
+                                  rate_text(c.disk_read.value)));
+  }
+  c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return c;
+}
+
+std::string platform_toml(const Calibration& c) {
+  const SystemInfo& s = c.system;
+  std::string out = fmt::format("# Measured by `pcsim calibrate` on {} ({:.0f} s{}).\n", c.date, c.seconds, c.quick ? ", --quick: rough" : "");
+  out += fmt::format("# Machine: {}, {} {}, {} cores, {} of memory, Linux {}{}.\n", s.hostname, s.cpu_model.empty() ? "CPU" : s.cpu_model,
+                     s.hypervisor ? "(virtual machine)" : "", s.cores, size_text(s.memory_total), s.kernel, s.root ? "" : ", not root");
+  out += fmt::format("# Device: the file system of the folder measured in ({}), files of {}, {} streams at once.\n", s.file_system, size_text(c.size),
+                     c.streams);
+  for (const std::string& note : c.notes) out += fmt::format("# Note: {}\n", note);
+  const auto rate = [](const char* key, const Figure& f) {
+    if (!f.measured) return fmt::format("# {} not set: {}\n", key, f.how);
+    return fmt::format("# {}\n{} = \"{}\"\n", f.how, key, rate_text(f.value));
+  };
+  out += fmt::format("\n[[hosts]]\nname = \"{}\"\n", s.hostname);
+  out += fmt::format("# processors online\ncores = {}\n", s.cores);
+  out += fmt::format("# /proc/meminfo MemTotal\nmemory = \"{} MiB\"\n", s.memory_total / MiB);
+  out += fmt::format("# MemTotal - MemAvailable when measured: what the page cache could not have\nmemory_in_use = \"{} MiB\"\n",
+                     (s.memory_total - s.memory_available) / MiB);
+  out += rate("memory_read_bw", c.memory_read);
+  out += rate("memory_write_bw", c.memory_write);
+  out += rate("memory_aggregate_read_bw", c.memory_aggregate_read);
+  out += rate("memory_aggregate_write_bw", c.memory_aggregate_write);
+  out += rate("memory_first_touch_bw", c.first_touch);
+  out += rate("memory_reclaimed_write_bw", c.memory_reclaimed_write);
+  if (c.memory_read_fresh.measured) out += fmt::format("# for comparison: {}: {}\n", c.memory_read_fresh.how, rate_text(c.memory_read_fresh.value));
+  if (c.copy_one.measured) out += fmt::format("# for comparison: {}: {}\n", c.copy_one.how, rate_text(c.copy_one.value));
+  if (c.copy_all.measured) out += fmt::format("# for comparison: {}: {}\n", c.copy_all.how, rate_text(c.copy_all.value));
+
+  out += "\n[hosts.page_cache]\n";
+  if (s.dirty_bytes > 0 || s.dirty_background_bytes > 0) {
+    out += fmt::format("# /proc/sys/vm/dirty_bytes {} and dirty_background_bytes {}: as fractions of MemTotal\n", s.dirty_bytes,
+                       s.dirty_background_bytes);
+  } else {
+    out += "# /proc/sys/vm/dirty_ratio and dirty_background_ratio\n";
+  }
+  const double total = static_cast<double>(std::max<std::int64_t>(s.memory_total, 1));
+  const double ratio = s.dirty_bytes > 0 ? static_cast<double>(s.dirty_bytes) / total : s.dirty_ratio;
+  const double background = s.dirty_background_bytes > 0 ? static_cast<double>(s.dirty_background_bytes) / total : s.dirty_background_ratio;
+  out += fmt::format("dirty_ratio = {:.4g}\ndirty_background_ratio = {:.4g}\n", ratio, background);
+  out += fmt::format("# dirty_expire_centisecs, dirty_writeback_centisecs\ndirty_expire = \"{:g} s\"\nwriteback_interval = \"{:g} s\"\n", s.dirty_expire,
+                     s.writeback_interval);
+
+  out += "\n[[hosts.disks]]\nname = \"disk\"\n";
+  out += rate("read_bw", c.disk_read);
+  out += rate("write_bw", c.disk_write);
+  out += rate("aggregate_read_bw", c.disk_aggregate_read);
+  out += rate("aggregate_write_bw", c.disk_aggregate_write);
+  if (c.buffered_read.measured) out += fmt::format("# for comparison: {}: {}\n", c.buffered_read.how, rate_text(c.buffered_read.value));
+  if (c.buffered_write_synced.measured) {
+    out += fmt::format("# for comparison: {}: {}\n", c.buffered_write_synced.how, rate_text(c.buffered_write_synced.value));
+  }
+  return out;
+}
+
+}  // namespace pagecache::calibrate

@@ -1,0 +1,67 @@
+#pragma once
+// `pcsim calibrate`: measures this machine's device and memory on the file system of a folder,
+// reads the kernel's settings, and writes a platform file whose every value names the
+// measurement it came from. Bounded in time (each measurement stops at its deadline) and in
+// disk space (refused up front if the folder's file system has too little room); removes
+// every file it made, also when interrupted.
+
+#include "calibrate/system_info.hpp"
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace pagecache::calibrate {
+
+struct Options {
+  std::filesystem::path dir;
+  /// Small files and short measurements (under 20 s), no measurement of reclaim.
+  bool quick = false;
+  /// Bytes per measuring file (one per stream); 0: 1 GiB, or 64 MiB with `quick`.
+  std::int64_t size = 0;
+  /// Concurrent streams for the aggregate rates; 0: 4, or 2 with `quick`.
+  int streams = 0;
+  /// Told before each step: its name, its number (from 1) and how many there are.
+  std::function<void(const std::string& step, int number, int steps)> progress;
+};
+
+/// A value of the platform and how it was found; not `measured`: `how` says why not.
+struct Figure {
+  double value = 0.0;  ///< bytes per second
+  std::string how;
+  bool measured = false;
+};
+
+struct Calibration {
+  SystemInfo system;
+  std::string date;  ///< UTC, ISO 8601
+  std::int64_t size = 0;
+  int streams = 0;
+  std::int64_t request = 0;
+  bool quick = false;
+  // The device (the platform's disk).
+  Figure disk_read, disk_write, disk_aggregate_read, disk_aggregate_write;
+  Figure buffered_read, buffered_write_synced;  // for comparison, not in the platform
+  // Memory and the page cache.
+  Figure memory_read;          ///< cached data into a reused buffer, one thread
+  Figure memory_read_fresh;    ///< cached data into new memory, one thread
+  Figure memory_write;         ///< into the page cache, free memory, one thread
+  Figure memory_reclaimed_write;  ///< into the page cache, reclaiming clean cache, one thread
+  Figure memory_aggregate_read, memory_aggregate_write;  ///< every core at once
+  Figure first_touch;          ///< new anonymous memory, one thread
+  Figure copy_one, copy_all;   ///< memcpy, for comparison
+  /// What could not be measured or may mislead, for the user.
+  std::vector<std::string> notes;
+  double seconds = 0.0;
+};
+
+/// Measures. Throws ConfigError for a folder that is not a writable directory or whose file
+/// system has too little room; std::runtime_error if interrupted (after removing its files).
+Calibration calibrate(const Options& options);
+
+/// The platform file: one host with one disk, each value commented with its measurement.
+std::string platform_toml(const Calibration& c);
+
+}  // namespace pagecache::calibrate

@@ -1,0 +1,139 @@
+#include "calibrate/system_info.hpp"
+
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <sys/statfs.h>
+#include <sys/statvfs.h>
+#include <sys/utsname.h>
+#include <unistd.h>
+
+namespace pagecache::calibrate {
+
+namespace {
+
+std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::ostringstream out;
+  out << in.rdbuf();
+  return out.str();
+}
+
+// A number in a /proc/sys file, or `fallback` if it cannot be read.
+std::int64_t read_number(const std::filesystem::path& path, std::int64_t fallback) {
+  std::ifstream in(path);
+  std::int64_t value = 0;
+  return in >> value ? value : fallback;
+}
+
+std::string trim(std::string_view s) {
+  const auto first = s.find_first_not_of(" \t\r\n");
+  if (first == std::string_view::npos) return {};
+  const auto last = s.find_last_not_of(" \t\r\n");
+  return std::string(s.substr(first, last - first + 1));
+}
+
+std::string file_system_name(long type) {
+  switch (static_cast<unsigned long>(type)) {
+    case 0xEF53: return "ext2/3/4";
+    case 0x58465342: return "xfs";
+    case 0x9123683E: return "btrfs";
+    case 0x01021994: return "tmpfs";
+    case 0x6969: return "nfs";
+    case 0x794C7630: return "overlayfs";
+    case 0x2FC12FC1: return "zfs";
+    case 0x65735546: return "fuse";
+    default: return "unknown";
+  }
+}
+
+// The memory cgroup (v2) limit of this process, if any: memory.max other than "max".
+bool in_limited_memory_cgroup() {
+  const std::string self = read_text("/proc/self/cgroup");
+  const auto at = self.find("0::");
+  if (at == std::string::npos) return false;
+  const std::string group = trim(std::string_view(self).substr(at + 3, self.find('\n', at) - at - 3));
+  const std::string max = trim(read_text(std::filesystem::path("/sys/fs/cgroup") / group.substr(group.empty() ? 0 : 1) / "memory.max"));
+  return !max.empty() && max != "max";
+}
+
+}  // namespace
+
+std::int64_t meminfo_bytes(std::string_view meminfo, std::string_view key) {
+  std::size_t at = 0;
+  while (at < meminfo.size()) {
+    const std::size_t end = meminfo.find('\n', at);
+    const std::string_view line = meminfo.substr(at, end == std::string_view::npos ? std::string_view::npos : end - at);
+    if (line.size() > key.size() && line.substr(0, key.size()) == key && line[key.size()] == ':') {
+      std::istringstream in{std::string(line.substr(key.size() + 1))};
+      std::int64_t value = 0;
+      std::string unit;
+      if (!(in >> value)) return -1;
+      in >> unit;
+      return unit == "kB" ? value * 1024 : value;
+    }
+    if (end == std::string_view::npos) break;
+    at = end + 1;
+  }
+  return -1;
+}
+
+std::string selected_choice(std::string_view text) {
+  const auto open = text.find('[');
+  const auto close = text.find(']', open);
+  if (open == std::string_view::npos || close == std::string_view::npos) return trim(text);
+  return std::string(text.substr(open + 1, close - open - 1));
+}
+
+std::string cpuinfo_model(std::string_view cpuinfo) {
+  const auto at = cpuinfo.find("model name");
+  if (at == std::string_view::npos) return {};
+  const auto colon = cpuinfo.find(':', at);
+  const auto end = cpuinfo.find('\n', at);
+  if (colon == std::string_view::npos || colon > end) return {};
+  return trim(cpuinfo.substr(colon + 1, end - colon - 1));
+}
+
+bool cpuinfo_hypervisor(std::string_view cpuinfo) {
+  const auto at = cpuinfo.find("\nflags");
+  if (at == std::string_view::npos) return false;
+  const std::string_view line = cpuinfo.substr(at, cpuinfo.find('\n', at + 1) - at);
+  return line.find(" hypervisor") != std::string_view::npos;
+}
+
+SystemInfo read_system_info(const std::filesystem::path& dir) {
+  SystemInfo s;
+  char host[256] = {};
+  if (::gethostname(host, sizeof host - 1) == 0) s.hostname = host;
+  if (s.hostname.empty()) s.hostname = "host";
+  utsname u{};
+  if (::uname(&u) == 0) s.kernel = u.release;
+  const std::string cpuinfo = read_text("/proc/cpuinfo");
+  s.cpu_model = cpuinfo_model(cpuinfo);
+  s.hypervisor = cpuinfo_hypervisor(cpuinfo);
+  s.cores = static_cast<int>(std::max<long>(1, ::sysconf(_SC_NPROCESSORS_ONLN)));
+  s.root = ::geteuid() == 0;
+  const std::string meminfo = read_text("/proc/meminfo");
+  s.memory_total = meminfo_bytes(meminfo, "MemTotal");
+  s.memory_available = meminfo_bytes(meminfo, "MemAvailable");
+  s.memory_free = meminfo_bytes(meminfo, "MemFree");
+  s.page_size = ::sysconf(_SC_PAGESIZE);
+  s.transparent_hugepages = selected_choice(read_text("/sys/kernel/mm/transparent_hugepage/enabled"));
+  const std::filesystem::path vm = "/proc/sys/vm";
+  s.min_free = read_number(vm / "min_free_kbytes", 0) * 1024;
+  s.dirty_ratio = static_cast<double>(read_number(vm / "dirty_ratio", 20)) / 100.0;
+  s.dirty_background_ratio = static_cast<double>(read_number(vm / "dirty_background_ratio", 10)) / 100.0;
+  s.dirty_bytes = read_number(vm / "dirty_bytes", 0);
+  s.dirty_background_bytes = read_number(vm / "dirty_background_bytes", 0);
+  s.dirty_expire = static_cast<double>(read_number(vm / "dirty_expire_centisecs", 3000)) / 100.0;
+  s.writeback_interval = static_cast<double>(read_number(vm / "dirty_writeback_centisecs", 500)) / 100.0;
+  struct statfs fs{};
+  if (::statfs(dir.c_str(), &fs) == 0) s.file_system = file_system_name(fs.f_type);
+  struct statvfs vfs{};
+  if (::statvfs(dir.c_str(), &vfs) == 0) s.file_system_free = static_cast<std::int64_t>(vfs.f_bavail) * static_cast<std::int64_t>(vfs.f_frsize);
+  s.memory_limited = in_limited_memory_cgroup();
+  return s;
+}
+
+}  // namespace pagecache::calibrate

@@ -1,0 +1,89 @@
+// pcsim calibrate without measuring: its readers of /proc and /sys on texts as the kernel
+// writes them, and its platform file read back by pcsim's own loader.
+#include "calibrate/calibrate.hpp"
+#include "calibrate/system_info.hpp"
+
+#include <pagecache/scenario_file.hpp>
+
+#include <catch2/catch.hpp>
+
+using namespace pagecache;
+using namespace pagecache::calibrate;
+
+TEST_CASE("calibrate reads /proc/meminfo, a sysfs choice and /proc/cpuinfo as the kernel writes them", "[calibrate]") {
+  const std::string meminfo = "MemTotal:       24684432 kB\nMemFree:        20110200 kB\nMemAvailable:   23031136 kB\nHugePages_Total:       0\n";
+  CHECK(meminfo_bytes(meminfo, "MemTotal") == 24684432LL * 1024);
+  CHECK(meminfo_bytes(meminfo, "MemAvailable") == 23031136LL * 1024);
+  CHECK(meminfo_bytes(meminfo, "HugePages_Total") == 0);
+  CHECK(meminfo_bytes(meminfo, "Mem") == -1);  // a prefix is not a field
+  CHECK(meminfo_bytes(meminfo, "Dirty") == -1);
+  CHECK(selected_choice("always [madvise] never\n") == "madvise");
+  CHECK(selected_choice("[always] madvise never") == "always");
+  const std::string cpuinfo = "processor\t: 0\nvendor_id\t: GenuineIntel\nmodel name\t: Intel(R) Xeon(R) Gold 6130 CPU @ 2.10GHz\n"
+                              "flags\t\t: fpu vme sse2 hypervisor avx512f\n\nprocessor\t: 1\n";
+  CHECK(cpuinfo_model(cpuinfo) == "Intel(R) Xeon(R) Gold 6130 CPU @ 2.10GHz");
+  CHECK(cpuinfo_hypervisor(cpuinfo));
+  CHECK_FALSE(cpuinfo_hypervisor("model name\t: X\nflags\t\t: fpu vme sse2\n"));
+  CHECK(cpuinfo_model("processor\t: 0\n").empty());
+}
+
+TEST_CASE("the calibrated platform file is one pcsim loads, each value as measured, an unmeasured one left out", "[calibrate]") {
+  Calibration c;
+  c.date = "2026-12-03T12:00:00Z";
+  c.system.hostname = "node-7";
+  c.system.cpu_model = "Test CPU";
+  c.system.cores = 8;
+  c.system.memory_total = 16LL << 30;
+  c.system.memory_available = 15LL << 30;
+  c.system.dirty_ratio = 0.3;
+  c.system.dirty_background_ratio = 0.05;
+  c.system.dirty_expire = 20.0;
+  c.system.writeback_interval = 2.5;
+  c.size = 1LL << 30;
+  c.streams = 4;
+  const auto measured = [](double v) { return Figure{v, "a method", true}; };
+  c.disk_read = measured(500e6);
+  c.disk_write = measured(400e6);
+  c.disk_aggregate_read = measured(900e6);
+  c.disk_aggregate_write = measured(450e6);
+  c.memory_read = measured(6000e6);
+  c.memory_write = measured(3000e6);
+  c.memory_aggregate_read = measured(20000e6);
+  c.memory_aggregate_write = measured(9000e6);
+  c.first_touch = measured(2000e6);
+  c.memory_reclaimed_write = Figure{0.0, "not measured with --quick", false};
+  c.notes.push_back("a note");
+  const std::string toml = platform_toml(c);
+  INFO(toml);
+  CHECK_THAT(toml, Catch::Contains("# Note: a note") && Catch::Contains("# memory_reclaimed_write_bw not set: not measured with --quick") &&
+                       Catch::Contains("# a method\nread_bw = \"500 MB/s\""));
+  const Scenario s = parse_scenario(toml + "\n[pipelines]\nfile_size = \"1 GB\"\n", "<calibrated>");
+  REQUIRE(s.hosts.size() == 1);
+  const HostConfig& h = s.hosts[0];
+  CHECK(h.name == "node-7");
+  CHECK(h.cores == 8);
+  CHECK(h.memory == 16LL << 30);
+  CHECK(h.memory_in_use == 1LL << 30);
+  CHECK(h.memory_bandwidth.read == 6000e6);
+  CHECK(h.memory_bandwidth.write == 3000e6);
+  CHECK(h.memory_bandwidth.aggregate_read == 20000e6);
+  CHECK(h.memory_bandwidth.aggregate_write == 9000e6);
+  CHECK(h.memory_bandwidth.first_touch == 2000e6);
+  CHECK(h.memory_bandwidth.reclaimed_write == 0.0);  // as into free pages
+  CHECK(h.cache.dirty_ratio == Approx(0.3));
+  CHECK(h.cache.dirty_background_ratio == Approx(0.05));
+  CHECK(h.cache.dirty_expire == 20.0);
+  CHECK(h.cache.writeback_interval == 2.5);
+  REQUIRE(h.disks.size() == 1);
+  CHECK(h.disks[0].read_bw == 500e6);
+  CHECK(h.disks[0].write_bw == 400e6);
+  CHECK(h.disks[0].aggregate_read_bw == 900e6);
+  CHECK(h.disks[0].aggregate_write_bw == 450e6);
+
+  // dirty_bytes in place of the ratios: as fractions of the memory.
+  c.system.dirty_bytes = 4LL << 30;
+  c.system.dirty_background_bytes = 1LL << 30;
+  const Scenario b = parse_scenario(platform_toml(c) + "\n[pipelines]\nfile_size = \"1 GB\"\n", "<calibrated>");
+  CHECK(b.hosts[0].cache.dirty_ratio == Approx(0.25));
+  CHECK(b.hosts[0].cache.dirty_background_ratio == Approx(0.0625));
+}

@@ -19,6 +19,7 @@
 #include "calibrate_command.hpp"
 #include "status_line.hpp"
 #include "sweep_command.hpp"
+#include "validate_here_command.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -263,6 +264,8 @@ int main(int argc, char** argv) {
   validate->add_option("--switch", switches, "force a page-cache switch on every host: NAME=true|false (ablations)");
   validate->add_option("--data", data_dir, "the validation data")->capture_default_str();
   validate->add_option("--scenarios", scenarios_dir, "the paper's scenarios")->capture_default_str();
+  pcsim::ValidateHereOptions here;
+  pcsim::add_validate_here_options(*validate, here);
 
   pcsim::SweepCommand sweep;
   pcsim::add_sweep_command(app, sweep);
@@ -298,6 +301,7 @@ int main(int argc, char** argv) {
     }
     if (sweep.sweep->parsed()) return pcsim::run_sweep_command(sweep);
     if (calibrate.app->parsed()) return pcsim::run_calibrate_command(calibrate);
+    if (validate->parsed() && (here.here || !here.from.empty())) return pcsim::run_validate_here(here);
     if (validate->parsed()) {
       if (!json_path.empty()) pagecache::report::check_output_file(json_path);
       pagecache::report::check_output_file(report_path);

@@ -1,6 +1,7 @@
 #include "calibrate/calibrate.hpp"
 
 #include "calibrate/measure.hpp"
+#include "calibrate/scratch.hpp"
 
 #include <pagecache/error.hpp>
 
@@ -39,39 +40,7 @@ std::string size_text(std::int64_t bytes) {
 
 std::string rate_text(double bytes_per_s) { return fmt::format("{:.0f} MB/s", bytes_per_s / 1e6); }
 
-// The files of one calibration, in a folder of their own inside the user's, removed whole
-// when it goes (an interruption included): nothing else is touched.
-class Scratch {
- public:
-  explicit Scratch(const std::filesystem::path& dir) {
-    std::string pattern = (dir / "pcsim-calibrate-XXXXXX").string();
-    if (::mkdtemp(pattern.data()) == nullptr) {
-      throw ConfigError(fmt::format("--dir '{}': cannot make a folder there ({})", dir.string(), std::strerror(errno)));
-    }
-    path_ = pattern;
-  }
-  ~Scratch() {
-    std::error_code ignored;
-    std::filesystem::remove_all(path_, ignored);
-  }
-  Scratch(const Scratch&) = delete;
-  Scratch& operator=(const Scratch&) = delete;
-  std::filesystem::path file(const std::string& name) const { return path_ / name; }
-  void remove(const std::filesystem::path& file) const {
-    std::error_code ignored;
-    std::filesystem::remove(file, ignored);
-  }
-
- private:
-  std::filesystem::path path_;
-};
-
-std::int64_t meminfo_now(std::string_view key) {
-  std::ifstream in("/proc/meminfo");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return meminfo_bytes(text.str(), key);
-}
+std::int64_t meminfo_now(std::string_view key) { return meminfo_bytes(read_meminfo(), key); }
 
 Figure figure(const Rate& r, std::string how) {
   if (r.bytes <= 0 || r.seconds <= 0.0) return Figure{0.0, how + ": nothing measured (interrupted?)", false};
@@ -123,7 +92,7 @@ Calibration calibrate(const Options& options) {
                                   size_text(4 * cache_file)));
   }
 
-  const Scratch scratch(options.dir);
+  const Scratch scratch(options.dir, "pcsim-calibrate");
   const int steps = options.quick ? 11 : 12;
   int step = 0;
   const auto next = [&](const std::string& name) {
@@ -325,8 +294,16 @@ std::string platform_toml(const Calibration& c) {
   out += "\n[[hosts.disks]]\nname = \"disk\"\n";
   out += rate("read_bw", c.disk_read);
   out += rate("write_bw", c.disk_write);
-  out += rate("aggregate_read_bw", c.disk_aggregate_read);
-  out += rate("aggregate_write_bw", c.disk_aggregate_write);
+  // Streams together no faster than one (a disk that serves one stream at a time, or noise):
+  // pcsim takes the aggregate as one stream's, which it may not be below.
+  const auto aggregate = [&](const char* key, const Figure& together, const Figure& one) {
+    if (!together.measured || !one.measured || together.value >= one.value) return rate(key, together);
+    Figure taken = one;
+    taken.how = fmt::format("{}: {}, under one stream's; taken as one stream's", together.how, rate_text(together.value));
+    return rate(key, taken);
+  };
+  out += aggregate("aggregate_read_bw", c.disk_aggregate_read, c.disk_read);
+  out += aggregate("aggregate_write_bw", c.disk_aggregate_write, c.disk_write);
   if (c.buffered_read.measured) out += fmt::format("# for comparison: {}: {}\n", c.buffered_read.how, rate_text(c.buffered_read.value));
   if (c.buffered_write_synced.measured) {
     out += fmt::format("# for comparison: {}: {}\n", c.buffered_write_synced.how, rate_text(c.buffered_write_synced.value));

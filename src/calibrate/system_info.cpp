@@ -60,6 +60,8 @@ bool in_limited_memory_cgroup() {
 
 }  // namespace
 
+std::string read_meminfo() { return read_text("/proc/meminfo"); }
+
 std::int64_t meminfo_bytes(std::string_view meminfo, std::string_view key) {
   std::size_t at = 0;
   while (at < meminfo.size()) {
@@ -114,7 +116,7 @@ SystemInfo read_system_info(const std::filesystem::path& dir) {
   s.hypervisor = cpuinfo_hypervisor(cpuinfo);
   s.cores = static_cast<int>(std::max<long>(1, ::sysconf(_SC_NPROCESSORS_ONLN)));
   s.root = ::geteuid() == 0;
-  const std::string meminfo = read_text("/proc/meminfo");
+  const std::string meminfo = read_meminfo();
   s.memory_total = meminfo_bytes(meminfo, "MemTotal");
   s.memory_available = meminfo_bytes(meminfo, "MemAvailable");
   s.memory_free = meminfo_bytes(meminfo, "MemFree");

@@ -35,6 +35,9 @@ struct SystemInfo {
   bool memory_limited = false;       ///< this process is in a memory cgroup with a limit
 };
 
+/// /proc/meminfo now.
+std::string read_meminfo();
+
 /// Reads it now, for measurements in `dir`.
 SystemInfo read_system_info(const std::filesystem::path& dir);
 

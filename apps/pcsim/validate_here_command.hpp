@@ -1,0 +1,27 @@
+#pragma once
+// `pcsim validate --here`: the paper's experiments run for real on this machine and scored
+// against pcsim on its calibrated platform (src/validate/here.hpp); `--from` scores kept
+// measurements again without any I/O.
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+namespace pcsim {
+
+struct ValidateHereOptions {
+  bool here = false;
+  std::string dir;
+  std::string platform;  ///< a calibrated platform file; empty: calibrate first
+  std::string out = "pcsim-here";
+  std::string from;
+  int repeat = 0;  ///< 0: 3, or 1 with quick
+  bool quick = false;
+};
+
+/// Adds the options to `validate`.
+void add_validate_here_options(CLI::App& validate, ValidateHereOptions& options);
+/// Runs it; throws as the library does, returns the exit code otherwise.
+int run_validate_here(const ValidateHereOptions& options);
+
+}  // namespace pcsim

@@ -1,0 +1,300 @@
+#include "validate/here.hpp"
+
+#include <pagecache/error.hpp>
+#include <pagecache/run.hpp>
+#include <pagecache/scenario_file.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace pagecache::validate {
+
+namespace {
+
+using calibrate::MemorySample;
+using calibrate::RealCase;
+using calibrate::RealPhase;
+using calibrate::RealRun;
+
+constexpr std::int64_t MiB = 1 << 20;
+constexpr double GB = 1e9;
+
+std::int64_t whole_chunks(double bytes, std::int64_t chunk) {
+  return std::max<std::int64_t>(chunk, static_cast<std::int64_t>(bytes / static_cast<double>(chunk)) * chunk);
+}
+
+std::string size_text(std::int64_t bytes) {
+  if (bytes >= 1'000'000'000) return fmt::format("{:.2f} GB", static_cast<double>(bytes) / GB);
+  return fmt::format("{:.0f} MB", static_cast<double>(bytes) / 1e6);
+}
+
+double mean(const std::vector<double>& v) {
+  double sum = 0.0;
+  for (double x : v) sum += x;
+  return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
+}
+
+// (max - min) / mean, in %: how far the repetitions are apart.
+double spread_pct(const std::vector<double>& v) {
+  if (v.size() < 2) return 0.0;
+  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+  const double m = mean(v);
+  return m > 0.0 ? (*hi - *lo) / m * 100.0 : 0.0;
+}
+
+double error_pct(double simulated, double real) { return real > 0.0 ? std::abs(simulated - real) / real * 100.0 : 0.0; }
+
+// --- Reading the files back ------------------------------------------------------------------
+
+std::vector<std::vector<std::string>> read_csv(const std::filesystem::path& file, std::size_t fields) {
+  std::ifstream in(file);
+  if (!in) throw ConfigError(fmt::format("{}: cannot read", file.string()));
+  std::vector<std::vector<std::string>> rows;
+  std::string line;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    if (number == 1) continue;  // the header
+    if (line.empty()) continue;
+    std::vector<std::string> row;
+    std::stringstream parts(line);
+    std::string part;
+    while (std::getline(parts, part, ',')) row.push_back(part);
+    if (row.size() != fields) throw ConfigError(fmt::format("{}:{}: {} fields, expected {}", file.string(), number, row.size(), fields));
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+double number(const std::string& text, const std::filesystem::path& file, std::size_t row) {
+  try {
+    std::size_t used = 0;
+    const double v = std::stod(text, &used);
+    if (used != text.size() || !std::isfinite(v)) throw std::invalid_argument(text);
+    return v;
+  } catch (const std::exception&) {
+    throw ConfigError(fmt::format("{}:{}: '{}' is not a number", file.string(), row + 2, text));
+  }
+}
+
+std::int64_t integer(const std::string& text, const std::filesystem::path& file, std::size_t row) {
+  const double v = number(text, file, row);
+  if (v != std::floor(v) || std::abs(v) > 9e18) throw ConfigError(fmt::format("{}:{}: '{}' is not a whole number", file.string(), row + 2, text));
+  return static_cast<std::int64_t>(v);
+}
+
+// --- Simulating a case -------------------------------------------------------------------------
+
+struct Simulated {
+  RunResult result;
+  std::string host;
+};
+
+Simulated simulate(const std::string& platform, const RealCase& spec, std::int64_t in_use) {
+  const std::string text = fmt::format(
+      "profile = \"linux\"\nmemory_sample_interval = \"0 s\"\n{}\n[pipelines]\ncount = {}\nfile_size = \"{} B\"\ntasks = {}\ncpu_time = \"{} s\"\n"
+      "chunk_size = \"{} B\"\n",
+      platform, spec.pipelines, spec.file_size, spec.tasks, spec.compute, spec.chunk);
+  Scenario s = parse_scenario(text, "platform.toml + " + spec.name);
+  if (s.hosts.empty()) throw ConfigError("platform.toml: no host");
+  s.hosts[0].memory_in_use = std::clamp<std::int64_t>(in_use, 0, s.hosts[0].memory - 1);
+  RunOptions options;
+  options.cache_contents = false;
+  return Simulated{run_scenario(s, options), s.hosts[0].name};
+}
+
+// The host's memory in the simulation at `time` (the last row at or before it).
+MemoryState simulated_memory(const RunResult& r, double time) {
+  MemoryState state;
+  for (const MemoryRow& row : r.memory) {
+    if (row.time > time + 1e-9) break;
+    state = row.state;
+  }
+  return state;
+}
+
+// The real memory at `time` (the first sample at or after it, else the last).
+MemorySample real_memory(const RealRun& run, double time) {
+  for (const MemorySample& s : run.memory) {
+    if (s.time >= time) return s;
+  }
+  return run.memory.empty() ? MemorySample{} : run.memory.back();
+}
+
+}  // namespace
+
+std::vector<RealCase> here_cases(std::int64_t available, bool quick) {
+  if (quick) {
+    return {RealCase{"exp1-quick", 1, 3, 64 * MiB, 0.1, 16 * MiB}, RealCase{"exp2-quick-2", 2, 3, 32 * MiB, 0.1, 16 * MiB}};
+  }
+  const std::int64_t chunk = 100'000'000;  // the paper's
+  std::vector<RealCase> cases;
+  for (const double share : {0.08, 0.2, 0.4}) {
+    const std::int64_t size = whole_chunks(static_cast<double>(available) * share, chunk);
+    // The paper's tasks computed 4.4 s per 3 GB; here half that rate, so that a run stays short.
+    cases.push_back(RealCase{fmt::format("exp1-{:.0f}pct", share * 100), 1, 3, size, 0.75 * static_cast<double>(size) / GB, chunk});
+  }
+  const std::int64_t small = whole_chunks(static_cast<double>(available) * 0.012, chunk);
+  for (const int n : {4, 8}) cases.push_back(RealCase{fmt::format("exp2-{}", n), n, 3, small, 0.75 * static_cast<double>(small) / GB, chunk});
+  return cases;
+}
+
+std::vector<std::pair<std::string, std::string>> here_files(const HereMeasurements& m) {
+  std::string runs = "case,pipelines,tasks,file_size,compute_s,chunk,repetition,makespan_s,memory_total,in_use_at_start,free_at_start,dropped_all_caches\n";
+  std::string phases = "case,repetition,pipeline,task,phase,start_s,end_s\n";
+  std::string memory = "case,repetition,time_s,free,cached,dirty,writeback\n";
+  for (const RealRun& r : m.runs) {
+    const RealCase& c = r.spec;
+    runs += fmt::format("{},{},{},{},{:.6f},{},{},{:.6f},{},{},{},{}\n", c.name, c.pipelines, c.tasks, c.file_size, c.compute, c.chunk, r.repetition,
+                        r.makespan, r.memory_total, r.in_use_at_start, r.free_at_start, r.dropped_all_caches ? 1 : 0);
+    for (const RealPhase& p : r.phases) {
+      phases += fmt::format("{},{},{},{},{},{:.6f},{:.6f}\n", c.name, r.repetition, p.pipeline, p.task, p.phase, p.start, p.end);
+    }
+    for (const MemorySample& s : r.memory) {
+      memory += fmt::format("{},{},{:.3f},{},{},{},{}\n", c.name, r.repetition, s.time, s.free, s.cached, s.dirty, s.writeback);
+    }
+  }
+  return {{"platform.toml", m.platform_toml}, {"runs.csv", runs}, {"phases.csv", phases}, {"memory.csv", memory}};
+}
+
+HereMeasurements load_here(const std::filesystem::path& folder) {
+  HereMeasurements m;
+  {
+    const std::filesystem::path file = folder / "platform.toml";
+    std::ifstream in(file);
+    if (!in) throw ConfigError(fmt::format("{}: cannot read (is {} a folder that validate --here wrote?)", file.string(), folder.string()));
+    std::ostringstream text;
+    text << in.rdbuf();
+    m.platform_toml = text.str();
+  }
+  std::map<std::pair<std::string, int>, std::size_t> index;  // (case, repetition) -> run
+  const std::filesystem::path runs = folder / "runs.csv";
+  const auto run_rows = read_csv(runs, 12);
+  for (std::size_t i = 0; i < run_rows.size(); ++i) {
+    const auto& f = run_rows[i];
+    RealRun r;
+    r.spec = RealCase{f[0], static_cast<int>(integer(f[1], runs, i)), static_cast<int>(integer(f[2], runs, i)), integer(f[3], runs, i),
+                      number(f[4], runs, i), integer(f[5], runs, i)};
+    if (r.spec.pipelines < 1 || r.spec.tasks < 1 || r.spec.file_size < 1 || r.spec.chunk < 1 || r.spec.compute < 0.0) {
+      throw ConfigError(fmt::format("{}:{}: a case needs pipelines, tasks, file size and chunk above 0", runs.string(), i + 2));
+    }
+    r.repetition = static_cast<int>(integer(f[6], runs, i));
+    r.makespan = number(f[7], runs, i);
+    r.memory_total = integer(f[8], runs, i);
+    r.in_use_at_start = integer(f[9], runs, i);
+    r.free_at_start = integer(f[10], runs, i);
+    r.dropped_all_caches = integer(f[11], runs, i) != 0;
+    if (!index.emplace(std::pair{r.spec.name, r.repetition}, m.runs.size()).second) {
+      throw ConfigError(fmt::format("{}:{}: case {} repetition {} twice", runs.string(), i + 2, r.spec.name, r.repetition));
+    }
+    m.runs.push_back(std::move(r));
+  }
+  const auto run_of = [&](const std::string& name, const std::string& rep, const std::filesystem::path& file, std::size_t row) -> RealRun& {
+    const auto it = index.find({name, static_cast<int>(integer(rep, file, row))});
+    if (it == index.end()) throw ConfigError(fmt::format("{}:{}: case {} repetition {} is not in runs.csv", file.string(), row + 2, name, rep));
+    return m.runs[it->second];
+  };
+  const std::filesystem::path phases = folder / "phases.csv";
+  const auto phase_rows = read_csv(phases, 7);
+  for (std::size_t i = 0; i < phase_rows.size(); ++i) {
+    const auto& f = phase_rows[i];
+    run_of(f[0], f[1], phases, i)
+        .phases.push_back(RealPhase{static_cast<int>(integer(f[2], phases, i)), static_cast<int>(integer(f[3], phases, i)), f[4], number(f[5], phases, i),
+                                    number(f[6], phases, i)});
+  }
+  const std::filesystem::path memory = folder / "memory.csv";
+  const auto memory_rows = read_csv(memory, 7);
+  for (std::size_t i = 0; i < memory_rows.size(); ++i) {
+    const auto& f = memory_rows[i];
+    run_of(f[0], f[1], memory, i)
+        .memory.push_back(MemorySample{number(f[2], memory, i), integer(f[3], memory, i), integer(f[4], memory, i), integer(f[5], memory, i),
+                                       integer(f[6], memory, i)});
+  }
+  if (m.runs.empty()) throw ConfigError(fmt::format("{}: no runs", runs.string()));
+  return m;
+}
+
+std::string score_here(const HereMeasurements& m) {
+  std::vector<std::string> order;
+  std::map<std::string, std::vector<const RealRun*>> by_case;
+  for (const RealRun& r : m.runs) {
+    if (by_case[r.spec.name].empty()) order.push_back(r.spec.name);
+    by_case[r.spec.name].push_back(&r);
+  }
+  std::string out;
+  std::vector<double> makespan_errors, phase_errors;
+  bool noisy = false, not_dropped = false;
+  for (const std::string& name : order) {
+    const std::vector<const RealRun*>& runs = by_case[name];
+    const RealCase& spec = runs.front()->spec;
+    std::vector<double> in_use;
+    for (const RealRun* r : runs) {
+      in_use.push_back(static_cast<double>(r->in_use_at_start));
+      not_dropped = not_dropped || !r->dropped_all_caches;
+    }
+    const Simulated sim = simulate(m.platform_toml, spec, static_cast<std::int64_t>(mean(in_use)));
+    std::vector<double> makespans;
+    for (const RealRun* r : runs) makespans.push_back(r->makespan);
+    const double makespan_error = error_pct(sim.result.summary.makespan, mean(makespans));
+    makespan_errors.push_back(makespan_error);
+    noisy = noisy || spread_pct(makespans) > 10.0;
+    std::string table = "  task  phase   real_s  spread%   pcsim_s    err% |  dirty_GB    real | cached_GB    real\n";
+    std::vector<double> errors;
+    for (int task = 1; task <= spec.tasks; ++task) {
+      for (const char* phase : {"read", "write"}) {
+        // Per repetition, the mean over the pipelines; the phase's end: its last.
+        std::vector<double> per_run;
+        double real_end = 0.0;
+        for (const RealRun* r : runs) {
+          std::vector<double> durations;
+          for (const RealPhase& p : r->phases) {
+            if (p.task != task || p.phase != phase) continue;
+            durations.push_back(p.end - p.start);
+            if (r == runs.front()) real_end = std::max(real_end, p.end);
+          }
+          if (!durations.empty()) per_run.push_back(mean(durations));
+        }
+        std::vector<double> simulated;
+        double sim_end = 0.0;
+        for (const PhaseRow& row : sim.result.timeline) {
+          if (row.task != std::to_string(task) || row.phase != phase) continue;
+          simulated.push_back(row.end - row.start);
+          sim_end = std::max(sim_end, row.end);
+        }
+        if (per_run.empty() || simulated.empty()) continue;
+        const double real = mean(per_run);
+        const double error = error_pct(mean(simulated), real);
+        errors.push_back(error);
+        const MemorySample rm = real_memory(*runs.front(), real_end);
+        const double cached_at_start = runs.front()->memory.empty() ? 0.0 : static_cast<double>(runs.front()->memory.front().cached);
+        const MemoryState sm = simulated_memory(sim.result, sim_end);
+        table += fmt::format("  {:<5} {:<6} {:>7.2f} {:>8.1f} {:>9.2f} {:>7.1f} | {:>9.2f} {:>7.2f} | {:>9.2f} {:>7.2f}\n", task, phase, real,
+                             spread_pct(per_run), mean(simulated), error, static_cast<double>(sm.dirty) / GB,
+                             static_cast<double>(rm.dirty) / GB, static_cast<double>(sm.cached) / GB,
+                             (static_cast<double>(rm.cached) - cached_at_start) / GB);
+      }
+    }
+    phase_errors.insert(phase_errors.end(), errors.begin(), errors.end());
+    out += fmt::format("{}: {} pipeline{} of {} tasks, files of {}, {} repetition{}: makespan error {:.1f} % (real {:.2f} s, spread {:.1f} %; pcsim "
+                       "{:.2f} s); mean phase error {:.1f} %\n",
+                       name, spec.pipelines, spec.pipelines == 1 ? "" : "s", spec.tasks, size_text(spec.file_size), runs.size(),
+                       runs.size() == 1 ? "" : "s", makespan_error, mean(makespans), spread_pct(makespans), sim.result.summary.makespan, mean(errors));
+    out += table + "\n";
+  }
+  out += fmt::format("over {} cases: mean makespan error {:.1f} %, mean phase error {:.1f} % (real: mean of the repetitions; spread: (max - "
+                     "min) / mean of them; cached: real Cached less its value at the start)\n",
+                     order.size(), mean(makespan_errors), mean(phase_errors));
+  if (noisy) out += "note: a case's repetitions differ by over 10 %: the machine was noisy (other load, a virtual machine's host), the errors less than they seem\n";
+  if (not_dropped) {
+    out += "note: not root: only this run's own files were dropped from the cache; other files' cached data stayed, which the kernel could "
+           "reclaim and pcsim counted as free\n";
+  }
+  return out;
+}
+
+}  // namespace pagecache::validate

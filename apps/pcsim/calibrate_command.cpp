@@ -28,6 +28,8 @@ void add_calibrate_command(CLI::App& app, CalibrateCommand& c) {
   c.app->add_flag("--quick", c.quick, "small files and short measurements (under 20 s), rough figures, no measurement of reclaim");
   c.app->add_option("--size", c.size, "bytes per measuring file, e.g. \"256 MB\" (default 1 GiB, 64 MiB with --quick)");
   c.app->add_option("--streams", c.streams, "concurrent streams for the aggregate rates (default 4, 2 with --quick)")->check(CLI::Range(1, 64));
+  c.app->add_option("--repeat", c.repeat, "measurements of each figure, of which the median is taken (default 3, 1 with --quick)")
+      ->check(CLI::Range(1, 20));
 }
 
 int run_calibrate_command(const CalibrateCommand& c) {
@@ -36,6 +38,7 @@ int run_calibrate_command(const CalibrateCommand& c) {
   options.dir = c.dir;
   options.quick = c.quick;
   options.streams = c.streams;
+  options.repeat = c.repeat;
   if (!c.size.empty()) {
     try {
       options.size = pagecache::units::parse_size(c.size);
@@ -62,7 +65,8 @@ int run_calibrate_command(const CalibrateCommand& c) {
   fmt::print(summary, "pcsim calibrate: {:.0f} s on {} ({} cores, {} MiB of memory), files on {}\n", result.seconds, result.system.hostname,
              result.system.cores, result.system.memory_total >> 20, result.system.file_system);
   const auto line = [&](const char* what, const cal::Figure& f) {
-    if (f.measured) fmt::print(summary, "  {:<44} {:>8.0f} MB/s\n", what, f.value / 1e6);
+    if (f.measured && f.spread_pct > 0.0) fmt::print(summary, "  {:<44} {:>8.0f} MB/s  (spread {:.0f} %)\n", what, f.value / 1e6, f.spread_pct);
+    else if (f.measured) fmt::print(summary, "  {:<44} {:>8.0f} MB/s\n", what, f.value / 1e6);
     else fmt::print(summary, "  {:<44} {:>8}  ({})\n", what, "-", f.how);
   };
   line("disk read, one stream (O_DIRECT)", result.disk_read);

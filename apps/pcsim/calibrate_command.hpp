@@ -13,6 +13,7 @@ struct CalibrateCommand {
   std::string out;
   std::string size;
   int streams = 0;
+  int repeat = 0;
   bool quick = false;
 };
 

@@ -47,6 +47,29 @@ Figure figure(const Rate& r, std::string how) {
   return Figure{r.per_second(), fmt::format("{} ({} in {:.2f} s)", how, size_text(r.bytes), r.seconds), true};
 }
 
+// `once` run `repeat` times (told which, from 0): the median of their rates, and how far
+// they were apart.
+Figure repeated(int repeat, const std::function<Rate(int)>& once, const std::string& how) {
+  std::vector<Rate> rates;
+  for (int i = 0; i < repeat; ++i) {
+    if (stop_requested()) break;
+    rates.push_back(once(i));
+  }
+  if (rates.size() == 1) return figure(rates.front(), how);
+  std::vector<double> values;
+  for (const Rate& r : rates) {
+    if (r.bytes <= 0 || r.seconds <= 0.0) return Figure{0.0, how + ": nothing measured (interrupted?)", false};
+    values.push_back(r.per_second());
+  }
+  std::vector<double> sorted = values;
+  std::sort(sorted.begin(), sorted.end());
+  const double median = sorted[sorted.size() / 2];
+  std::string each;
+  for (const double v : values) each += fmt::format("{}{:.0f}", each.empty() ? "" : ", ", v / 1e6);
+  const double spread = (sorted.back() - sorted.front()) / median * 100.0;
+  return Figure{median, fmt::format("{}: median of {} ({} MB/s; spread {:.0f} %)", how, values.size(), each, spread), true, spread};
+}
+
 void check_stopped() {
   if (stop_requested()) throw std::runtime_error("interrupted: the files made so far are removed");
 }
@@ -73,8 +96,9 @@ Calibration calibrate(const Options& options) {
   c.streams = options.streams > 0 ? options.streams : (options.quick ? 2 : 4);
   c.request = std::min<std::int64_t>(options.quick ? 4 * MiB : 16 * MiB, c.size);
   c.size = std::max(c.request, c.size / c.request * c.request);  // whole requests (O_DIRECT)
-  const double disk_seconds = options.quick ? 0.6 : 5.0;
-  const double memory_seconds = options.quick ? 0.3 : 1.5;
+  const int repeat = options.repeat > 0 ? options.repeat : (options.quick ? 1 : 3);
+  const double disk_seconds = options.quick ? 0.6 : 2.0;  // per repetition
+  const double memory_seconds = options.quick ? 0.3 : 0.6;
   const SystemInfo& sys = c.system;
 
   // Room: the single stream's file and the streams' files at once, plus the cache files.
@@ -87,9 +111,9 @@ Calibration calibrate(const Options& options) {
   // Memory: the cache files and the fresh buffers must fit in what is available.
   // (At least 256 MiB, so that a copy at memory speed takes a measurable time.)
   const std::int64_t cache_file = std::max(16 * MiB, std::min(std::max(c.size, 256 * MiB), background_limit(sys) / 2));
-  if (sys.memory_available < 4 * cache_file) {
+  if (sys.memory_available < 5 * cache_file) {
     throw ConfigError(fmt::format("only {} of memory available: calibrate needs {} (a smaller --size needs less)", size_text(sys.memory_available),
-                                  size_text(4 * cache_file)));
+                                  size_text(5 * cache_file)));
   }
 
   const Scratch scratch(options.dir, "pcsim-calibrate");
@@ -107,18 +131,27 @@ Calibration calibrate(const Options& options) {
   bool direct = true;
   try {
     next("device: write, one stream");
-    c.disk_write = figure(direct_write(one, c.size, c.request, Deadline(disk_seconds)),
-                          fmt::format("O_DIRECT sequential write, one stream, {} requests, then fdatasync", size_text(c.request)));
+    c.disk_write = repeated(repeat, [&](int) { return direct_write(one, c.size, c.request, Deadline(disk_seconds)); },
+                            fmt::format("O_DIRECT sequential write, one stream, {} requests (the fdatasync after it not timed)", size_text(c.request)));
     next("device: read, one stream");
-    c.disk_read = figure(direct_read(one, c.request, Deadline(disk_seconds)), fmt::format("O_DIRECT sequential read, one stream, {} requests", size_text(c.request)));
+    c.disk_read = repeated(repeat, [&](int) { return direct_read(one, c.request, Deadline(disk_seconds)); },
+                           fmt::format("O_DIRECT sequential read, one stream, {} requests", size_text(c.request)));
     next(fmt::format("device: write, {} streams", c.streams));
-    const Deadline together(disk_seconds);
-    c.disk_aggregate_write = figure(concurrently(many, [&](const std::filesystem::path& f) { return direct_write(f, c.size, c.request, together); }),
-                                    fmt::format("O_DIRECT sequential writes, {} streams at once, then fdatasync", c.streams));
+    c.disk_aggregate_write = repeated(
+        repeat,
+        [&](int) {
+          const Deadline together(disk_seconds);
+          return concurrently(many, [&](const std::filesystem::path& f) { return direct_write(f, c.size, c.request, together); });
+        },
+        fmt::format("O_DIRECT sequential writes, {} streams at once", c.streams));
     next(fmt::format("device: read, {} streams", c.streams));
-    const Deadline read_together(disk_seconds);
-    c.disk_aggregate_read = figure(concurrently(many, [&](const std::filesystem::path& f) { return direct_read(f, c.request, read_together); }),
-                                   fmt::format("O_DIRECT sequential reads, {} streams at once", c.streams));
+    c.disk_aggregate_read = repeated(
+        repeat,
+        [&](int) {
+          const Deadline together(disk_seconds);
+          return concurrently(many, [&](const std::filesystem::path& f) { return direct_read(f, c.request, together); });
+        },
+        fmt::format("O_DIRECT sequential reads, {} streams at once", c.streams));
   } catch (const DirectIoUnsupported& e) {
     direct = false;
     c.notes.push_back(fmt::format("{}: the device is measured through the page cache instead (buffered, synced or dropped)", e.what()));
@@ -142,38 +175,59 @@ Calibration calibrate(const Options& options) {
 
   // --- Memory and the page cache. The cache file is under half the background dirty
   // threshold, so that writing it is a copy into free pages, not throttled.
-  const std::filesystem::path cached = scratch.file("cached");
+  // Each repetition of a write into the cache writes a new file: its first may take pages the
+  // machine has not used for long (a virtual machine's host may have to fault them back in),
+  // the others pages just freed; the spread shows the difference.
+  const std::filesystem::path cached = scratch.file("cached-0");
   const std::int64_t chunk = std::min<std::int64_t>(64 * MiB, cache_file);
   next("page cache: write into free memory");
-  c.memory_write = figure(cache_write(cached, cache_file, chunk, Deadline(memory_seconds * 4)),
-                          fmt::format("write() into the page cache with free memory, one thread, {} requests, not synced", size_text(chunk)));
-  sync_file(cached);  // clean, and still cached
+  c.memory_write = repeated(
+      repeat,
+      [&](int i) {
+        const std::filesystem::path file = scratch.file(fmt::format("cached-{}", i));
+        const Rate r = cache_write(file, cache_file, chunk, Deadline(memory_seconds * 4));
+        if (i == 0) {
+          sync_file(file);  // clean, and still cached: the reads below read it
+        } else {
+          sync_and_drop(file);
+          scratch.remove(file);
+        }
+        return r;
+      },
+      fmt::format("write() into the page cache with free memory, one thread, {} requests, not synced", size_text(chunk)));
   next("page cache: cached reads");
-  c.memory_read = figure(cached_read(cached, chunk, false, Deadline(memory_seconds)),
-                         fmt::format("read() of cached data into a reused {} buffer, one thread", size_text(chunk)));
-  c.memory_read_fresh = figure(cached_read(cached, chunk, true, Deadline(memory_seconds)), "read() of cached data into new memory, one thread");
+  c.memory_read = repeated(repeat, [&](int) { return cached_read(cached, chunk, false, Deadline(memory_seconds)); },
+                           fmt::format("read() of cached data into a reused {} buffer, one thread", size_text(chunk)));
+  c.memory_read_fresh = repeated(repeat, [&](int) { return cached_read(cached, chunk, true, Deadline(memory_seconds)); },
+                                 "read() of cached data into new memory, one thread");
   next("memory: first touch");
   const std::int64_t touch = std::min(GiB, sys.memory_available / 8);
-  c.first_touch = figure(first_touch(touch, sys.page_size, Deadline(memory_seconds)),
-                         fmt::format("one byte written per {}-byte page of new anonymous memory, one thread (transparent huge pages: {})",
-                                     sys.page_size, sys.transparent_hugepages.empty() ? "absent" : sys.transparent_hugepages));
+  c.first_touch = repeated(repeat, [&](int) { return first_touch(touch, sys.page_size, Deadline(memory_seconds)); },
+                           fmt::format("one byte written per {}-byte page of new anonymous memory, one thread (transparent huge pages: {})",
+                                       sys.page_size, sys.transparent_hugepages.empty() ? "absent" : sys.transparent_hugepages));
   next("memory: copies, one thread and every core");
   const std::int64_t copy = options.quick ? 32 * MiB : 256 * MiB;
-  c.copy_one = figure(memory_copy(copy, Deadline(memory_seconds)), fmt::format("memcpy of {}, one thread", size_text(copy)));
-  c.copy_all = figure(in_threads(sys.cores, [&](int) { return memory_copy(copy / 2, Deadline(memory_seconds)); }),
-                      fmt::format("memcpy of {} per thread, {} threads at once", size_text(copy / 2), sys.cores));
+  c.copy_one = repeated(repeat, [&](int) { return memory_copy(copy, Deadline(memory_seconds)); }, fmt::format("memcpy of {}, one thread", size_text(copy)));
+  c.copy_all = repeated(repeat, [&](int) { return in_threads(sys.cores, [&](int) { return memory_copy(copy / 2, Deadline(memory_seconds)); }); },
+                        fmt::format("memcpy of {} per thread, {} threads at once", size_text(copy / 2), sys.cores));
   next("page cache: every core at once");
-  c.memory_aggregate_read = figure(in_threads(sys.cores, [&](int) { return cached_read(cached, chunk, false, Deadline(memory_seconds)); }),
-                                   fmt::format("read() of cached data into reused buffers, {} threads at once", sys.cores));
-  std::vector<std::filesystem::path> written;
-  for (int i = 0; i < sys.cores; ++i) written.push_back(scratch.file(fmt::format("cached-{}", i)));
+  c.memory_aggregate_read = repeated(
+      repeat, [&](int) { return in_threads(sys.cores, [&](int) { return cached_read(cached, chunk, false, Deadline(memory_seconds)); }); },
+      fmt::format("read() of cached data into reused buffers, {} threads at once", sys.cores));
   const std::int64_t share = std::max<std::int64_t>(chunk, cache_file / sys.cores / chunk * chunk);
-  c.memory_aggregate_write = figure(concurrently(written, [&](const std::filesystem::path& f) { return cache_write(f, share, chunk, Deadline(memory_seconds * 4)); }),
-                                    fmt::format("write() into the page cache with free memory, {} threads at once", sys.cores));
-  for (const auto& f : written) {
-    sync_and_drop(f);
-    scratch.remove(f);
-  }
+  c.memory_aggregate_write = repeated(
+      repeat,
+      [&](int i) {
+        std::vector<std::filesystem::path> written;
+        for (int t = 0; t < sys.cores; ++t) written.push_back(scratch.file(fmt::format("together-{}-{}", i, t)));
+        const Rate r = concurrently(written, [&](const std::filesystem::path& f) { return cache_write(f, share, chunk, Deadline(memory_seconds * 4)); });
+        for (const auto& f : written) {
+          sync_and_drop(f);
+          scratch.remove(f);
+        }
+        return r;
+      },
+      fmt::format("write() into the page cache with free memory, {} threads at once", sys.cores));
   sync_and_drop(cached);
   scratch.remove(cached);
 
@@ -234,6 +288,17 @@ Calibration calibrate(const Options& options) {
   }
 
   // What makes these figures less than they seem.
+  for (const auto& [key, f] : {std::pair<const char*, const Figure*>{"read_bw", &c.disk_read}, {"write_bw", &c.disk_write},
+                               {"aggregate_read_bw", &c.disk_aggregate_read}, {"aggregate_write_bw", &c.disk_aggregate_write},
+                               {"memory_read_bw", &c.memory_read}, {"memory_write_bw", &c.memory_write},
+                               {"memory_aggregate_read_bw", &c.memory_aggregate_read}, {"memory_aggregate_write_bw", &c.memory_aggregate_write},
+                               {"memory_first_touch_bw", &c.first_touch}}) {
+    if (f->measured && f->spread_pct > 20.0) {
+      c.notes.push_back(fmt::format("{} varied by {:.0f} % between its measurements: a noisy machine (other load), or memory or a device whose "
+                                    "speed depends on its history (a virtual machine's host); pcsim takes the median",
+                                    key, f->spread_pct));
+    }
+  }
   if (sys.hypervisor) {
     c.notes.push_back("a virtual machine: the device rates may be the host's cache rather than its disk, and first touches may include the "
                       "host's own page faults (free page reporting, ballooning)");

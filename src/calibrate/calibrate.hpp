@@ -23,15 +23,18 @@ struct Options {
   std::int64_t size = 0;
   /// Concurrent streams for the aggregate rates; 0: 4, or 2 with `quick`.
   int streams = 0;
+  /// Repetitions of each measurement (the median is taken); 0: 3, or 1 with `quick`.
+  int repeat = 0;
   /// Told before each step: its name, its number (from 1) and how many there are.
   std::function<void(const std::string& step, int number, int steps)> progress;
 };
 
 /// A value of the platform and how it was found; not `measured`: `how` says why not.
 struct Figure {
-  double value = 0.0;  ///< bytes per second
+  double value = 0.0;  ///< bytes per second: the median of its repetitions
   std::string how;
   bool measured = false;
+  double spread_pct = 0.0;  ///< (max - min) / median of the repetitions
 };
 
 struct Calibration {

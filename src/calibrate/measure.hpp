@@ -40,8 +40,9 @@ struct DirectIoUnsupported : std::runtime_error {
 };
 
 // --- The device ------------------------------------------------------------------------------
-/// Writes `file` (made anew) with O_DIRECT in requests of `request` bytes, up to `size`, then
-/// fdatasync: the device's sequential write rate, the page cache bypassed.
+/// Writes `file` (made anew) with O_DIRECT in requests of `request` bytes, up to `size`: the
+/// device's sequential write rate, the page cache bypassed, as writeback sees it (the
+/// fdatasync after it, which also flushes the device's own cache, is not timed).
 Rate direct_write(const std::filesystem::path& file, std::int64_t size, std::int64_t request, const Deadline& deadline);
 /// Reads `file` with O_DIRECT: the device's sequential read rate.
 Rate direct_read(const std::filesystem::path& file, std::int64_t request, const Deadline& deadline);

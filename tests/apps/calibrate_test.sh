@@ -41,6 +41,11 @@ TOML
 grep -q '^\[\[hosts.disks\]\]' "$work/stdout.toml" || fail "(a): no platform on the standard output"
 grep -q "disk read, one stream" "$work/stderr.txt" || fail "(a): no summary on the standard error"
 
+# Repeated measurements: the median of each, the rates and their spread said above it.
+"$pcsim" calibrate --quick --repeat 2 --size "16 MiB" --dir "$work/dir" --out "$work/twice.toml" >/dev/null 2>&1 || fail "(a): --repeat 2 failed"
+grep -q "median of 2 (" "$work/twice.toml" || fail "(a): --repeat 2 does not say it took a median of 2"
+[ "$(ls -A "$work/dir")" = keep.txt ] || fail "(a): --repeat 2 left in the folder: $(ls -A "$work/dir" | tr '\n' ' ')"
+
 # (b) Refused, exit 2, naming what is wrong; no platform written.
 expect_refused() {
   local what=$1 pattern=$2

@@ -65,16 +65,17 @@ int run_calibrate_command(const CalibrateCommand& c) {
   fmt::print(summary, "pcsim calibrate: {:.0f} s on {} ({} cores, {} MiB of memory), files on {}\n", result.seconds, result.system.hostname,
              result.system.cores, result.system.memory_total >> 20, result.system.file_system);
   const auto line = [&](const char* what, const cal::Figure& f) {
-    if (f.measured && f.spread_pct > 0.0) fmt::print(summary, "  {:<44} {:>8.0f} MB/s  (spread {:.0f} %)\n", what, f.value / 1e6, f.spread_pct);
-    else if (f.measured) fmt::print(summary, "  {:<44} {:>8.0f} MB/s\n", what, f.value / 1e6);
-    else fmt::print(summary, "  {:<44} {:>8}  ({})\n", what, "-", f.how);
+    if (f.measured && f.spread_pct > 0.0) fmt::print(summary, "  {:<46} {:>8.0f} MB/s  (spread {:.0f} %)\n", what, f.value / 1e6, f.spread_pct);
+    else if (f.measured) fmt::print(summary, "  {:<46} {:>8.0f} MB/s\n", what, f.value / 1e6);
+    else fmt::print(summary, "  {:<46} {:>8}  ({})\n", what, "-", f.how);
   };
   line("disk read, one stream (O_DIRECT)", result.disk_read);
-  line("disk write, one stream (O_DIRECT)", result.disk_write);
   line(fmt::format("disk read, {} streams", result.streams).c_str(), result.disk_aggregate_read);
-  line(fmt::format("disk write, {} streams", result.streams).c_str(), result.disk_aggregate_write);
+  line("writeback, one file", result.writeback);
+  line(fmt::format("writeback, {} files", result.streams).c_str(), result.aggregate_writeback);
+  line("disk write, one stream (O_DIRECT, comparison)", result.disk_write);
+  line(fmt::format("disk write, {} streams (comparison)", result.streams).c_str(), result.disk_aggregate_write);
   line("buffered read from disk (comparison)", result.buffered_read);
-  line("buffered write + fsync (comparison)", result.buffered_write_synced);
   line("cached read, reused buffer", result.memory_read);
   line("cached read, new buffer", result.memory_read_fresh);
   line("write into the cache, free memory", result.memory_write);

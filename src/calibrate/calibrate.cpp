@@ -14,6 +14,7 @@
 #include <fstream>
 #include <sstream>
 #include <system_error>
+#include <thread>
 
 #include <unistd.h>
 
@@ -80,6 +81,43 @@ std::int64_t background_limit(const SystemInfo& s) {
   return static_cast<std::int64_t>(s.dirty_background_ratio * static_cast<double>(s.memory_available));
 }
 
+// What the machine did apart from calibrate, and what a hypervisor does with its memory.
+std::vector<std::string> activity_notes(const Calibration& c) {
+  std::vector<std::string> notes;
+  const SystemInfo& s = c.system;
+  if (c.before.others_busy_cores > 0.2) {
+    notes.push_back(fmt::format("before measuring, other work kept {:.2f} of the {} cores busy: the figures share the machine with it",
+                                c.before.others_busy_cores, s.cores));
+  }
+  if (c.during.others_busy_cores > 0.2) {
+    notes.push_back(fmt::format("while measuring, {:.2f} cores were busy outside calibrate (other processes, or the kernel's own threads: "
+                                "writeback, reclaim)",
+                                c.during.others_busy_cores));
+  }
+  const double steal = std::max(c.before.steal_pct, c.during.steal_pct);
+  if (steal > 2.0) {
+    notes.push_back(fmt::format("the hypervisor took {:.1f} % of the CPUs' time (steal): other guests compete for its cores", steal));
+  }
+  if (s.hypervisor) {
+    notes.push_back("a virtual machine: the device rates may be the host's cache rather than its disk, and speeds may change with what the "
+                    "host does");
+  }
+  if (s.free_page_reporting) {
+    std::string reported;
+    if (c.during.reported > 0) reported = fmt::format(" ({} reported while measuring)", size_text(c.during.reported));
+    notes.push_back(fmt::format("free page reporting is on (a virtio balloon): memory this machine frees goes back to the host{}, and its next "
+                                "first touch waits for the host to give it again, so writes into free memory can be slower than into "
+                                "reclaimed cache, and vary with what was freed before",
+                                reported));
+  } else if (s.balloon_device) {
+    notes.push_back("a virtio balloon: the host can take memory back while this runs");
+  }
+  if (c.during.memory_total_change != 0) {
+    notes.push_back(fmt::format("MemTotal changed by {} MiB while measuring: a balloon took or gave memory", c.during.memory_total_change / MiB));
+  }
+  return notes;
+}
+
 }  // namespace
 
 Calibration calibrate(const Options& options) {
@@ -97,7 +135,7 @@ Calibration calibrate(const Options& options) {
   c.request = std::min<std::int64_t>(options.quick ? 4 * MiB : 16 * MiB, c.size);
   c.size = std::max(c.request, c.size / c.request * c.request);  // whole requests (O_DIRECT)
   const int repeat = options.repeat > 0 ? options.repeat : (options.quick ? 1 : 3);
-  const double disk_seconds = options.quick ? 0.6 : 2.0;  // per repetition
+  const double disk_seconds = options.quick ? 0.6 : 1.5;  // per repetition
   const double memory_seconds = options.quick ? 0.3 : 0.6;
   const SystemInfo& sys = c.system;
 
@@ -116,8 +154,14 @@ Calibration calibrate(const Options& options) {
                                   size_text(5 * cache_file)));
   }
 
+  // What the machine does while this does nothing: other load, the hypervisor's steal.
+  const ActivityMark idle;
+  std::this_thread::sleep_for(std::chrono::milliseconds(options.quick ? 200 : 500));
+  c.before = idle.since();
+  const ActivityMark measuring;
+
   const Scratch scratch(options.dir, "pcsim-calibrate");
-  const int steps = options.quick ? 11 : 12;
+  const int steps = options.quick ? 12 : 13;
   int step = 0;
   const auto next = [&](const std::string& name) {
     check_stopped();
@@ -159,19 +203,40 @@ Calibration calibrate(const Options& options) {
   }
   for (const auto& f : many) scratch.remove(f);
   check_stopped();
-  next("device: buffered read and write, for comparison");
+  next("device: buffered read, for comparison");
   if (!direct) buffered_write_synced(one, c.size, c.request, Deadline(disk_seconds));
   c.buffered_read = figure(buffered_read_cold(one, c.request, Deadline(disk_seconds)),
                            "buffered read of a file dropped from the cache (POSIX_FADV_DONTNEED), kernel readahead");
   scratch.remove(one);
-  c.buffered_write_synced = figure(buffered_write_synced(one, c.size, c.request, Deadline(disk_seconds)), "buffered write, then fsync, both timed");
   if (!direct) {
     c.disk_read = c.buffered_read;
-    c.disk_write = c.buffered_write_synced;
     c.disk_aggregate_read = c.disk_read;
-    c.disk_aggregate_write = c.disk_write;
   }
-  scratch.remove(one);
+
+  // --- Writeback: dirty data written, then synced. Under half the background threshold (no
+  // writeback before the clock starts) and about what the O_DIRECT write did by its
+  // deadline (a slow disk is not given minutes of work).
+  next(fmt::format("device: writeback, one file and {} at once", c.streams));
+  std::int64_t dirty = std::min(c.size, background_limit(sys) / 2);
+  if (c.disk_write.measured) dirty = std::min(dirty, static_cast<std::int64_t>(c.disk_write.value * disk_seconds));
+  dirty = std::max(c.request, dirty / c.request * c.request);
+  const std::int64_t dirty_each = std::max(c.request, dirty / c.streams / c.request * c.request);
+  c.writeback = repeated(
+      repeat,
+      [&](int) {
+        const Rate r = writeback({one}, dirty, c.request);
+        scratch.remove(one);
+        return r;
+      },
+      fmt::format("writeback: fsync of {} just written through the page cache (the write not timed), one file", size_text(dirty)));
+  c.aggregate_writeback = repeated(
+      repeat,
+      [&](int) {
+        const Rate r = writeback(many, dirty_each, c.request);
+        for (const auto& f : many) scratch.remove(f);
+        return r;
+      },
+      fmt::format("writeback: {} files of {} just written, fsync of each at once", c.streams, size_text(dirty_each)));
 
   // --- Memory and the page cache. The cache file is under half the background dirty
   // threshold, so that writing it is a copy into free pages, not throttled.
@@ -287,9 +352,11 @@ Calibration calibrate(const Options& options) {
     }
   }
 
+  c.during = measuring.since();
+
   // What makes these figures less than they seem.
-  for (const auto& [key, f] : {std::pair<const char*, const Figure*>{"read_bw", &c.disk_read}, {"write_bw", &c.disk_write},
-                               {"aggregate_read_bw", &c.disk_aggregate_read}, {"aggregate_write_bw", &c.disk_aggregate_write},
+  for (const auto& [key, f] : {std::pair<const char*, const Figure*>{"read_bw", &c.disk_read}, {"write_bw", &c.writeback},
+                               {"aggregate_read_bw", &c.disk_aggregate_read}, {"aggregate_write_bw", &c.aggregate_writeback},
                                {"memory_read_bw", &c.memory_read}, {"memory_write_bw", &c.memory_write},
                                {"memory_aggregate_read_bw", &c.memory_aggregate_read}, {"memory_aggregate_write_bw", &c.memory_aggregate_write},
                                {"memory_first_touch_bw", &c.first_touch}}) {
@@ -299,10 +366,7 @@ Calibration calibrate(const Options& options) {
                                     key, f->spread_pct));
     }
   }
-  if (sys.hypervisor) {
-    c.notes.push_back("a virtual machine: the device rates may be the host's cache rather than its disk, and first touches may include the "
-                      "host's own page faults (free page reporting, ballooning)");
-  }
+  for (std::string& note : activity_notes(c)) c.notes.push_back(std::move(note));
   if (!sys.root) {
     c.notes.push_back("not root: the whole page cache could not be dropped; each measuring file was dropped by itself (POSIX_FADV_DONTNEED), "
                       "which needs no root");
@@ -310,6 +374,12 @@ Calibration calibrate(const Options& options) {
   if (c.disk_read.measured && c.disk_read.value > 8e9) {
     c.notes.push_back(fmt::format("the device read at {}: faster than most disks; a cache below the file system may have served it",
                                   rate_text(c.disk_read.value)));
+  }
+  if (c.writeback.measured && c.disk_write.measured && c.writeback.value > 1.25 * c.disk_write.value) {
+    c.notes.push_back(fmt::format("writeback drained at {}, O_DIRECT writes went at {}: a write cache below the file system (a virtual "
+                                  "machine's host, a controller) absorbs written data; write_bw is writeback's, which applications writing "
+                                  "through the page cache get while that cache has room",
+                                  rate_text(c.writeback.value), rate_text(c.disk_write.value)));
   }
   c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return c;
@@ -322,6 +392,10 @@ std::string platform_toml(const Calibration& c) {
                      s.hypervisor ? "(virtual machine)" : "", s.cores, size_text(s.memory_total), s.kernel, s.root ? "" : ", not root");
   out += fmt::format("# Device: the file system of the folder measured in ({}), files of {}, {} streams at once.\n", s.file_system, size_text(c.size),
                      c.streams);
+  out += fmt::format("# Other activity: {:.2f} cores busy outside calibrate before it measured, {:.2f} while it measured; steal {:.1f} % and "
+                     "{:.1f} %{}.\n",
+                     c.before.others_busy_cores, c.during.others_busy_cores, c.before.steal_pct, c.during.steal_pct,
+                     c.during.reported >= 0 ? fmt::format("; {} of free memory reported to the host while measuring", size_text(c.during.reported)) : "");
   for (const std::string& note : c.notes) out += fmt::format("# Note: {}\n", note);
   const auto rate = [](const char* key, const Figure& f) {
     if (!f.measured) return fmt::format("# {} not set: {}\n", key, f.how);
@@ -358,7 +432,7 @@ std::string platform_toml(const Calibration& c) {
 
   out += "\n[[hosts.disks]]\nname = \"disk\"\n";
   out += rate("read_bw", c.disk_read);
-  out += rate("write_bw", c.disk_write);
+  out += rate("write_bw", c.writeback);
   // Streams together no faster than one (a disk that serves one stream at a time, or noise):
   // pcsim takes the aggregate as one stream's, which it may not be below.
   const auto aggregate = [&](const char* key, const Figure& together, const Figure& one) {
@@ -368,10 +442,9 @@ std::string platform_toml(const Calibration& c) {
     return rate(key, taken);
   };
   out += aggregate("aggregate_read_bw", c.disk_aggregate_read, c.disk_read);
-  out += aggregate("aggregate_write_bw", c.disk_aggregate_write, c.disk_write);
-  if (c.buffered_read.measured) out += fmt::format("# for comparison: {}: {}\n", c.buffered_read.how, rate_text(c.buffered_read.value));
-  if (c.buffered_write_synced.measured) {
-    out += fmt::format("# for comparison: {}: {}\n", c.buffered_write_synced.how, rate_text(c.buffered_write_synced.value));
+  out += aggregate("aggregate_write_bw", c.aggregate_writeback, c.writeback);
+  for (const Figure* f : {&c.buffered_read, &c.disk_write, &c.disk_aggregate_write}) {
+    if (f->measured) out += fmt::format("# for comparison: {}: {}\n", f->how, rate_text(f->value));
   }
   return out;
 }

@@ -44,9 +44,12 @@ struct Calibration {
   int streams = 0;
   std::int64_t request = 0;
   bool quick = false;
-  // The device (the platform's disk).
-  Figure disk_read, disk_write, disk_aggregate_read, disk_aggregate_write;
-  Figure buffered_read, buffered_write_synced;  // for comparison, not in the platform
+  // The device (the platform's disk): reads with O_DIRECT; writes as writeback drains dirty
+  // pages (what applications writing through the page cache get), O_DIRECT's for comparison.
+  Figure disk_read, disk_aggregate_read;
+  Figure writeback, aggregate_writeback;
+  Figure disk_write, disk_aggregate_write;  ///< O_DIRECT, for comparison
+  Figure buffered_read;                     ///< for comparison, not in the platform
   // Memory and the page cache.
   Figure memory_read;          ///< cached data into a reused buffer, one thread
   Figure memory_read_fresh;    ///< cached data into new memory, one thread
@@ -55,6 +58,8 @@ struct Calibration {
   Figure memory_aggregate_read, memory_aggregate_write;  ///< every core at once
   Figure first_touch;          ///< new anonymous memory, one thread
   Figure copy_one, copy_all;   ///< memcpy, for comparison
+  /// The machine before measuring (a moment of doing nothing) and while measuring.
+  Activity before, during;
   /// What could not be measured or may mislead, for the user.
   std::vector<std::string> notes;
   double seconds = 0.0;

@@ -141,6 +141,23 @@ Rate buffered_write_synced(const std::filesystem::path& file, std::int64_t size,
   return {done, since(start)};
 }
 
+Rate writeback(const std::vector<std::filesystem::path>& files, std::int64_t size, std::int64_t request) {
+  const AlignedBuffer buffer(request);
+  std::vector<std::unique_ptr<Fd>> open;
+  for (const auto& file : files) {
+    open.push_back(std::make_unique<Fd>(file, O_WRONLY | O_CREAT | O_TRUNC));
+    write_loop(open.back()->get(), buffer, size, Deadline(600.0), file, false);
+  }
+  if (g_stop.load()) return {};
+  const auto start = Clock::now();
+  Rate total = in_threads(static_cast<int>(files.size()), [&](int i) {
+    if (::fsync(open[static_cast<std::size_t>(i)]->get()) != 0) fail("cannot sync", files[static_cast<std::size_t>(i)]);
+    return Rate{size, 0.0};
+  });
+  total.seconds = since(start);
+  return total;
+}
+
 Rate buffered_read_cold(const std::filesystem::path& file, std::int64_t request, const Deadline& deadline) {
   const AlignedBuffer buffer(request);
   const Fd fd(file, O_RDONLY);

@@ -49,6 +49,12 @@ Rate direct_read(const std::filesystem::path& file, std::int64_t request, const 
 /// Writes `file` through the page cache, then fsync, both timed: what a buffered writer that
 /// waits for its data to be on the device gets.
 Rate buffered_write_synced(const std::filesystem::path& file, std::int64_t size, std::int64_t request, const Deadline& deadline);
+/// Writes each file (made anew, `size` bytes) through the page cache, untimed, then fsyncs
+/// them all at once, one thread each, timed from the common start to the last end: the rate at
+/// which the kernel writes dirty pages back to the device, as the flusher drains them (with
+/// whatever write cache lies below the file system). `size` must stay under the background
+/// dirty threshold, so that no writeback starts before the clock does.
+Rate writeback(const std::vector<std::filesystem::path>& files, std::int64_t size, std::int64_t request);
 /// Drops `file`'s clean pages (POSIX_FADV_DONTNEED, no root needed) and reads it through the
 /// page cache: the device with the kernel's readahead.
 Rate buffered_read_cold(const std::filesystem::path& file, std::int64_t request, const Deadline& deadline);

@@ -47,6 +47,10 @@ struct RealRun {
   std::int64_t in_use_at_start = 0;  ///< MemTotal - MemAvailable when it started
   std::int64_t free_at_start = 0;    ///< MemFree when it started
   bool dropped_all_caches = false;   ///< root dropped the whole page cache first
+  // What else happened on the machine while it ran (-1: not recorded, an older folder).
+  double others_busy_cores = -1.0;  ///< CPUs busy outside this process (other load, kernel threads)
+  double steal_pct = -1.0;          ///< of the CPUs' time, taken by the hypervisor
+  std::int64_t reported = -1;       ///< bytes of free memory reported to a VM's host
 };
 
 /// Runs `spec` in `dir` (its files made there first and removed after): as root, after

@@ -1,9 +1,14 @@
 #include "calibrate/system_info.hpp"
 
+#include <algorithm>
+#include <chrono>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <tuple>
+#include <utility>
 
+#include <sys/resource.h>
 #include <sys/statfs.h>
 #include <sys/statvfs.h>
 #include <sys/utsname.h>
@@ -58,7 +63,76 @@ bool in_limited_memory_cgroup() {
   return !max.empty() && max != "max";
 }
 
+// Whether any virtio device is a balloon, and whether one offers free page reporting.
+std::pair<bool, bool> find_balloon() {
+  bool balloon = false;
+  bool reporting = false;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator("/sys/bus/virtio/devices", ec)) {
+    const std::string device = read_text(entry.path() / "device");
+    balloon = balloon || virtio_balloon(device);
+    reporting = reporting || virtio_balloon_reporting(device, read_text(entry.path() / "features"));
+  }
+  return {balloon, reporting};
+}
+
+// Bytes of free memory the kernel has reported to the host so far, where it counts them (a
+// page_reporting module with a `reported_kib` parameter); -1 otherwise.
+std::int64_t reported_bytes() {
+  const std::int64_t kib = read_number("/sys/module/page_reporting/parameters/reported_kib", -1);
+  return kib < 0 ? -1 : kib * 1024;
+}
+
+double own_cpu_seconds() {
+  rusage u{};
+  ::getrusage(RUSAGE_SELF, &u);
+  const auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_usec) * 1e-6; };
+  return seconds(u.ru_utime) + seconds(u.ru_stime);
+}
+
+double wall_seconds() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+CpuTimes cpu_times_now() { return proc_stat_cpu(read_text("/proc/stat"), static_cast<double>(::sysconf(_SC_CLK_TCK))); }
+
 }  // namespace
+
+CpuTimes proc_stat_cpu(std::string_view stat, double ticks_per_second) {
+  CpuTimes t;
+  if (stat.substr(0, 4) != "cpu " || ticks_per_second <= 0.0) return t;
+  std::istringstream in{std::string(stat.substr(4, stat.find('\n') - 4))};
+  // user nice system idle iowait irq softirq steal (guest and guest_nice are within user and nice)
+  double v[8] = {};
+  for (double& x : v) {
+    if (!(in >> x)) break;
+  }
+  t.busy = (v[0] + v[1] + v[2] + v[5] + v[6]) / ticks_per_second;
+  t.steal = v[7] / ticks_per_second;
+  t.total = (v[0] + v[1] + v[2] + v[3] + v[4] + v[5] + v[6] + v[7]) / ticks_per_second;
+  return t;
+}
+
+bool virtio_balloon(std::string_view device) { return trim(device) == "0x0005"; }
+
+bool virtio_balloon_reporting(std::string_view device, std::string_view features) {
+  return virtio_balloon(device) && features.size() > 5 && features[5] == '1';
+}
+
+ActivityMark::ActivityMark()
+    : wall_(wall_seconds()), cpu_(cpu_times_now()), own_(own_cpu_seconds()), reported_(reported_bytes()),
+      memory_total_(meminfo_bytes(read_meminfo(), "MemTotal")) {}
+
+Activity ActivityMark::since() const {
+  Activity a;
+  const CpuTimes cpu = cpu_times_now();
+  a.seconds = wall_seconds() - wall_;
+  const double own = own_cpu_seconds() - own_;
+  if (a.seconds > 0.0) a.others_busy_cores = std::max(0.0, (cpu.busy - cpu_.busy - own) / a.seconds);
+  if (cpu.total > cpu_.total) a.steal_pct = (cpu.steal - cpu_.steal) / (cpu.total - cpu_.total) * 100.0;
+  const std::int64_t reported = reported_bytes();
+  if (reported_ >= 0 && reported >= reported_) a.reported = reported - reported_;
+  a.memory_total_change = meminfo_bytes(read_meminfo(), "MemTotal") - memory_total_;
+  return a;
+}
 
 std::string read_meminfo() { return read_text("/proc/meminfo"); }
 
@@ -135,6 +209,7 @@ SystemInfo read_system_info(const std::filesystem::path& dir) {
   struct statvfs vfs{};
   if (::statvfs(dir.c_str(), &vfs) == 0) s.file_system_free = static_cast<std::int64_t>(vfs.f_bavail) * static_cast<std::int64_t>(vfs.f_frsize);
   s.memory_limited = in_limited_memory_cgroup();
+  std::tie(s.balloon_device, s.free_page_reporting) = find_balloon();
   return s;
 }
 

@@ -1,7 +1,9 @@
 #pragma once
 // SystemInfo: what `pcsim calibrate` reads of the machine rather than measures: the CPU, the
 // memory, the kernel's writeback settings, transparent huge pages, the file system of the
-// folder it measures in, and whether it runs as root or in a virtual machine.
+// folder it measures in, whether it runs as root or in a virtual machine, and what else on the
+// machine may change the measurements: other load on the CPUs, a hypervisor taking CPU time or
+// memory back (steal time, a balloon, free page reporting).
 
 #include <cstdint>
 #include <filesystem>
@@ -33,6 +35,41 @@ struct SystemInfo {
   std::string file_system;           ///< of the folder measured in (statfs type, e.g. ext4)
   std::int64_t file_system_free = 0; ///< bytes an ordinary user may still write there
   bool memory_limited = false;       ///< this process is in a memory cgroup with a limit
+  /// A virtio balloon with VIRTIO_BALLOON_F_REPORTING: pages the guest frees go back to the
+  /// host, which must fault them in again when they are next touched.
+  bool free_page_reporting = false;
+  bool balloon_device = false;       ///< a virtio balloon: the host may take memory back
+};
+
+/// CPU time since boot, from /proc/stat's "cpu" line, in seconds summed over every CPU.
+struct CpuTimes {
+  double busy = 0.0;   ///< user, nice, system, irq, softirq
+  double steal = 0.0;  ///< taken by the hypervisor for others while this guest wanted to run
+  double total = 0.0;  ///< everything, idle and iowait too
+};
+
+/// What happened on the machine between two moments, apart from this process.
+struct Activity {
+  double seconds = 0.0;
+  double others_busy_cores = 0.0;  ///< CPUs kept busy by other processes and the kernel's own threads
+  double steal_pct = 0.0;          ///< of the CPUs' time, taken by the hypervisor
+  std::int64_t reported = -1;      ///< bytes of free memory reported to the host (-1: the kernel does not count them)
+  std::int64_t memory_total_change = 0;  ///< MemTotal's change (a balloon inflating or deflating)
+};
+
+/// A point to measure Activity from.
+class ActivityMark {
+ public:
+  ActivityMark();
+  /// Since this mark was made.
+  Activity since() const;
+
+ private:
+  double wall_;
+  CpuTimes cpu_;
+  double own_;
+  std::int64_t reported_;
+  std::int64_t memory_total_;
 };
 
 /// /proc/meminfo now.
@@ -49,5 +86,12 @@ std::string selected_choice(std::string_view text);
 /// The first "model name" of /proc/cpuinfo, and whether its flags name a hypervisor.
 std::string cpuinfo_model(std::string_view cpuinfo);
 bool cpuinfo_hypervisor(std::string_view cpuinfo);
+/// /proc/stat's first line, in ticks of `ticks_per_second`.
+CpuTimes proc_stat_cpu(std::string_view stat, double ticks_per_second);
+/// A virtio device's sysfs `device` and `features`: a balloon (device id 5), and whether it
+/// offers free page reporting (feature bit 5, VIRTIO_BALLOON_F_REPORTING; `features` is one
+/// character per bit, bit 0 first).
+bool virtio_balloon(std::string_view device);
+bool virtio_balloon_reporting(std::string_view device, std::string_view features);
 
 }  // namespace pagecache::calibrate

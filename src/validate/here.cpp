@@ -51,7 +51,8 @@ double error_pct(double simulated, double real) { return real > 0.0 ? std::abs(s
 
 // --- Reading the files back ------------------------------------------------------------------
 
-std::vector<std::vector<std::string>> read_csv(const std::filesystem::path& file, std::size_t fields) {
+// Rows of `fields` fields, or of `fewer` (an older file without the last columns; 0: none).
+std::vector<std::vector<std::string>> read_csv(const std::filesystem::path& file, std::size_t fields, std::size_t fewer = 0) {
   std::ifstream in(file);
   if (!in) throw ConfigError(fmt::format("{}: cannot read", file.string()));
   std::vector<std::vector<std::string>> rows;
@@ -65,7 +66,9 @@ std::vector<std::vector<std::string>> read_csv(const std::filesystem::path& file
     std::stringstream parts(line);
     std::string part;
     while (std::getline(parts, part, ',')) row.push_back(part);
-    if (row.size() != fields) throw ConfigError(fmt::format("{}:{}: {} fields, expected {}", file.string(), number, row.size(), fields));
+    if (row.size() != fields && (fewer == 0 || row.size() != fewer)) {
+      throw ConfigError(fmt::format("{}:{}: {} fields, expected {}", file.string(), number, row.size(), fields));
+    }
     rows.push_back(std::move(row));
   }
   return rows;
@@ -126,6 +129,39 @@ MemorySample real_memory(const RealRun& run, double time) {
   return run.memory.empty() ? MemorySample{} : run.memory.back();
 }
 
+// What else the machine did during the runs, and what its calibration noted about it.
+std::string activity_notes(const HereMeasurements& m) {
+  std::string out;
+  double busiest = -1.0, steal = -1.0;
+  std::int64_t reported = -1;
+  const RealRun* busiest_run = nullptr;
+  for (const RealRun& r : m.runs) {
+    if (r.others_busy_cores > busiest) {
+      busiest = r.others_busy_cores;
+      busiest_run = &r;
+    }
+    steal = std::max(steal, r.steal_pct);
+    if (r.reported >= 0) reported = std::max<std::int64_t>(reported, 0) + r.reported;
+  }
+  if (busiest > 0.2 && busiest_run != nullptr) {
+    out += fmt::format("note: other work kept up to {:.2f} cores busy during a run ({} repetition {}): other load, or the kernel's own threads "
+                       "(writeback, reclaim)\n",
+                       busiest, busiest_run->spec.name, busiest_run->repetition);
+  }
+  if (steal > 2.0) out += fmt::format("note: the hypervisor took up to {:.1f} % of the CPUs' time during a run (steal)\n", steal);
+  if (reported > 0) {
+    out += fmt::format("note: {:.1f} GB of free memory went back to the virtual machine's host during the runs (free page reporting): a "
+                       "later first touch of it waits for the host, which pcsim does not model\n",
+                       static_cast<double>(reported) / GB);
+  }
+  // The calibration's notes, kept in the platform file.
+  std::istringstream platform(m.platform_toml);
+  for (std::string line; std::getline(platform, line);) {
+    if (line.rfind("# Note: ", 0) == 0) out += "calibration note: " + line.substr(8) + "\n";
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<RealCase> here_cases(std::int64_t available, bool quick) {
@@ -145,13 +181,16 @@ std::vector<RealCase> here_cases(std::int64_t available, bool quick) {
 }
 
 std::vector<std::pair<std::string, std::string>> here_files(const HereMeasurements& m) {
-  std::string runs = "case,pipelines,tasks,file_size,compute_s,chunk,repetition,makespan_s,memory_total,in_use_at_start,free_at_start,dropped_all_caches\n";
+  std::string runs =
+      "case,pipelines,tasks,file_size,compute_s,chunk,repetition,makespan_s,memory_total,in_use_at_start,free_at_start,dropped_all_caches,"
+      "others_busy_cores,steal_pct,reported_bytes\n";
   std::string phases = "case,repetition,pipeline,task,phase,start_s,end_s\n";
   std::string memory = "case,repetition,time_s,free,cached,dirty,writeback\n";
   for (const RealRun& r : m.runs) {
     const RealCase& c = r.spec;
-    runs += fmt::format("{},{},{},{},{:.6f},{},{},{:.6f},{},{},{},{}\n", c.name, c.pipelines, c.tasks, c.file_size, c.compute, c.chunk, r.repetition,
-                        r.makespan, r.memory_total, r.in_use_at_start, r.free_at_start, r.dropped_all_caches ? 1 : 0);
+    runs += fmt::format("{},{},{},{},{:.6f},{},{},{:.6f},{},{},{},{},{:.3f},{:.2f},{}\n", c.name, c.pipelines, c.tasks, c.file_size, c.compute, c.chunk,
+                        r.repetition, r.makespan, r.memory_total, r.in_use_at_start, r.free_at_start, r.dropped_all_caches ? 1 : 0,
+                        r.others_busy_cores, r.steal_pct, r.reported);
     for (const RealPhase& p : r.phases) {
       phases += fmt::format("{},{},{},{},{},{:.6f},{:.6f}\n", c.name, r.repetition, p.pipeline, p.task, p.phase, p.start, p.end);
     }
@@ -174,7 +213,7 @@ HereMeasurements load_here(const std::filesystem::path& folder) {
   }
   std::map<std::pair<std::string, int>, std::size_t> index;  // (case, repetition) -> run
   const std::filesystem::path runs = folder / "runs.csv";
-  const auto run_rows = read_csv(runs, 12);
+  const auto run_rows = read_csv(runs, 15, 12);  // 12: before the machine's activity was recorded
   for (std::size_t i = 0; i < run_rows.size(); ++i) {
     const auto& f = run_rows[i];
     RealRun r;
@@ -189,6 +228,11 @@ HereMeasurements load_here(const std::filesystem::path& folder) {
     r.in_use_at_start = integer(f[9], runs, i);
     r.free_at_start = integer(f[10], runs, i);
     r.dropped_all_caches = integer(f[11], runs, i) != 0;
+    if (f.size() == 15) {
+      r.others_busy_cores = number(f[12], runs, i);
+      r.steal_pct = number(f[13], runs, i);
+      r.reported = integer(f[14], runs, i);
+    }
     if (!index.emplace(std::pair{r.spec.name, r.repetition}, m.runs.size()).second) {
       throw ConfigError(fmt::format("{}:{}: case {} repetition {} twice", runs.string(), i + 2, r.spec.name, r.repetition));
     }
@@ -294,6 +338,7 @@ std::string score_here(const HereMeasurements& m) {
     out += "note: not root: only this run's own files were dropped from the cache; other files' cached data stayed, which the kernel could "
            "reclaim and pcsim counted as free\n";
   }
+  out += activity_notes(m);
   return out;
 }
 

@@ -27,6 +27,30 @@ TEST_CASE("calibrate reads /proc/meminfo, a sysfs choice and /proc/cpuinfo as th
   CHECK(cpuinfo_model("processor\t: 0\n").empty());
 }
 
+TEST_CASE("calibrate reads the CPUs' time from /proc/stat and a virtio balloon's free page reporting from sysfs", "[calibrate]") {
+  // user nice system idle iowait irq softirq steal guest guest_nice, in ticks of 100 per second
+  const CpuTimes t = proc_stat_cpu("cpu  1000 50 300 9000 200 10 40 400 0 0\ncpu0 500 25 150 4500 100 5 20 200 0 0\n", 100.0);
+  CHECK(t.busy == Approx(14.0));  // 1000 + 50 + 300 + 10 + 40
+  CHECK(t.steal == Approx(4.0));
+  CHECK(t.total == Approx(110.0));
+  CHECK(proc_stat_cpu("intr 1 2 3\n", 100.0).total == 0.0);
+  // sysfs `features`: one character per feature bit, bit 0 first; bit 5 is VIRTIO_BALLOON_F_REPORTING.
+  const std::string reporting = "0110010100000000000000000000000010000000\n";
+  CHECK(virtio_balloon("0x0005\n"));
+  CHECK_FALSE(virtio_balloon("0x0002\n"));  // a block device
+  CHECK(virtio_balloon_reporting("0x0005\n", reporting));
+  CHECK_FALSE(virtio_balloon_reporting("0x0005\n", "0110000100000000\n"));
+  CHECK_FALSE(virtio_balloon_reporting("0x0002\n", reporting));  // the same bit on another device means something else
+  // Activity over a moment: this process's own CPU time is not counted as others'.
+  const ActivityMark mark;
+  volatile double x = 1.0;
+  for (int i = 0; i < 20'000'000; ++i) x = x * 1.0000001;
+  const Activity a = mark.since();
+  CHECK(a.seconds > 0.0);
+  CHECK(a.others_busy_cores >= 0.0);
+  CHECK(a.steal_pct >= 0.0);
+}
+
 TEST_CASE("the calibrated platform file is one pcsim loads, each value as measured, an unmeasured one left out", "[calibrate]") {
   Calibration c;
   c.date = "2026-12-03T12:00:00Z";
@@ -43,9 +67,10 @@ TEST_CASE("the calibrated platform file is one pcsim loads, each value as measur
   c.streams = 4;
   const auto measured = [](double v) { return Figure{v, "a method", true}; };
   c.disk_read = measured(500e6);
-  c.disk_write = measured(400e6);
+  c.writeback = measured(400e6);
+  c.disk_write = Figure{300e6, "O_DIRECT", true};  // for comparison only
   c.disk_aggregate_read = measured(900e6);
-  c.disk_aggregate_write = measured(450e6);
+  c.aggregate_writeback = measured(450e6);
   c.memory_read = measured(6000e6);
   c.memory_write = measured(3000e6);
   c.memory_aggregate_read = measured(20000e6);
@@ -56,7 +81,8 @@ TEST_CASE("the calibrated platform file is one pcsim loads, each value as measur
   const std::string toml = platform_toml(c);
   INFO(toml);
   CHECK_THAT(toml, Catch::Contains("# Note: a note") && Catch::Contains("# memory_reclaimed_write_bw not set: not measured with --quick") &&
-                       Catch::Contains("# a method\nread_bw = \"500 MB/s\""));
+                       Catch::Contains("# a method\nread_bw = \"500 MB/s\"") &&
+                       Catch::Contains("# for comparison: O_DIRECT: 300 MB/s"));
   const Scenario s = parse_scenario(toml + "\n[pipelines]\nfile_size = \"1 GB\"\n", "<calibrated>");
   REQUIRE(s.hosts.size() == 1);
   const HostConfig& h = s.hosts[0];

@@ -113,13 +113,44 @@ TEST_CASE("validate --here measurements are read back as written, and a bad file
   CHECK(back.runs[0].memory.size() == 2);
   CHECK(back.runs[0].memory[1].dirty == 50'000'000);
   CHECK(score_here(back) == score_here(m));
+  CHECK(back.runs[0].others_busy_cores == -1.0);  // not recorded
+  CHECK(back.runs[0].reported == -1);
+
+  // The machine's activity during a run, kept and said; the calibration's notes repeated.
+  m.runs[0].others_busy_cores = 0.75;
+  m.runs[0].steal_pct = 6.5;
+  m.runs[0].reported = 3'000'000'000;
+  m.platform_toml = std::string("# Note: a virtual machine\n") + kPlatform;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  for (const auto& [name, text] : here_files(m)) std::ofstream(dir / name) << text;
+  const HereMeasurements busy = load_here(dir);
+  CHECK(busy.runs[0].others_busy_cores == 0.75);
+  CHECK(busy.runs[0].steal_pct == 6.5);
+  CHECK(busy.runs[0].reported == 3'000'000'000);
+  const std::string said = score_here(busy);
+  INFO(said);
+  CHECK_THAT(said, Catch::Contains("other work kept up to 0.75 cores busy during a run (c repetition 1)") &&
+                       Catch::Contains("took up to 6.5 % of the CPUs' time") && Catch::Contains("3.0 GB of free memory went back") &&
+                       Catch::Contains("calibration note: a virtual machine"));
+  // A folder from before the activity was recorded (12 fields) is still read.
+  std::string runs;
+  {
+    std::ifstream in(dir / "runs.csv");
+    for (std::string line; std::getline(in, line);) {
+      for (int cut = 0; cut < 3; ++cut) line = line.substr(0, line.rfind(','));
+      runs += line + "\n";
+    }
+  }
+  std::ofstream(dir / "runs.csv") << runs;
+  CHECK(load_here(dir).runs[0].others_busy_cores == -1.0);
 
   std::ofstream(dir / "phases.csv", std::ios::app) << "c,1,1,1,read,zero,1.0\n";
   CHECK_THROWS_WITH(load_here(dir), Catch::Contains("phases.csv:5: 'zero' is not a number"));
   std::ofstream(dir / "phases.csv") << "header\nd,1,1,1,read,0,1\n";
   CHECK_THROWS_WITH(load_here(dir), Catch::Contains("phases.csv:2: case d repetition 1 is not in runs.csv"));
   std::ofstream(dir / "runs.csv") << "header\nc,1\n";
-  CHECK_THROWS_WITH(load_here(dir), Catch::Contains("runs.csv:2: 2 fields, expected 12"));
+  CHECK_THROWS_WITH(load_here(dir), Catch::Contains("runs.csv:2: 2 fields, expected 15"));
   std::filesystem::remove(dir / "platform.toml");
   CHECK_THROWS_AS(load_here(dir), ConfigError);
   std::filesystem::remove_all(dir);

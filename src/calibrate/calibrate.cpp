@@ -1,6 +1,7 @@
 #include "calibrate/calibrate.hpp"
 
 #include "calibrate/measure.hpp"
+#include "calibrate/reclaim.hpp"
 #include "calibrate/scratch.hpp"
 
 #include <pagecache/error.hpp>
@@ -118,6 +119,24 @@ std::vector<std::string> activity_notes(const Calibration& c) {
   return notes;
 }
 
+// With free page reporting, memory freed a moment ago is still backed by the host and memory
+// free for longer is not (the kernel reports free blocks about 2 s after they are freed): waits
+// until the kernel's count of reported memory has stopped growing (from 2.5 s, at most 6 s; 2.5 s
+// where it is not counted), so that what follows takes memory as a task finds it.
+void settle(const SystemInfo& s, bool quick) {
+  if (!s.free_page_reporting || quick) return;  // --quick: rough, and short
+  const auto started = std::chrono::steady_clock::now();
+  const auto waited = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(); };
+  std::int64_t before = reported_free_bytes();
+  std::this_thread::sleep_for(std::chrono::milliseconds(2500));
+  while (before >= 0 && waited() < 6.0 && !stop_requested()) {
+    const std::int64_t now = reported_free_bytes();
+    if (now == before) break;
+    before = now;
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  }
+}
+
 }  // namespace
 
 Calibration calibrate(const Options& options) {
@@ -135,6 +154,7 @@ Calibration calibrate(const Options& options) {
   c.request = std::min<std::int64_t>(options.quick ? 4 * MiB : 16 * MiB, c.size);
   c.size = std::max(c.request, c.size / c.request * c.request);  // whole requests (O_DIRECT)
   const int repeat = options.repeat > 0 ? options.repeat : (options.quick ? 1 : 3);
+  const int once = 1;  // figures for comparison only, not in the platform: one measurement keeps the time down
   const double disk_seconds = options.quick ? 0.6 : 1.5;  // per repetition
   const double memory_seconds = options.quick ? 0.3 : 0.6;
   const SystemInfo& sys = c.system;
@@ -175,14 +195,14 @@ Calibration calibrate(const Options& options) {
   bool direct = true;
   try {
     next("device: write, one stream");
-    c.disk_write = repeated(repeat, [&](int) { return direct_write(one, c.size, c.request, Deadline(disk_seconds)); },
+    c.disk_write = repeated(once, [&](int) { return direct_write(one, c.size, c.request, Deadline(disk_seconds)); },
                             fmt::format("O_DIRECT sequential write, one stream, {} requests (the fdatasync after it not timed)", size_text(c.request)));
     next("device: read, one stream");
     c.disk_read = repeated(repeat, [&](int) { return direct_read(one, c.request, Deadline(disk_seconds)); },
                            fmt::format("O_DIRECT sequential read, one stream, {} requests", size_text(c.request)));
     next(fmt::format("device: write, {} streams", c.streams));
     c.disk_aggregate_write = repeated(
-        repeat,
+        once,
         [&](int) {
           const Deadline together(disk_seconds);
           return concurrently(many, [&](const std::filesystem::path& f) { return direct_write(f, c.size, c.request, together); });
@@ -240,65 +260,75 @@ Calibration calibrate(const Options& options) {
 
   // --- Memory and the page cache. The cache file is under half the background dirty
   // threshold, so that writing it is a copy into free pages, not throttled.
-  // Each repetition of a write into the cache writes a new file: its first may take pages the
-  // machine has not used for long (a virtual machine's host may have to fault them back in),
-  // the others pages just freed; the spread shows the difference.
+  // Writes into free memory and first touches take memory that has been free for a while, as
+  // a task's do: on a virtual machine with free page reporting, after the host has taken the
+  // freed memory back (settle), and no repetition is given the pages an earlier one freed
+  // (each writes a new file, kept cached and clean until the step ends).
   const std::filesystem::path cached = scratch.file("cached-0");
   const std::int64_t chunk = std::min<std::int64_t>(64 * MiB, cache_file);
+  const std::string settled = sys.free_page_reporting && !options.quick ? ", into memory the host had taken back (free page reporting)" : "";
   next("page cache: write into free memory");
+  settle(sys, options.quick);
+  std::vector<std::filesystem::path> kept;
   c.memory_write = repeated(
       repeat,
       [&](int i) {
-        const std::filesystem::path file = scratch.file(fmt::format("cached-{}", i));
-        const Rate r = cache_write(file, cache_file, chunk, Deadline(memory_seconds * 4));
-        if (i == 0) {
-          sync_file(file);  // clean, and still cached: the reads below read it
-        } else {
-          sync_and_drop(file);
-          scratch.remove(file);
-        }
+        kept.push_back(scratch.file(fmt::format("cached-{}", i)));
+        const Rate r = cache_write(kept.back(), cache_file, chunk, Deadline(memory_seconds * 4));
+        sync_file(kept.back());  // clean, and still cached: the reads below read the first
         return r;
       },
-      fmt::format("write() into the page cache with free memory, one thread, {} requests, not synced", size_text(chunk)));
+      fmt::format("write() into the page cache with free memory{}, one thread, {} requests, not synced", settled, size_text(chunk)));
+  for (std::size_t i = 1; i < kept.size(); ++i) {
+    sync_and_drop(kept[i]);
+    scratch.remove(kept[i]);
+  }
   next("page cache: cached reads");
   c.memory_read = repeated(repeat, [&](int) { return cached_read(cached, chunk, false, Deadline(memory_seconds)); },
                            fmt::format("read() of cached data into a reused {} buffer, one thread", size_text(chunk)));
-  c.memory_read_fresh = repeated(repeat, [&](int) { return cached_read(cached, chunk, true, Deadline(memory_seconds)); },
+  c.memory_read_fresh = repeated(once, [&](int) { return cached_read(cached, chunk, true, Deadline(memory_seconds)); },
                                  "read() of cached data into new memory, one thread");
   next("memory: first touch");
   const std::int64_t touch = std::min(GiB, sys.memory_available / 8);
-  c.first_touch = repeated(repeat, [&](int) { return first_touch(touch, sys.page_size, Deadline(memory_seconds)); },
-                           fmt::format("one byte written per {}-byte page of new anonymous memory, one thread (transparent huge pages: {})",
-                                       sys.page_size, sys.transparent_hugepages.empty() ? "absent" : sys.transparent_hugepages));
+  settle(sys, options.quick);
+  {
+    MemoryHold touched(sys.page_size);
+    c.first_touch = repeated(repeat, [&](int) { return first_touch(touch, sys.page_size, Deadline(memory_seconds), &touched); },
+                             fmt::format("one byte written per {}-byte page of new anonymous memory{}, one thread (transparent huge pages: {})",
+                                         sys.page_size, settled, sys.transparent_hugepages.empty() ? "absent" : sys.transparent_hugepages));
+  }
   next("memory: copies, one thread and every core");
   const std::int64_t copy = options.quick ? 32 * MiB : 256 * MiB;
-  c.copy_one = repeated(repeat, [&](int) { return memory_copy(copy, Deadline(memory_seconds)); }, fmt::format("memcpy of {}, one thread", size_text(copy)));
-  c.copy_all = repeated(repeat, [&](int) { return in_threads(sys.cores, [&](int) { return memory_copy(copy / 2, Deadline(memory_seconds)); }); },
+  c.copy_one = repeated(once, [&](int) { return memory_copy(copy, Deadline(memory_seconds)); }, fmt::format("memcpy of {}, one thread", size_text(copy)));
+  c.copy_all = repeated(once, [&](int) { return in_threads(sys.cores, [&](int) { return memory_copy(copy / 2, Deadline(memory_seconds)); }); },
                         fmt::format("memcpy of {} per thread, {} threads at once", size_text(copy / 2), sys.cores));
   next("page cache: every core at once");
   c.memory_aggregate_read = repeated(
       repeat, [&](int) { return in_threads(sys.cores, [&](int) { return cached_read(cached, chunk, false, Deadline(memory_seconds)); }); },
       fmt::format("read() of cached data into reused buffers, {} threads at once", sys.cores));
   const std::int64_t share = std::max<std::int64_t>(chunk, cache_file / sys.cores / chunk * chunk);
+  settle(sys, options.quick);
+  std::vector<std::filesystem::path> together;
   c.memory_aggregate_write = repeated(
       repeat,
       [&](int i) {
         std::vector<std::filesystem::path> written;
         for (int t = 0; t < sys.cores; ++t) written.push_back(scratch.file(fmt::format("together-{}-{}", i, t)));
         const Rate r = concurrently(written, [&](const std::filesystem::path& f) { return cache_write(f, share, chunk, Deadline(memory_seconds * 4)); });
-        for (const auto& f : written) {
-          sync_and_drop(f);
-          scratch.remove(f);
-        }
+        for (const auto& f : written) sync_file(f);
+        together.insert(together.end(), written.begin(), written.end());
         return r;
       },
-      fmt::format("write() into the page cache with free memory, {} threads at once", sys.cores));
+      fmt::format("write() into the page cache with free memory{}, {} threads at once", settled, sys.cores));
+  for (const auto& f : together) {
+    sync_and_drop(f);
+    scratch.remove(f);
+  }
   sync_and_drop(cached);
   scratch.remove(cached);
 
-  // --- Writing into pages reclaimed from clean cache: memory held so that little is free,
-  // clean cache filling the rest, then a write. Not with --quick, nor in a memory cgroup with
-  // a limit (holding memory there could end in the group's OOM killer).
+  // --- Writing into pages reclaimed from clean cache (reclaim.hpp). Not with --quick, nor in
+  // a memory cgroup with a limit (holding memory there could end in the group's OOM killer).
   if (options.quick) {
     c.memory_reclaimed_write = Figure{0.0, "not measured with --quick", false};
   } else if (sys.memory_limited) {
@@ -306,50 +336,7 @@ Calibration calibrate(const Options& options) {
     c.notes.push_back("in a memory cgroup with a limit: the write into reclaimed pages was not measured");
   } else {
     next("page cache: write while reclaiming clean cache");
-    // Clean cache first, large enough that writing `target` stays under the freerun ceiling
-    // of the dirty limits (the fill is dirtyable memory); then memory held, step by step,
-    // until free memory is just above the kernel's watermarks (min_free_kbytes), so that the
-    // write must take most of its pages from the clean cache.
-    const std::int64_t target = std::min<std::int64_t>(c.size, 512 * MiB);
-    const double freerun = sys.dirty_bytes > 0 ? 0.0 : (sys.dirty_ratio + sys.dirty_background_ratio) / 2.0;
-    const std::int64_t fill = freerun > 0.0 ? static_cast<std::int64_t>(static_cast<double>(target) / freerun * 1.5) : 4 * target;
-    const std::int64_t available = meminfo_now("MemAvailable");
-    const std::int64_t floor = 2 * sys.min_free + 64 * MiB;  // stop holding here
-    if (sys.file_system_free < need + fill || available < fill + target + floor + 512 * MiB) {
-      c.memory_reclaimed_write = Figure{0.0, "not measured: too little memory or disk to fill the cache", false};
-    } else {
-      const std::filesystem::path filled = scratch.file("fill");
-      const std::filesystem::path after = scratch.file("after");
-      buffered_write_synced(filled, fill, chunk, Deadline(120.0));  // clean cache
-      MemoryHold hold(sys.page_size);
-      // Never more than what was available less the write and a margin: the hold may push out
-      // clean cache (the fill's too), never more.
-      const std::int64_t most = available - target - 512 * MiB;
-      for (std::int64_t free = meminfo_now("MemFree"); free > floor + 64 * MiB && hold.bytes() < most && !stop_requested();
-           free = meminfo_now("MemFree")) {
-        hold.add(std::min({free - floor, most - hold.bytes(), GiB}));
-      }
-      check_stopped();
-      const std::int64_t free_before = meminfo_now("MemFree");
-      const Rate r = cache_write(after, target, chunk, Deadline(30.0));
-      const std::int64_t free_after = meminfo_now("MemFree");
-      const std::int64_t from_free = std::clamp<std::int64_t>(free_before - free_after, 0, r.bytes);
-      const std::int64_t reclaimed = r.bytes - from_free;
-      const double free_seconds = c.memory_write.measured ? static_cast<double>(from_free) / c.memory_write.value : 0.0;
-      if (reclaimed < r.bytes / 4 || r.seconds <= free_seconds) {
-        c.memory_reclaimed_write = Figure{0.0, fmt::format("not measured: only {} of {} written needed reclaim ({} free before, {} after)",
-                                                           size_text(reclaimed), size_text(r.bytes), size_text(free_before), size_text(free_after)),
-                                          false};
-      } else {
-        c.memory_reclaimed_write = Figure{static_cast<double>(reclaimed) / (r.seconds - free_seconds),
-                                          fmt::format("write() into the page cache with {} clean cached and {} free: {} of it into reclaimed pages "
-                                                      "({} in {:.2f} s, the part into free pages taken at memory_write_bw)",
-                                                      size_text(fill), size_text(free_before), size_text(reclaimed), size_text(r.bytes), r.seconds),
-                                          true};
-      }
-      sync_and_drop(after);
-      sync_and_drop(filled);
-    }
+    c.memory_reclaimed_write = reclaimed_write(c, scratch, ReclaimSetting{std::min<std::int64_t>(c.size, 512 * MiB), chunk, need, 45.0});
   }
 
   c.during = measuring.since();

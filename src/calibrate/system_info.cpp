@@ -53,14 +53,32 @@ std::string file_system_name(long type) {
   }
 }
 
-// The memory cgroup (v2) limit of this process, if any: memory.max other than "max".
+// Whether this process's memory cgroup has a limit: cgroup v2's memory.max other than "max",
+// or v1's memory.limit_in_bytes below "unlimited" (a page-rounded 2^63 - 1).
 bool in_limited_memory_cgroup() {
   const std::string self = read_text("/proc/self/cgroup");
-  const auto at = self.find("0::");
-  if (at == std::string::npos) return false;
-  const std::string group = trim(std::string_view(self).substr(at + 3, self.find('\n', at) - at - 3));
-  const std::string max = trim(read_text(std::filesystem::path("/sys/fs/cgroup") / group.substr(group.empty() ? 0 : 1) / "memory.max"));
-  return !max.empty() && max != "max";
+  const auto group_of = [&](std::string_view prefix) -> std::string {
+    for (std::size_t at = 0; at < self.size();) {
+      const std::size_t end = std::min(self.find('\n', at), self.size());
+      const std::string_view line = std::string_view(self).substr(at, end - at);
+      const auto colon = line.find(':');
+      if (colon != std::string_view::npos && line.substr(colon).rfind(prefix, 0) == 0) {
+        const std::string path = trim(line.substr(colon + prefix.size()));
+        return path.empty() ? "/" : path;
+      }
+      at = end + 1;
+    }
+    return {};
+  };
+  if (const std::string v2 = group_of("::"); !v2.empty()) {
+    const std::string max = trim(read_text(std::filesystem::path("/sys/fs/cgroup") / v2.substr(1) / "memory.max"));
+    if (!max.empty() && max != "max") return true;
+  }
+  if (const std::string v1 = group_of(":memory:"); !v1.empty()) {
+    const std::int64_t limit = read_number(std::filesystem::path("/sys/fs/cgroup/memory") / v1.substr(1) / "memory.limit_in_bytes", -1);
+    if (limit > 0 && limit < (std::int64_t{1} << 62)) return true;
+  }
+  return false;
 }
 
 // Whether any virtio device is a balloon, and whether one offers free page reporting.
@@ -74,13 +92,6 @@ std::pair<bool, bool> find_balloon() {
     reporting = reporting || virtio_balloon_reporting(device, read_text(entry.path() / "features"));
   }
   return {balloon, reporting};
-}
-
-// Bytes of free memory the kernel has reported to the host so far, where it counts them (a
-// page_reporting module with a `reported_kib` parameter); -1 otherwise.
-std::int64_t reported_bytes() {
-  const std::int64_t kib = read_number("/sys/module/page_reporting/parameters/reported_kib", -1);
-  return kib < 0 ? -1 : kib * 1024;
 }
 
 double own_cpu_seconds() {
@@ -118,7 +129,7 @@ bool virtio_balloon_reporting(std::string_view device, std::string_view features
 }
 
 ActivityMark::ActivityMark()
-    : wall_(wall_seconds()), cpu_(cpu_times_now()), own_(own_cpu_seconds()), reported_(reported_bytes()),
+    : wall_(wall_seconds()), cpu_(cpu_times_now()), own_(own_cpu_seconds()), reported_(reported_free_bytes()),
       memory_total_(meminfo_bytes(read_meminfo(), "MemTotal")) {}
 
 Activity ActivityMark::since() const {
@@ -128,10 +139,15 @@ Activity ActivityMark::since() const {
   const double own = own_cpu_seconds() - own_;
   if (a.seconds > 0.0) a.others_busy_cores = std::max(0.0, (cpu.busy - cpu_.busy - own) / a.seconds);
   if (cpu.total > cpu_.total) a.steal_pct = (cpu.steal - cpu_.steal) / (cpu.total - cpu_.total) * 100.0;
-  const std::int64_t reported = reported_bytes();
+  const std::int64_t reported = reported_free_bytes();
   if (reported_ >= 0 && reported >= reported_) a.reported = reported - reported_;
   a.memory_total_change = meminfo_bytes(read_meminfo(), "MemTotal") - memory_total_;
   return a;
+}
+
+std::int64_t reported_free_bytes() {
+  const std::int64_t kib = read_number("/sys/module/page_reporting/parameters/reported_kib", -1);
+  return kib < 0 ? -1 : kib * 1024;
 }
 
 std::string read_meminfo() { return read_text("/proc/meminfo"); }

@@ -75,6 +75,10 @@ class ActivityMark {
 /// /proc/meminfo now.
 std::string read_meminfo();
 
+/// Bytes of free memory the kernel has reported to a virtual machine's host since boot, where
+/// it counts them (a page_reporting module with a `reported_kib` parameter); -1 otherwise.
+std::int64_t reported_free_bytes();
+
 /// Reads it now, for measurements in `dir`.
 SystemInfo read_system_info(const std::filesystem::path& dir);
 

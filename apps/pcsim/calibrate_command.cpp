@@ -65,9 +65,9 @@ int run_calibrate_command(const CalibrateCommand& c) {
   fmt::print(summary, "pcsim calibrate: {:.0f} s on {} ({} cores, {} MiB of memory), files on {}\n", result.seconds, result.system.hostname,
              result.system.cores, result.system.memory_total >> 20, result.system.file_system);
   const auto line = [&](const char* what, const cal::Figure& f) {
-    if (f.measured && f.spread_pct > 0.0) fmt::print(summary, "  {:<46} {:>8.0f} MB/s  (spread {:.0f} %)\n", what, f.value / 1e6, f.spread_pct);
-    else if (f.measured) fmt::print(summary, "  {:<46} {:>8.0f} MB/s\n", what, f.value / 1e6);
-    else fmt::print(summary, "  {:<46} {:>8}  ({})\n", what, "-", f.how);
+    if (f.measured && f.spread_pct > 0.0) fmt::print(summary, "  {:<48} {:>8.0f} MB/s  (spread {:.0f} %)\n", what, f.value / 1e6, f.spread_pct);
+    else if (f.measured) fmt::print(summary, "  {:<48} {:>8.0f} MB/s\n", what, f.value / 1e6);
+    else fmt::print(summary, "  {:<48} {:>8}  ({})\n", what, "-", f.how);
   };
   line("disk read, one stream (O_DIRECT)", result.disk_read);
   line(fmt::format("disk read, {} streams", result.streams).c_str(), result.disk_aggregate_read);
@@ -78,7 +78,8 @@ int run_calibrate_command(const CalibrateCommand& c) {
   line("buffered read from disk (comparison)", result.buffered_read);
   line("cached read, reused buffer", result.memory_read);
   line("cached read, new buffer", result.memory_read_fresh);
-  line("write into the cache, free memory", result.memory_write);
+  line("write into the cache, memory just freed", result.memory_write);
+  if (result.memory_write_cold.measured) line("write into the cache, memory the host took back", result.memory_write_cold);
   line("write into the cache, reclaiming", result.memory_reclaimed_write);
   line("first touch of new memory", result.first_touch);
   line("cached reads, every core", result.memory_aggregate_read);

@@ -53,7 +53,8 @@ struct Calibration {
   // Memory and the page cache.
   Figure memory_read;          ///< cached data into a reused buffer, one thread
   Figure memory_read_fresh;    ///< cached data into new memory, one thread
-  Figure memory_write;         ///< into the page cache, free memory, one thread
+  Figure memory_write;         ///< into the page cache, memory just freed, one thread
+  Figure memory_write_cold;    ///< the same, memory a VM's host took back (comparison)
   Figure memory_reclaimed_write;  ///< into the page cache, reclaiming clean cache, one thread
   Figure memory_aggregate_read, memory_aggregate_write;  ///< every core at once
   Figure first_touch;          ///< new anonymous memory, one thread

@@ -266,7 +266,7 @@ Rate memory_copy(std::int64_t bytes, const Deadline& deadline) {
   return {done, since(start)};
 }
 
-Rate first_touch(std::int64_t bytes, std::int64_t page_size, const Deadline& deadline, MemoryHold* keep) {
+Rate first_touch(std::int64_t bytes, std::int64_t page_size, const Deadline& deadline) {
   void* memory = ::mmap(nullptr, static_cast<std::size_t>(bytes), PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
   if (memory == MAP_FAILED) throw std::bad_alloc();
   char* p = static_cast<char*>(memory);
@@ -278,11 +278,7 @@ Rate first_touch(std::int64_t bytes, std::int64_t page_size, const Deadline& dea
     if (deadline.passed()) break;
   }
   const double seconds = since(start);
-  if (keep != nullptr) {
-    keep->adopt(memory, bytes);
-  } else {
-    ::munmap(memory, static_cast<std::size_t>(bytes));
-  }
+  ::munmap(memory, static_cast<std::size_t>(bytes));
   return {std::min(done, bytes), seconds};
 }
 
@@ -294,11 +290,6 @@ void MemoryHold::add(std::int64_t bytes) {
   ::madvise(data, static_cast<std::size_t>(bytes), MADV_HUGEPAGE);  // fewer faults, where huge pages are allowed
   char* p = static_cast<char*>(data);
   for (std::int64_t at = 0; at < bytes && !stop_requested(); at += page_size_) p[at] = 1;
-  held_ += bytes;
-}
-
-void MemoryHold::adopt(void* data, std::int64_t bytes) {
-  regions_.emplace_back(data, bytes);
   held_ += bytes;
 }
 

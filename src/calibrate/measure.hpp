@@ -76,11 +76,9 @@ void sync_file(const std::filesystem::path& file);
 Rate cached_read(const std::filesystem::path& file, std::int64_t request, bool fresh, const Deadline& deadline);
 /// memcpy between two touched buffers of `bytes` each, repeatedly, in one thread.
 Rate memory_copy(std::int64_t bytes, const Deadline& deadline);
-class MemoryHold;
 /// Touches one byte per page of `bytes` of new anonymous memory: the page faults and zeroing
-/// of first touch. The memory is unmapped after, or handed to `keep` (so that a next
-/// measurement cannot be given the same pages back).
-Rate first_touch(std::int64_t bytes, std::int64_t page_size, const Deadline& deadline, MemoryHold* keep = nullptr);
+/// of first touch.
+Rate first_touch(std::int64_t bytes, std::int64_t page_size, const Deadline& deadline);
 /// Runs `one` in `threads` threads at once; their bytes over the time to the last end.
 Rate in_threads(int threads, const std::function<Rate(int)>& one);
 
@@ -93,8 +91,6 @@ class MemoryHold {
   MemoryHold& operator=(const MemoryHold&) = delete;
   /// Takes and touches `bytes` more.
   void add(std::int64_t bytes);
-  /// Takes over a mapping of `bytes` made by the caller.
-  void adopt(void* data, std::int64_t bytes);
   std::int64_t bytes() const noexcept { return held_; }
 
  private:

@@ -22,6 +22,14 @@
 //   pcsim_scaling --profile paper       # the paper's model instead of the linux profile
 //
 // Each N runs in a process of its own so that its peak RSS is its own.
+//
+// Instructions show the algorithm's growth apart from the machine's caches and page faults:
+// each run counts the user-space instructions of its first repetition with the CPU's counter
+// (perf_event_open), where there is one (many virtual machines have none: "-"). With
+// --callgrind each N is also run once under valgrind's callgrind, which counts the simulation
+// alone on any machine (50-100 times slower: N = 10^4 takes about a minute):
+//
+//   pcsim_scaling --max 10000 --callgrind
 
 #include <pagecache/error.hpp>
 #include <pagecache/run.hpp>
@@ -31,7 +39,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <fstream>
 #include <cstdlib>
 #include <cstring>
 #include <spawn.h>
@@ -40,6 +50,17 @@
 #include <sys/wait.h>
 #include <unistd.h>
 #include <vector>
+
+#include <linux/perf_event.h>
+#include <sys/ioctl.h>
+#include <sys/syscall.h>
+
+#if __has_include(<valgrind/callgrind.h>)
+#include <valgrind/callgrind.h>  // client requests: no-ops unless run under callgrind
+#define PCSIM_TOGGLE_COLLECT() CALLGRIND_TOGGLE_COLLECT
+#else
+#define PCSIM_TOGGLE_COLLECT() ((void)0)
+#endif
 
 extern char** environ;
 
@@ -81,6 +102,39 @@ chunk_size = "100 MB"
                      pipelines);
 }
 
+// The CPU's count of user-space instructions retired by this thread, while it lives.
+class InstructionCounter {
+ public:
+  InstructionCounter() {
+    perf_event_attr attr{};
+    attr.type = PERF_TYPE_HARDWARE;
+    attr.size = sizeof attr;
+    attr.config = PERF_COUNT_HW_INSTRUCTIONS;
+    attr.disabled = 1;
+    attr.exclude_kernel = 1;
+    attr.exclude_hv = 1;
+    fd_ = static_cast<int>(syscall(SYS_perf_event_open, &attr, 0, -1, -1, 0));
+    if (fd_ >= 0) {
+      ioctl(fd_, PERF_EVENT_IOC_RESET, 0);
+      ioctl(fd_, PERF_EVENT_IOC_ENABLE, 0);
+    }
+  }
+  ~InstructionCounter() {
+    if (fd_ >= 0) close(fd_);
+  }
+  InstructionCounter(const InstructionCounter&) = delete;
+  InstructionCounter& operator=(const InstructionCounter&) = delete;
+  /// So far; -1 without a counter.
+  long long read_count() const {
+    long long count = -1;
+    if (fd_ < 0 || read(fd_, &count, sizeof count) != static_cast<ssize_t>(sizeof count)) return -1;
+    return count;
+  }
+
+ private:
+  int fd_ = -1;
+};
+
 long peak_rss_kb() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
@@ -97,8 +151,16 @@ int run_one(long pipelines, const std::string& profile, double budget) {
   pagecache::RunSummary s;
   std::vector<double> walls;
   double spent = 0.0;
+  long long instructions = -1;
   while (walls.size() < 1000 && (walls.empty() || spent < budget)) {
+    const bool first = walls.empty();
+    const InstructionCounter counter;  // a counter of its own: the first repetition's alone
+    if (first) PCSIM_TOGGLE_COLLECT();
     const pagecache::RunResult result = pagecache::run_scenario(scenario, options);
+    if (first) {
+      PCSIM_TOGGLE_COLLECT();
+      instructions = counter.read_count();
+    }
     walls.push_back(result.summary.wall_seconds);
     spent += result.summary.wall_seconds;
     s = result.summary;
@@ -110,14 +172,15 @@ int run_one(long pipelines, const std::string& profile, double budget) {
   fmt::print(
       "{{\"pipelines\": {}, \"profile\": \"{}\", \"makespan_s\": {:.3f}, \"events\": {}, \"chunk_operations\": {}, "
       "\"repetitions\": {}, \"wall_s\": {:.6f}, \"chunk_ops_per_s\": {:.0f}, \"ns_per_chunk_op\": {:.1f}, "
-      "\"median_ns_per_chunk_op\": {:.1f}, \"peak_rss_kb\": {}}}\n",
+      "\"median_ns_per_chunk_op\": {:.1f}, \"peak_rss_kb\": {}, \"instructions\": {}, \"instructions_per_chunk_op\": {:.0f}}}\n",
       pipelines, profile, s.makespan, s.events, s.chunk_operations, walls.size(), best, ops / best, best / ops * 1e9,
-      median / ops * 1e9, peak_rss_kb());
+      median / ops * 1e9, peak_rss_kb(), instructions, instructions < 0 ? -1.0 : static_cast<double>(instructions) / ops);
   return 0;
 }
 
-// Runs `self --pipelines N --profile P --budget B` and returns its output line.
-std::string run_child(const char* self, long pipelines, const std::string& profile, const std::string& budget) {
+// Runs `[prefix...] self --pipelines N --profile P --budget B` and returns its output line.
+std::string run_child(const char* self, long pipelines, const std::string& profile, const std::string& budget,
+                      const std::vector<std::string>& prefix = {}) {
   int out[2];
   if (pipe(out) != 0) throw std::runtime_error("pipe failed");
   posix_spawn_file_actions_t actions;
@@ -125,14 +188,18 @@ std::string run_child(const char* self, long pipelines, const std::string& profi
   posix_spawn_file_actions_adddup2(&actions, out[1], STDOUT_FILENO);
   posix_spawn_file_actions_addclose(&actions, out[0]);
   const std::string n = std::to_string(pipelines);
-  std::vector<char*> argv = {const_cast<char*>(self), const_cast<char*>("--pipelines"), const_cast<char*>(n.c_str()),
-                             const_cast<char*>("--profile"), const_cast<char*>(profile.c_str()),
-                             const_cast<char*>("--budget"), const_cast<char*>(budget.c_str()), nullptr};
+  std::vector<char*> argv;
+  for (const std::string& word : prefix) argv.push_back(const_cast<char*>(word.c_str()));
+  for (const char* word : {self, "--pipelines", n.c_str(), "--profile", profile.c_str(), "--budget", budget.c_str()}) {
+    argv.push_back(const_cast<char*>(word));
+  }
+  argv.push_back(nullptr);
   pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, self, &actions, nullptr, argv.data(), environ);
+  const int spawned = prefix.empty() ? posix_spawn(&pid, self, &actions, nullptr, argv.data(), environ)
+                                     : posix_spawnp(&pid, prefix.front().c_str(), &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   close(out[1]);
-  if (spawned != 0) throw std::runtime_error(fmt::format("cannot run {}: {}", self, std::strerror(spawned)));
+  if (spawned != 0) throw std::runtime_error(fmt::format("cannot run {}: {}", prefix.empty() ? self : prefix.front(), std::strerror(spawned)));
   std::string line;
   char buffer[4096];
   for (ssize_t got; (got = read(out[0], buffer, sizeof buffer)) > 0;) line.append(buffer, static_cast<std::size_t>(got));
@@ -149,6 +216,25 @@ double field(const std::string& line, const std::string& key) {
   return std::strtod(line.c_str() + at + key.size() + 4, nullptr);
 }
 
+// N run once under callgrind, collecting the first run_scenario alone: its instruction count.
+long long callgrind_instructions(long pipelines, const std::string& profile) {
+  char self[4096];
+  const ssize_t length = readlink("/proc/self/exe", self, sizeof self - 1);
+  if (length <= 0) throw std::runtime_error("cannot find this program's path");
+  self[length] = '\0';
+  const std::string out = fmt::format("/tmp/pcsim-scaling-callgrind-{}-{}.out", getpid(), pipelines);
+  run_child(self, pipelines, profile, "0", {"valgrind", "--tool=callgrind", "--collect-atstart=no", "--callgrind-out-file=" + out, "-q"});
+  std::ifstream in(out);
+  long long total = -1;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("totals: ", 0) == 0) total = std::strtoll(line.c_str() + 8, nullptr, 10);
+  }
+  in.close();
+  std::remove(out.c_str());
+  if (total < 0) throw std::runtime_error(fmt::format("N = {}: no instruction total from callgrind ({})", pipelines, out));
+  return total;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -156,9 +242,12 @@ int main(int argc, char** argv) {
   long max = 100000;
   std::string profile = "linux";
   std::string budget = "1";
+  bool callgrind = false;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    if ((arg == "--pipelines" || arg == "--max" || arg == "--profile" || arg == "--budget") && i + 1 < argc) {
+    if (arg == "--callgrind") {
+      callgrind = true;
+    } else if ((arg == "--pipelines" || arg == "--max" || arg == "--profile" || arg == "--budget") && i + 1 < argc) {
       const std::string value = argv[++i];
       if (arg == "--profile") {
         profile = value;
@@ -174,7 +263,7 @@ int main(int argc, char** argv) {
         (arg == "--max" ? max : one) = n;
       }
     } else {
-      fmt::print(stderr, "usage: {} [--pipelines N | --max N] [--budget SECONDS] [--profile linux|paper]\n", argv[0]);
+      fmt::print(stderr, "usage: {} [--pipelines N | --max N] [--budget SECONDS] [--profile linux|paper] [--callgrind]\n", argv[0]);
       return 2;
     }
   }
@@ -187,15 +276,23 @@ int main(int argc, char** argv) {
   try {
     if (one > 0) return run_one(one, profile, budget_s);
     std::vector<std::string> lines;
-    fmt::print("{:>9} {:>12} {:>12} {:>12} {:>6} {:>10} {:>14} {:>12} {:>12} {:>12}\n", "pipelines", "makespan_s", "events",
-               "chunk_ops", "reps", "wall_s", "chunk_ops/s", "ns/chunk_op", "median_ns", "peak_RSS_MB");
+    fmt::print("{:>9} {:>12} {:>12} {:>12} {:>6} {:>10} {:>14} {:>12} {:>12} {:>12} {:>12}{}\n", "pipelines", "makespan_s", "events",
+               "chunk_ops", "reps", "wall_s", "chunk_ops/s", "ns/chunk_op", "median_ns", "peak_RSS_MB", "instr/op", callgrind ? "  callgrind_instr/op" : "");
     for (long n = 10; n <= max; n *= 10) {
       const std::string line = run_child("/proc/self/exe", n, profile, budget);
       lines.push_back(line);
-      fmt::print("{:>9} {:>12.1f} {:>12.0f} {:>12.0f} {:>6.0f} {:>10.4f} {:>14.0f} {:>12.1f} {:>12.1f} {:>12.1f}\n", n,
+      const double per_op = field(line, "instructions_per_chunk_op");
+      std::string counted;
+      if (callgrind) {
+        const long long total = callgrind_instructions(n, profile);
+        counted = fmt::format("  {:>19.0f}", static_cast<double>(total) / field(line, "chunk_operations"));
+        lines.back().insert(lines.back().rfind('}'), fmt::format(", \"callgrind_instructions\": {}", total));
+      }
+      fmt::print("{:>9} {:>12.1f} {:>12.0f} {:>12.0f} {:>6.0f} {:>10.4f} {:>14.0f} {:>12.1f} {:>12.1f} {:>12.1f} {:>12}{}\n", n,
                  field(line, "makespan_s"), field(line, "events"), field(line, "chunk_operations"), field(line, "repetitions"),
                  field(line, "wall_s"), field(line, "chunk_ops_per_s"), field(line, "ns_per_chunk_op"),
-                 field(line, "median_ns_per_chunk_op"), field(line, "peak_rss_kb") / 1024.0);
+                 field(line, "median_ns_per_chunk_op"), field(line, "peak_rss_kb") / 1024.0,
+                 per_op < 0.0 ? std::string("-") : fmt::format("{:.0f}", per_op), counted);
       std::fflush(stdout);
     }
     fmt::print("\n");

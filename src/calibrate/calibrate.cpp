@@ -3,6 +3,7 @@
 #include "calibrate/measure.hpp"
 #include "calibrate/reclaim.hpp"
 #include "calibrate/scratch.hpp"
+#include "calibrate/text.hpp"
 
 #include <pagecache/error.hpp>
 
@@ -23,8 +24,6 @@ namespace pagecache::calibrate {
 
 namespace {
 
-constexpr std::int64_t MiB = 1 << 20;
-constexpr std::int64_t GiB = 1LL << 30;
 
 std::string utc_now() {
   const std::time_t now = std::time(nullptr);
@@ -35,14 +34,6 @@ std::string utc_now() {
   return text;
 }
 
-std::string size_text(std::int64_t bytes) {
-  if (bytes >= GiB) return fmt::format("{:.1f} GiB", static_cast<double>(bytes) / GiB);
-  return fmt::format("{} MiB", bytes / MiB);
-}
-
-std::string rate_text(double bytes_per_s) { return fmt::format("{:.0f} MB/s", bytes_per_s / 1e6); }
-
-std::int64_t meminfo_now(std::string_view key) { return meminfo_bytes(read_meminfo(), key); }
 
 Figure figure(const Rate& r, std::string how) {
   if (r.bytes <= 0 || r.seconds <= 0.0) return Figure{0.0, how + ": nothing measured (interrupted?)", false};

@@ -213,10 +213,10 @@ RealRun run_real(const RealCase& spec, const std::filesystem::path& dir, int rep
     done.store(true);
   }
   if (!errors.empty()) std::rethrow_exception(errors.front());
-  const Activity a = activity.since();
-  run.others_busy_cores = a.others_busy_cores;
-  run.steal_pct = a.steal_pct;
-  run.reported = a.reported;
+  const Activity seen = activity.since();
+  run.others_busy_cores = seen.others_busy_cores;
+  run.steal_pct = seen.steal_pct;
+  run.reported = seen.reported;
   std::sort(run.phases.begin(), run.phases.end(), [](const RealPhase& a, const RealPhase& b) {
     return std::tie(a.pipeline, a.task, a.start) < std::tie(b.pipeline, b.task, b.start);
   });

@@ -2,6 +2,7 @@
 
 #include "calibrate/measure.hpp"
 #include "calibrate/system_info.hpp"
+#include "calibrate/text.hpp"
 
 #include <fmt/format.h>
 
@@ -11,16 +12,6 @@
 namespace pagecache::calibrate {
 
 namespace {
-
-constexpr std::int64_t MiB = 1 << 20;
-constexpr std::int64_t GiB = 1LL << 30;
-
-std::string size_text(std::int64_t bytes) {
-  if (bytes >= GiB) return fmt::format("{:.1f} GiB", static_cast<double>(bytes) / GiB);
-  return fmt::format("{} MiB", bytes / MiB);
-}
-
-std::int64_t meminfo_now(std::string_view key) { return meminfo_bytes(read_meminfo(), key); }
 
 Figure not_measured(std::string why) { return Figure{0.0, "not measured: " + std::move(why), false}; }
 

@@ -152,6 +152,8 @@ std::int64_t reported_free_bytes() {
 
 std::string read_meminfo() { return read_text("/proc/meminfo"); }
 
+std::int64_t meminfo_now(std::string_view key) { return meminfo_bytes(read_meminfo(), key); }
+
 std::int64_t meminfo_bytes(std::string_view meminfo, std::string_view key) {
   std::size_t at = 0;
   while (at < meminfo.size()) {

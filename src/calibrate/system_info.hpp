@@ -74,6 +74,8 @@ class ActivityMark {
 
 /// /proc/meminfo now.
 std::string read_meminfo();
+/// A /proc/meminfo field now, in bytes; -1 if absent.
+std::int64_t meminfo_now(std::string_view key);
 
 /// Bytes of free memory the kernel has reported to a virtual machine's host since boot, where
 /// it counts them (a page_reporting module with a `reported_kib` parameter); -1 otherwise.

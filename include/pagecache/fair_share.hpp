@@ -119,6 +119,9 @@ class FairShare {
   /// Flows in progress, in total and through one resource.
   std::size_t active_flows() const noexcept;
   std::size_t active_flows(ResourceId resource) const;
+  /// Resources solved as hubs right now: saturated, shared by many classes of flows, each
+  /// change re-solving one client's part (for tests and benchmarks).
+  std::size_t hubs() const noexcept;
   /// Fraction of the resource's time in use right now (sum of cost * rate), in [0, 1].
   double utilization(ResourceId resource) const;
 
@@ -136,6 +139,7 @@ class FairShare {
   struct Impl;
   detail::FlowState* start(const FlowSpec& spec, std::coroutine_handle<> waiting, FlowAwaiter* awaiter);
   void withdraw(detail::FlowState* flow) noexcept;
+  void check_hubs() const;
 
   Simulator* sim_;
   std::unique_ptr<Impl> impl_;

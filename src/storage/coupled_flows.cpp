@@ -25,6 +25,7 @@ void FairShare::Impl::join(FlowState* flow, double work) {
     c.key = it->first;
     c.owner = this;
     c.updated = sim.now();
+    c.serial = next_class_serial++;
     for (std::uint8_t i = 0; i < c.key.usage_count; ++i) {
       ResourceState& r = resource(c.key.usages[i].resource);
       c.slots[i] = static_cast<std::uint32_t>(r.classes.size());
@@ -42,6 +43,7 @@ void FairShare::Impl::join(FlowState* flow, double work) {
 
 void FairShare::Impl::drop_if_empty(FlowClass& c) {
   if (!c.members.empty()) return;
+  release(c);
   sim.cancel(c.head_event);
   for (std::uint8_t i = 0; i < c.key.usage_count; ++i) {
     ResourceState& r = resource(c.key.usages[i].resource);
@@ -76,6 +78,7 @@ void FairShare::Impl::make_explicit(ResourceState& r) {
 
 void FairShare::Impl::make_shared(ResourceState& r) {
   // Every flow left here crosses r alone; hand them back to processor sharing in start order.
+  if (r.hub) dissolve(r);
   const double now = sim.now();
   std::vector<std::pair<FlowState*, double>> flows;
   while (!r.classes.empty()) {
@@ -94,6 +97,7 @@ void FairShare::Impl::make_shared(ResourceState& r) {
 }
 
 void FairShare::Impl::solve_from(const FlowClassKey& seed) {
+  if (solve_at_hub(seed)) return;
   if (!solve_component(seed, true)) solve_component(seed, false);
 }
 
@@ -109,10 +113,12 @@ bool FairShare::Impl::solve_component(const FlowClassKey& seed, bool leave_out_s
   component_resources.clear();
   left_out.clear();
   component_classes.clear();
+  bool met_hub = false;
   const auto reach = [&](ResourceState& r) {
     if (r.coupled == 0 || r.visit == stamp) return;
     r.visit = stamp;
-    if (leave_out_slack && r.classes.size() > kLeaveOutAbove && r.usage < 1.0 - kSlack) {
+    met_hub = met_hub || r.hub != nullptr;
+    if (leave_out_slack && r.classes.size() > kLeaveOutAbove && r.usage < 1.0 - kSlack && r.hub_bound == 0) {
       r.local = kLeftOut;
       r.pending = 0.0;
       left_out.push_back(&r);
@@ -132,6 +138,11 @@ bool FairShare::Impl::solve_component(const FlowClassKey& seed, bool leave_out_s
   for (std::size_t next = 0; next < component_resources.size(); ++next) {
     for (FlowClass* c : component_resources[next]->classes) take(*c);
   }
+  if (met_hub) {
+    // A hub solves its satellites alone; the whole component is solved without it.
+    dissolve_hubs();
+    return solve_component(seed, leave_out_slack);
+  }
   if (component_classes.empty()) return true;
 
   // A class of n flows is one flow of n times their weight and bound (see FlowClass).
@@ -139,6 +150,7 @@ bool FairShare::Impl::solve_component(const FlowClassKey& seed, bool leave_out_s
   for (std::size_t i = 0; i < component_classes.size(); ++i) {
     FlowClass& c = *component_classes[i];
     PC_ASSERT(!c.members.empty());
+    c.local = static_cast<std::uint32_t>(i);
     const auto n = static_cast<double>(c.size());
     detail::MaxMinFlow& p = problem[i];
     p.weight = n * c.key.weight;
@@ -187,6 +199,18 @@ bool FairShare::Impl::solve_component(const FlowClassKey& seed, bool leave_out_s
         if (c->key.usages[u].resource.index == r->index) r->usage += c->key.usages[u].cost * c->contribution;
       }
     }
+  }
+  if (left_out.empty() && component_classes.size() > kHubAbove) {
+    // The resource bottlenecking the most classes, if many cross it: a hub from now on.
+    ResourceState* busiest = nullptr;
+    for (ResourceState* r : component_resources) r->slope = 0.0;
+    for (const detail::MaxMinFlow& p : problem) {
+      if (p.limit != detail::kByBound) component_resources[p.limit]->slope += 1.0;
+    }
+    for (ResourceState* r : component_resources) {
+      if (r->classes.size() > kHubAbove && r->slope > 0.0 && (busiest == nullptr || r->slope > busiest->slope)) busiest = r;
+    }
+    if (busiest != nullptr) form_hub(*busiest);
   }
   return true;
 }

@@ -181,6 +181,7 @@ FairShare::~FairShare() {
     sim_->cancel(flow->completion);
   };
   for (auto& r : impl_->resources) {
+    if (r.hub) sim_->cancel(r.hub->event);
     for (FlowClass* c : r.classes) {
       sim_->cancel(c->head_event);
       for (const detail::KeyedFlow& entry : c->members) detach(entry.flow);
@@ -201,6 +202,8 @@ std::size_t FairShare::resource_count() const noexcept { return impl_->resources
 
 std::size_t FairShare::active_flows() const noexcept { return impl_->active; }
 
+std::size_t FairShare::hubs() const noexcept { return impl_->hubs; }
+
 std::size_t FairShare::active_flows(ResourceId resource) const {
   const auto& r = impl_->resource(resource);
   std::size_t flows = r.sharing.size();
@@ -219,7 +222,7 @@ double FairShare::utilization(ResourceId resource) const {
   double usage = 0.0;
   for (const FlowClass* c : r.classes) {
     for (std::uint8_t u = 0; u < c->key.usage_count; ++u) {
-      if (c->key.usages[u].resource == resource) usage += c->key.usages[u].cost * c->rate * static_cast<double>(c->size());
+      if (c->key.usages[u].resource == resource) usage += c->key.usages[u].cost * c->member_rate() * static_cast<double>(c->size());
     }
   }
   return usage;
@@ -250,7 +253,12 @@ void FairShare::check_invariants() const {
       }
       PC_ASSERT_MSG(found, fmt::format("class registry of '{}' out of step", r.name));
       PC_ASSERT(!c.members.empty() && c.members.ordered());
-      PC_ASSERT(c.rate > 0.0 && static_cast<bool>(c.head_event));
+      const bool on_hub_clock = c.hub_role == detail::HubRole::Bound;
+      PC_ASSERT(c.rate > 0.0 && static_cast<bool>(c.head_event) != on_hub_clock);
+      if (c.hub_role != detail::HubRole::None) {
+        const auto* hub = static_cast<const detail::Hub*>(c.hub);
+        PC_ASSERT_MSG(Impl::hub_usage_index(c, hub->resource) < c.key.usage_count, fmt::format("a class of '{}' is in a hub it does not cross", r.name));
+      }
       const auto it = impl_->classes.find(c.key);
       PC_ASSERT_MSG(it != impl_->classes.end() && it->second.get() == &c, fmt::format("a class of '{}' is not registered", r.name));
       for (const detail::KeyedFlow& entry : c.members) {
@@ -269,6 +277,7 @@ void FairShare::check_invariants() const {
     if (r.coupled > 0) {
       double usage = 0.0;
       for (const FlowClass* c : r.classes) {
+        if (c->hub_role == detail::HubRole::Bound) continue;  // its usage follows the hub's level
         const double total = c->rate * static_cast<double>(c->size());
         PC_ASSERT_MSG(std::abs(c->contribution - total) <= 1e-9 * total, fmt::format("a class of '{}' is not solved", r.name));
         for (std::uint8_t u = 0; u < c->key.usage_count; ++u) {
@@ -286,9 +295,81 @@ void FairShare::check_invariants() const {
     }
     PC_ASSERT_MSG(utilization(ResourceId{r.index}) <= 1.0 + 1e-9, fmt::format("'{}' over capacity", r.name));
   }
+  check_hubs();
   PC_ASSERT_MSG(flows_seen == impl_->active, fmt::format("{} flows registered, {} active", flows_seen, impl_->active));
   PC_ASSERT(classes_seen == impl_->classes.size());
   PC_ASSERT(impl_->pool.in_use() == impl_->active);
+}
+
+}  // namespace pagecache
+
+namespace pagecache {
+
+// Each hub: its heaps and sums against its classes, its level within every satellite's range,
+// and its capacity used in full.
+void FairShare::check_hubs() const {
+  std::size_t hubs = 0;
+  std::vector<std::uint32_t> bound_on(impl_->resources.size(), 0);
+  for (const auto& r : impl_->resources) {
+    if (!r.hub) continue;
+    ++hubs;
+    const detail::Hub& h = *r.hub;
+    PC_ASSERT_MSG(h.classes == h.heads.size() + h.floors.size() && h.heads.size() == h.ceilings.size(),
+                  fmt::format("hub '{}' lists {} classes", r.name, h.classes));
+    PC_ASSERT(h.heads.ordered() && h.ceilings.ordered() && h.floors.ordered());
+    PC_ASSERT_MSG(h.level > 0.0 && static_cast<bool>(h.event) == !h.heads.empty(), fmt::format("hub '{}' has no level or event", r.name));
+    double demand = 0.0;
+    for (std::uint32_t i = 0; i < h.heads.size(); ++i) {
+      const detail::HubEntry& entry = h.heads.at(i);
+      const FlowClass& c = *entry.flow_class;
+      PC_ASSERT(c.hub_role == detail::HubRole::Bound && c.hub == &h && c.hub_head_index == i);
+      const double due = c.hub_base_clock + std::max(0.0, c.members.top().key - c.hub_base_time) / c.key.weight;
+      PC_ASSERT_MSG(entry.key == due, fmt::format("a class of hub '{}' is due at the wrong clock", r.name));
+      PC_ASSERT(h.ceilings.at(c.hub_range_index).flow_class == &c);
+      demand += c.hub_share;
+      for (std::uint8_t u = 0; u < c.key.usage_count; ++u) ++bound_on[c.key.usages[u].resource.index];
+    }
+    double fixed = 0.0;
+    for (std::uint32_t i = 0; i < h.floors.size(); ++i) {
+      const FlowClass& c = *h.floors.at(i).flow_class;
+      PC_ASSERT(c.hub_role == detail::HubRole::Fixed && c.hub == &h && c.hub_range_index == i);
+      fixed += c.hub_share;
+    }
+    PC_ASSERT_MSG(std::abs(demand - h.demand) <= 1e-9 * demand && std::abs(fixed - h.fixed) <= 1e-9 + 1e-9 * fixed,
+                  fmt::format("sums of hub '{}' out of step", r.name));
+    PC_ASSERT_MSG((h.ceilings.empty() || h.level <= h.ceilings.top().key) && (h.floors.empty() || h.level >= h.floors.top().key),
+                  fmt::format("hub '{}' level {} outside a satellite's range", r.name, h.level));
+    if (!h.heads.empty()) {
+      const double used = utilization(ResourceId{r.index});
+      PC_ASSERT_MSG(std::abs(used - 1.0) <= 1e-6, fmt::format("hub '{}' not saturated: {}", r.name, used));
+    }
+  }
+  PC_ASSERT(hubs == impl_->hubs);
+  // Every class's rate is the max-min one, solved afresh over all coupled resources.
+  std::vector<detail::MaxMinFlow> problem;
+  std::vector<const FlowClass*> order;
+  for (const auto& [key, c] : impl_->classes) {
+    detail::MaxMinFlow p;
+    p.weight = static_cast<double>(c->size()) * key.weight;
+    p.bound = static_cast<double>(c->size()) * key.bound;
+    p.usage_count = key.usage_count;
+    for (std::uint8_t u = 0; u < key.usage_count; ++u) {
+      p.resource[u] = key.usages[u].resource.index;
+      p.cost[u] = key.usages[u].cost;
+    }
+    problem.push_back(p);
+    order.push_back(c.get());
+  }
+  detail::MaxMinSolver().solve(problem, impl_->resources.size());
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const double rate = order[i]->member_rate() * static_cast<double>(order[i]->size());
+    PC_ASSERT_MSG(std::abs(rate - problem[i].rate) <= 1e-9 * problem[i].rate,
+                  fmt::format("a class of {} flows runs at {}, max-min says {} (role {})", order[i]->size(), rate, problem[i].rate,
+                              static_cast<int>(order[i]->hub_role)));
+  }
+  for (const auto& r : impl_->resources) {
+    PC_ASSERT_MSG(bound_on[r.index] == r.hub_bound, fmt::format("'{}' counts {} classes on a hub's clock, {} found", r.name, r.hub_bound, bound_on[r.index]));
+  }
 }
 
 }  // namespace pagecache

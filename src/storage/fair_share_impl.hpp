@@ -9,14 +9,17 @@
 #include "engine/object_pool.hpp"
 #include "storage/flow_class.hpp"
 #include "storage/flow_state.hpp"
+#include "storage/hub.hpp"
 #include "storage/max_min.hpp"
 #include "storage/processor_sharing.hpp"
 
 #include <deque>
 #include <limits>
 #include <memory>
+#include <span>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace pagecache {
@@ -48,6 +51,12 @@ struct FairShare::Impl {
     // And the change a solve that leaves it out would make to it.
     double usage = 0.0;
     double pending = 0.0;
+    // While it is a hub (see Hub); how many Bound classes of a hub cross it; scratch for a
+    // satellite's ranges (usage at the hub's level, and its growth with that level).
+    std::unique_ptr<detail::Hub> hub;
+    std::uint32_t hub_bound = 0;
+    double load = 0.0;
+    double slope = 0.0;
   };
 
   // A solve may leave out a resource that is crossed by many classes and not close to
@@ -56,6 +65,11 @@ struct FairShare::Impl {
   static constexpr std::size_t kLeaveOutAbove = 4;  // classes
   static constexpr double kSlack = 1e-6;            // of its capacity
   static constexpr std::uint32_t kLeftOut = std::numeric_limits<std::uint32_t>::max();
+  // A saturated resource crossed by this many classes becomes a hub (below it, solving the
+  // whole component costs about as much); a satellite larger than this many classes is
+  // solved with its whole component instead.
+  static constexpr std::size_t kHubAbove = 32;    // classes
+  static constexpr std::size_t kSatelliteAtMost = 64;  // classes
 
   Simulator& sim;
   std::deque<ResourceState> resources;  // deque: stable addresses
@@ -71,6 +85,8 @@ struct FairShare::Impl {
   detail::ObjectPool<detail::FlowState> pool;
   std::unordered_map<detail::FlowClassKey, std::unique_ptr<detail::FlowClass>, detail::FlowClassKeyHash> classes;
   std::uint64_t next_sequence = 0;
+  std::uint64_t next_class_serial = 0;
+  std::size_t hubs = 0;
   std::uint64_t visit_stamp = 0;
   std::size_t active = 0;
 
@@ -80,6 +96,12 @@ struct FairShare::Impl {
   std::vector<ResourceState*> left_out;
   std::vector<detail::FlowClass*> component_classes;
   std::vector<detail::MaxMinFlow> problem;
+  std::vector<double> reserved;
+  std::vector<detail::FlowClass*> satellite;
+  std::vector<ResourceState*> satellite_resources;
+  std::vector<std::pair<std::size_t, std::size_t>> satellite_ends;  // (class end, resource end)
+  std::vector<double> satellite_ceilings;
+  std::uint32_t hub_resource_index = 0;  // the hub being solved
   detail::MaxMinSolver solver;
 
   ResourceState& resource(ResourceId id) { return resources[id.index]; }
@@ -87,6 +109,7 @@ struct FairShare::Impl {
   static void on_flow_due(void* context);
   static void on_head_due(void* context);
   static void on_class_due(void* context);
+  static void on_hub_due(void* context);
 
   void validate(const FlowSpec& spec) const;
   detail::FlowState* start(const FlowSpec& spec, std::coroutine_handle<> waiting, FlowAwaiter* awaiter);
@@ -99,6 +122,21 @@ struct FairShare::Impl {
   void solve_from(const detail::FlowClassKey& seed);
   bool solve_component(const detail::FlowClassKey& seed, bool leave_out_slack);
   void schedule_head(detail::FlowClass& c);
+
+  // Hubs (hub.cpp).
+  bool solve_at_hub(const detail::FlowClassKey& seed);
+  void form_hub(ResourceState& r);
+  void dissolve_hubs();
+  void dissolve(ResourceState& r);
+  void release(detail::FlowClass& c);
+  void attach_bound(detail::Hub& hub, detail::FlowClass& c, double ceiling);
+  void attach_fixed(detail::Hub& hub, detail::FlowClass& c, double floor, double usage);
+  double satellite_ceiling(std::span<detail::FlowClass* const> members, std::span<ResourceState* const> around,
+                           std::uint32_t hub_local, double level);
+  void apply_satellite(detail::Hub& hub, std::span<detail::FlowClass* const> members, std::span<ResourceState* const> around,
+                       std::uint32_t hub_local, double ceiling);
+  void schedule_hub(detail::Hub& hub);
+  static std::size_t hub_usage_index(const detail::FlowClass& c, std::uint32_t hub_resource);
   void wake(detail::FlowState* flow);
 };
 

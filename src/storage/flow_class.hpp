@@ -61,6 +61,19 @@ struct FlowClassKeyHash {
   }
 };
 
+// The progress clock of a saturated server's flows (see Hub): `clock` is the integral of
+// `level`, the rate per unit weight of every flow the server bottlenecks, up to `updated`.
+struct HubClock {
+  double level = 0.0;
+  double clock = 0.0;
+  double updated = 0.0;
+  double at(double now) const noexcept { return clock + level * (now - updated); }
+};
+
+// A class's part in a hub: bottlenecked by it (its progress is the hub's clock), crossing it
+// bottlenecked elsewhere, or neither.
+enum class HubRole : std::uint8_t { None, Bound, Fixed };
+
 // Laid out for the component search and solve, which visit every class of a component at
 // every change: what they read comes first.
 struct FlowClass {
@@ -76,10 +89,28 @@ struct FlowClass {
   FinishHeap members;          // by virtual finish, then start order
   void* owner = nullptr;       // the FairShare implementation holding it
   std::array<std::uint32_t, kMaxResourcesPerFlow> slots{};  // index in each resource's class list
+  std::uint64_t serial = 0;    // creation order: ties in a hub's heaps
+
+  // In a hub (see Hub): the hub, the class's role, and for a Bound class the hub clock and
+  // its own virtual time when it joined; `hub_share` is what it added to the hub's demand
+  // (Bound) or fixed usage (Fixed); indices in the hub's heaps.
+  HubRole hub_role = HubRole::None;
+  HubClock* hub = nullptr;
+  double hub_base_clock = 0.0;
+  double hub_base_time = 0.0;
+  double hub_share = 0.0;
+  std::uint32_t hub_head_index = 0;
+  std::uint32_t hub_range_index = 0;
 
   std::size_t size() const noexcept { return members.size(); }
+  /// Each member's rate now (a Bound class's follows its hub's level).
+  double member_rate() const noexcept { return hub_role == HubRole::Bound ? key.weight * hub->level : rate; }
   void advance(double now) noexcept {
-    if (!members.empty() && now > updated) virtual_time += rate * (now - updated);
+    if (hub_role == HubRole::Bound) {
+      virtual_time = hub_base_time + key.weight * (hub->at(now) - hub_base_clock);
+    } else if (!members.empty() && now > updated) {
+      virtual_time += rate * (now - updated);
+    }
     updated = now;
   }
 };

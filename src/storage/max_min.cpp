@@ -13,7 +13,14 @@ double MaxMinSolver::saturation_level(std::size_t resource) const noexcept {
   return std::max(0.0, 1.0 - used_[resource]) / demand_[resource];
 }
 
-void MaxMinSolver::solve(std::span<MaxMinFlow> flows, std::size_t resource_count) {
+void MaxMinSolver::reset_used(std::size_t resource_count) {
+  if (reserved_.empty()) used_.assign(resource_count, 0.0);
+  else used_.assign(reserved_.begin(), reserved_.begin() + static_cast<std::ptrdiff_t>(resource_count));
+}
+
+void MaxMinSolver::solve(std::span<MaxMinFlow> flows, std::size_t resource_count, std::span<const double> reserved) {
+  PC_ASSERT(reserved.empty() || reserved.size() >= resource_count);
+  reserved_ = reserved;
   const auto n = static_cast<std::uint32_t>(flows.size());
   frozen_.assign(n, 0);
   std::uint32_t unfrozen = n;
@@ -22,7 +29,7 @@ void MaxMinSolver::solve(std::span<MaxMinFlow> flows, std::size_t resource_count
   // one to three. Many more levels (clients behind links of many speeds) go on with heaps.
   const double tie = 1.0 + precision::kRelativeRate;
   constexpr double kInf = std::numeric_limits<double>::infinity();
-  used_.assign(resource_count, 0.0);
+  reset_used(resource_count);
   for (int round = 0; unfrozen > 0 && round < kPlainRounds; ++round) {
     demand_.assign(resource_count, 0.0);
     for (std::uint32_t i = 0; i < n; ++i) {
@@ -44,14 +51,19 @@ void MaxMinSolver::solve(std::span<MaxMinFlow> flows, std::size_t resource_count
       if (frozen_[i]) continue;
       MaxMinFlow& f = flows[i];
       bool freeze = f.bound / f.weight <= level * tie;
-      for (std::uint8_t u = 0; u < f.usage_count && !freeze; ++u) freeze = saturation_level(f.resource[u]) <= level * tie;
+      f.limit = kByBound;
+      for (std::uint8_t u = 0; u < f.usage_count && !freeze; ++u) {
+        freeze = saturation_level(f.resource[u]) <= level * tie;
+        f.limit = f.resource[u];
+      }
       if (!freeze) continue;
       f.rate = std::min(f.bound, f.weight * level);
+      f.level = level;
       frozen_[i] = 1;
       --unfrozen;
     }
     // Charge the frozen flows to every resource they cross.
-    used_.assign(resource_count, 0.0);
+    reset_used(resource_count);
     for (std::uint32_t i = 0; i < n; ++i) {
       if (!frozen_[i]) continue;
       const MaxMinFlow& f = flows[i];
@@ -127,6 +139,7 @@ void MaxMinSolver::solve_with_heaps(std::span<MaxMinFlow> flows, std::size_t res
       bounds_.pop_back();
       if (frozen_[i]) continue;
       frozen_[i] = 1;
+      flows[i].limit = kByBound;
       freezing_.push_back(i);
     }
     for (prune(); !saturations_.empty() && saturations_.front().level <= level * tie; prune()) {
@@ -137,6 +150,7 @@ void MaxMinSolver::solve_with_heaps(std::span<MaxMinFlow> flows, std::size_t res
         const std::uint32_t i = flows_on_[k];
         if (frozen_[i]) continue;
         frozen_[i] = 1;
+        flows[i].limit = r;
         freezing_.push_back(i);
       }
     }
@@ -146,6 +160,7 @@ void MaxMinSolver::solve_with_heaps(std::span<MaxMinFlow> flows, std::size_t res
     for (const std::uint32_t i : freezing_) {
       MaxMinFlow& f = flows[i];
       f.rate = std::min(f.bound, f.weight * level);
+      f.level = level;
       --unfrozen;
       for (std::uint8_t u = 0; u < f.usage_count; ++u) {
         const std::uint32_t r = f.resource[u];

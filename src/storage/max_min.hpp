@@ -26,12 +26,19 @@ struct MaxMinFlow {
   std::array<std::uint32_t, 4> resource{};  // indices in [0, resource_count)
   std::array<double, 4> cost{};
   double rate = 0.0;  // output
+  double level = 0.0;        // output: the level at which it froze (its rate is min(bound, weight * level))
+  std::uint32_t limit = 0;   // output: the resource that froze it, or kByBound
 };
+
+/// MaxMinFlow::limit of a flow frozen by its own bound.
+inline constexpr std::uint32_t kByBound = 0xffffffffu;
 
 class MaxMinSolver {
  public:
-  /// Sets `rate` of every flow. Each flow must cross a resource or have a finite bound.
-  void solve(std::span<MaxMinFlow> flows, std::size_t resource_count);
+  /// Sets `rate`, `level` and `limit` of every flow. Each flow must cross a resource or have a
+  /// finite bound. `reserved`, if given, is capacity of each resource already taken by flows
+  /// outside the problem (a share of a saturated server held by clients not being solved).
+  void solve(std::span<MaxMinFlow> flows, std::size_t resource_count, std::span<const double> reserved = {});
 
  private:
   // A limit ahead: a resource's saturation level or a flow's bound / weight. The heaps keep
@@ -53,7 +60,10 @@ class MaxMinSolver {
   void solve_with_heaps(std::span<MaxMinFlow> flows, std::size_t resource_count, std::uint32_t unfrozen, double level);
   double saturation_level(std::size_t resource) const noexcept;
 
-  std::vector<double> used_;                // capacity used by frozen flows, per resource
+  void reset_used(std::size_t resource_count);
+
+  std::span<const double> reserved_;
+  std::vector<double> used_;                // capacity used by frozen flows (and reserved), per resource
   std::vector<double> demand_;              // sum of cost * weight of unfrozen flows per resource
   std::vector<std::uint32_t> unfrozen_on_;  // unfrozen flows per resource
   std::vector<std::uint32_t> first_flow_;   // per resource: where its flows start in flows_on_

@@ -23,6 +23,16 @@
 //
 // Each N runs in a process of its own so that its peak RSS is its own.
 //
+// --shape cluster: N client hosts instead, each with its own page cache and its own link
+// (1250 MB/s) to one NFS server (a 515/375 MB/s disk, writethrough), A applications per host
+// (--apps-per-host, 1 by default). Each application reads a 200 MB input from the server in
+// 10 MB chunks, computes 1-11 s (staggered) and writes a 50 MB result back: the server's disk
+// is saturated from a few clients on, the case where one change used to re-solve every
+// client. N counts hosts here:
+//
+//   pcsim_scaling --shape cluster --max 100000 --budget 0 --callgrind
+//   pcsim_scaling --shape cluster --apps-per-host 32 --pipelines 10000   # 320,000 applications
+//
 // Instructions show the algorithm's growth apart from the machine's caches and page faults:
 // each run counts the user-space instructions of its first repetition with the CPU's counter
 // (perf_event_open), where there is one (many virtual machines have none: "-"). With
@@ -102,6 +112,91 @@ chunk_size = "100 MB"
                      pipelines);
 }
 
+// The cluster shape (see the top): a template parsed once (hosts get the profile's defaults
+// from the loader), its client host and link copied N times. Built in memory: 10^5 hosts of
+// TOML would take longer to read than to simulate.
+pagecache::Scenario cluster_scenario(long hosts, long apps_per_host, const std::string& profile) {
+  const std::string text = fmt::format(R"(title = "scaling: {} hosts x {} applications over NFS"
+profile = "{}"
+memory_sample_interval = "60 s"
+
+[[hosts]]
+name = "storage"
+cores = 32
+memory = "250 GiB"
+memory_read_bw = "6860 MB/s"
+memory_write_bw = "2764 MB/s"
+[hosts.page_cache]
+mode = "writethrough"
+[[hosts.disks]]
+name = "nfs-disk"
+read_bw = "515 MB/s"
+write_bw = "375 MB/s"
+
+[[hosts]]
+name = "node"
+cores = 2
+memory = "8 GiB"
+memory_read_bw = "6860 MB/s"
+memory_write_bw = "2764 MB/s"
+[[hosts.disks]]
+name = "ssd"
+read_bw = "510 MB/s"
+write_bw = "516 MB/s"
+
+[[links]]
+name = "net"
+bandwidth = "1250 MB/s"
+latency = "20 us"
+hosts = ["node", "storage"]
+
+# A workload for the loader, replaced below.
+[[files]]
+name = "template"
+size = "1 MB"
+host = "storage"
+[[apps]]
+host = "node"
+[[apps.tasks]]
+read = "template"
+)",
+                                       hosts, apps_per_host, profile);
+  pagecache::Scenario s = pagecache::parse_scenario(text, "<scaling cluster>", {}, profile);
+  const pagecache::HostConfig node = s.hosts.back();
+  const pagecache::LinkSpec net = s.links.back();
+  s.hosts.pop_back();
+  s.links.pop_back();
+  s.files.clear();
+  s.apps.clear();
+  const long apps = hosts * apps_per_host;
+  s.hosts.reserve(static_cast<std::size_t>(hosts) + 1);
+  s.links.reserve(static_cast<std::size_t>(hosts));
+  s.files.reserve(static_cast<std::size_t>(apps) * 2);
+  s.apps.reserve(static_cast<std::size_t>(apps));
+  for (long h = 1; h <= hosts; ++h) {
+    pagecache::HostConfig& host = s.hosts.emplace_back(node);
+    host.name = fmt::format("node-{}", h);
+    pagecache::LinkSpec& link = s.links.emplace_back(net);
+    link.name = fmt::format("net-{}", h);
+    link.host_a = host.name;
+    for (long a = 1; a <= apps_per_host; ++a) {
+      const long k = (h - 1) * apps_per_host + a;
+      s.files.push_back({fmt::format("in-{}", k), 200'000'000, "storage", "nfs-disk", false});
+      s.files.push_back({fmt::format("out-{}", k), 50'000'000, "storage", "nfs-disk", false});
+      pagecache::AppSpec& app = s.apps.emplace_back();
+      app.name = std::to_string(k);
+      app.host = host.name;
+      pagecache::TaskSpec& task = app.tasks.emplace_back();
+      task.name = "1";
+      task.reads = {fmt::format("in-{}", k)};
+      task.compute = 1.0 + 10.0 * static_cast<double>((k * 7919) % apps) / static_cast<double>(apps);
+      task.writes = {fmt::format("out-{}", k)};
+      task.chunk_size = 10'000'000;
+    }
+  }
+  return s;
+}
+
 // The CPU's count of user-space instructions retired by this thread, while it lives.
 class InstructionCounter {
  public:
@@ -143,9 +238,10 @@ long peak_rss_kb() {
 
 // One N in this process: its JSON line on stdout, from repetitions until `budget` seconds
 // have been spent (at most 1000, at least one).
-int run_one(long pipelines, const std::string& profile, double budget) {
+int run_one(long pipelines, const std::string& profile, double budget, long apps_per_host) {
   const pagecache::Scenario scenario =
-      pagecache::parse_scenario(scenario_text(pipelines, profile), fmt::format("<scaling {}>", pipelines), {}, profile);
+      apps_per_host > 0 ? cluster_scenario(pipelines, apps_per_host, profile)
+                        : pagecache::parse_scenario(scenario_text(pipelines, profile), fmt::format("<scaling {}>", pipelines), {}, profile);
   pagecache::RunOptions options;
   options.cache_contents = false;
   pagecache::RunSummary s;
@@ -170,16 +266,16 @@ int run_one(long pipelines, const std::string& profile, double budget) {
   const double median = walls[walls.size() / 2];
   const double ops = static_cast<double>(s.chunk_operations);
   fmt::print(
-      "{{\"pipelines\": {}, \"profile\": \"{}\", \"makespan_s\": {:.3f}, \"events\": {}, \"chunk_operations\": {}, "
+      "{{\"{}\": {}, \"applications\": {}, \"profile\": \"{}\", \"makespan_s\": {:.3f}, \"events\": {}, \"chunk_operations\": {}, "
       "\"repetitions\": {}, \"wall_s\": {:.6f}, \"chunk_ops_per_s\": {:.0f}, \"ns_per_chunk_op\": {:.1f}, "
       "\"median_ns_per_chunk_op\": {:.1f}, \"peak_rss_kb\": {}, \"instructions\": {}, \"instructions_per_chunk_op\": {:.0f}}}\n",
-      pipelines, profile, s.makespan, s.events, s.chunk_operations, walls.size(), best, ops / best, best / ops * 1e9,
+      apps_per_host > 0 ? "hosts" : "pipelines", pipelines, scenario.apps.size(), profile, s.makespan, s.events, s.chunk_operations, walls.size(), best, ops / best, best / ops * 1e9,
       median / ops * 1e9, peak_rss_kb(), instructions, instructions < 0 ? -1.0 : static_cast<double>(instructions) / ops);
   return 0;
 }
 
 // Runs `[prefix...] self --pipelines N --profile P --budget B` and returns its output line.
-std::string run_child(const char* self, long pipelines, const std::string& profile, const std::string& budget,
+std::string run_child(const char* self, long pipelines, const std::string& profile, const std::string& budget, long apps_per_host,
                       const std::vector<std::string>& prefix = {}) {
   int out[2];
   if (pipe(out) != 0) throw std::runtime_error("pipe failed");
@@ -190,8 +286,12 @@ std::string run_child(const char* self, long pipelines, const std::string& profi
   const std::string n = std::to_string(pipelines);
   std::vector<char*> argv;
   for (const std::string& word : prefix) argv.push_back(const_cast<char*>(word.c_str()));
+  const std::string per_host = std::to_string(apps_per_host);
   for (const char* word : {self, "--pipelines", n.c_str(), "--profile", profile.c_str(), "--budget", budget.c_str()}) {
     argv.push_back(const_cast<char*>(word));
+  }
+  if (apps_per_host > 0) {
+    for (const char* word : {"--shape", "cluster", "--apps-per-host", per_host.c_str()}) argv.push_back(const_cast<char*>(word));
   }
   argv.push_back(nullptr);
   pid_t pid = 0;
@@ -217,13 +317,13 @@ double field(const std::string& line, const std::string& key) {
 }
 
 // N run once under callgrind, collecting the first run_scenario alone: its instruction count.
-long long callgrind_instructions(long pipelines, const std::string& profile) {
+long long callgrind_instructions(long pipelines, const std::string& profile, long apps_per_host) {
   char self[4096];
   const ssize_t length = readlink("/proc/self/exe", self, sizeof self - 1);
   if (length <= 0) throw std::runtime_error("cannot find this program's path");
   self[length] = '\0';
   const std::string out = fmt::format("/tmp/pcsim-scaling-callgrind-{}-{}.out", getpid(), pipelines);
-  run_child(self, pipelines, profile, "0", {"valgrind", "--tool=callgrind", "--collect-atstart=no", "--callgrind-out-file=" + out, "-q"});
+  run_child(self, pipelines, profile, "0", apps_per_host, {"valgrind", "--tool=callgrind", "--collect-atstart=no", "--callgrind-out-file=" + out, "-q"});
   std::ifstream in(out);
   long long total = -1;
   for (std::string line; std::getline(in, line);) {
@@ -243,10 +343,27 @@ int main(int argc, char** argv) {
   std::string profile = "linux";
   std::string budget = "1";
   bool callgrind = false;
+  bool cluster = false;
+  long apps_per_host = 1;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--callgrind") {
       callgrind = true;
+    } else if (arg == "--shape" && i + 1 < argc) {
+      const std::string shape = argv[++i];
+      if (shape != "pipelines" && shape != "cluster") {
+        fmt::print(stderr, "pcsim_scaling: --shape is pipelines or cluster, got '{}'\n", shape);
+        return 2;
+      }
+      cluster = shape == "cluster";
+    } else if (arg == "--apps-per-host" && i + 1 < argc) {
+      const std::string value = argv[++i];
+      char* end = nullptr;
+      apps_per_host = std::strtol(value.c_str(), &end, 10);
+      if (end == value.c_str() || *end != '\0' || apps_per_host < 1) {
+        fmt::print(stderr, "pcsim_scaling: --apps-per-host must be a whole number >= 1, got '{}'\n", value);
+        return 2;
+      }
     } else if ((arg == "--pipelines" || arg == "--max" || arg == "--profile" || arg == "--budget") && i + 1 < argc) {
       const std::string value = argv[++i];
       if (arg == "--profile") {
@@ -263,7 +380,10 @@ int main(int argc, char** argv) {
         (arg == "--max" ? max : one) = n;
       }
     } else {
-      fmt::print(stderr, "usage: {} [--pipelines N | --max N] [--budget SECONDS] [--profile linux|paper] [--callgrind]\n", argv[0]);
+      fmt::print(stderr,
+                 "usage: {} [--pipelines N | --max N] [--budget SECONDS] [--profile linux|paper] [--shape pipelines|cluster] "
+                 "[--apps-per-host A] [--callgrind]\n",
+                 argv[0]);
       return 2;
     }
   }
@@ -273,18 +393,19 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "pcsim_scaling: --budget must be a number of seconds >= 0, got '{}'\n", budget);
     return 2;
   }
+  const long per_host = cluster ? apps_per_host : 0;  // 0: the pipelines shape
   try {
-    if (one > 0) return run_one(one, profile, budget_s);
+    if (one > 0) return run_one(one, profile, budget_s, per_host);
     std::vector<std::string> lines;
-    fmt::print("{:>9} {:>12} {:>12} {:>12} {:>6} {:>10} {:>14} {:>12} {:>12} {:>12} {:>12}{}\n", "pipelines", "makespan_s", "events",
+    fmt::print("{:>9} {:>12} {:>12} {:>12} {:>6} {:>10} {:>14} {:>12} {:>12} {:>12} {:>12}{}\n", cluster ? "hosts" : "pipelines", "makespan_s", "events",
                "chunk_ops", "reps", "wall_s", "chunk_ops/s", "ns/chunk_op", "median_ns", "peak_RSS_MB", "instr/op", callgrind ? "  callgrind_instr/op" : "");
     for (long n = 10; n <= max; n *= 10) {
-      const std::string line = run_child("/proc/self/exe", n, profile, budget);
+      const std::string line = run_child("/proc/self/exe", n, profile, budget, per_host);
       lines.push_back(line);
       const double per_op = field(line, "instructions_per_chunk_op");
       std::string counted;
       if (callgrind) {
-        const long long total = callgrind_instructions(n, profile);
+        const long long total = callgrind_instructions(n, profile, per_host);
         counted = fmt::format("  {:>19.0f}", static_cast<double>(total) / field(line, "chunk_operations"));
         lines.back().insert(lines.back().rfind('}'), fmt::format(", \"callgrind_instructions\": {}", total));
       }

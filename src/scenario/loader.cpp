@@ -183,8 +183,13 @@ CacheSettings read_page_cache(const toml::table* table, const TomlReader& parent
 // The keys of a [[hosts]] table. `base`: what is already known of the host, from a platform
 // file (the table amends it: every key optional, its disks added or amended by name); without,
 // memory and its bandwidths are required and the host needs a disk.
+// A [[hosts]] table with `count` describes that many hosts alike, a host group (a cluster's
+// nodes): each with its own page cache, named name-1 ... name-count. At most this many.
+constexpr std::int64_t kMaxGroupHosts = 100'000;
+
 HostConfig read_host(const toml::table& table, std::string path, std::size_t index, Profile profile, const std::string& file,
-                     const HostConfig* base, Origin& host_origin, Origin& cache_origin, std::vector<Origin>& disk_origins) {
+                     const HostConfig* base, Origin& host_origin, Origin& cache_origin, std::vector<Origin>& disk_origins,
+                     std::int64_t* count = nullptr) {
   TomlReader r(table, std::move(path), file);
   host_origin = {&table, r.path(), &file};
   const bool fresh = base == nullptr;
@@ -251,6 +256,11 @@ HostConfig read_host(const toml::table& table, std::string path, std::size_t ind
     }
   }
   if (fresh && h.disks.empty()) r.fail_table(fmt::format("host '{}' has no disk ([[{}.disks]])", h.name, r.path()));
+  if (count != nullptr) {
+    *count = r.optional_integer("count", 1, kMaxGroupHosts).value_or(0);
+  } else if (r.has("count")) {
+    r.fail("count", "a host amending a platform file's is one host: give count where the hosts are first described");
+  }
   r.finish();
   return h;
 }
@@ -327,8 +337,20 @@ void expand_pipelines(const toml::table& table, Scenario& s, const std::string& 
   const bool cached = r.optional_bool("inputs_cached").value_or(false);
   const MemoryLimits memory_limits = read_memory_limits(r, "a pipeline's");
   r.finish();
-  if (std::none_of(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == host; })) {
+  // A host group: the pipelines spread over its members in blocks (pipeline i on member
+  // ceil(i * members / count)), each member's page cache its own.
+  const auto group = origins.host_groups.find(host);
+  if (group == origins.host_groups.end() && std::none_of(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == host; })) {
     r.fail("host", fmt::format("no host named '{}'", host));
+  }
+  const auto host_of = [&](std::int64_t i) -> const std::string& {
+    if (group == origins.host_groups.end()) return host;
+    const auto [first, members] = group->second;
+    return s.hosts[first + static_cast<std::size_t>((i - 1) * static_cast<std::int64_t>(members) / count)].name;
+  };
+  if (origins.host_groups.count(files_host) != 0) {
+    r.fail(r.has("files_host") ? "files_host" : "host",
+           fmt::format("'{}' is a host group: the pipelines' files are on one host (files_host = \"...\")", files_host));
   }
   const auto h = std::find_if(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == files_host; });
   if (h == s.hosts.end()) r.fail("files_host", fmt::format("no host named '{}'", files_host));
@@ -341,7 +363,7 @@ void expand_pipelines(const toml::table& table, Scenario& s, const std::string& 
   for (std::int64_t i = 1; i <= count; ++i) {
     auto file_name = [&](std::int64_t k) { return count == 1 ? fmt::format("file_{}", k) : fmt::format("p{}_file_{}", i, k); };
     for (std::int64_t k = 1; k <= tasks + 1; ++k) s.files.push_back({file_name(k), size, files_host, disk, k == 1 && cached});
-    AppSpec app{std::to_string(i), host, {}, memory_limits.max, memory_limits.high};
+    AppSpec app{std::to_string(i), host_of(i), {}, memory_limits.max, memory_limits.high};
     app.tasks.reserve(static_cast<std::size_t>(tasks));
     for (std::int64_t k = 1; k <= tasks; ++k) {
       TaskSpec& task = app.tasks.emplace_back();
@@ -410,6 +432,8 @@ void check_workflow_acyclic(const WorkflowSpec& w, const Origin& r) {
 // The platform part of a scenario or of a platform file: [[hosts]] and [[links]].
 void read_platform(TomlReader& r, Scenario& s, const std::string& file, Origins& origins, std::set<std::size_t>& amendable) {
   const auto hosts = r.tables("hosts");
+  std::unordered_set<std::string> named;  // hosts so far, for names given twice
+  for (const HostConfig& h : s.hosts) named.insert(h.name);
   for (std::size_t i = 0; i < hosts.size(); ++i) {
     // A host of a platform's XML file is amended by a [[hosts]] table of its name.
     const std::string name = (*hosts[i])["name"].value<std::string>().value_or("");
@@ -423,15 +447,37 @@ void read_platform(TomlReader& r, Scenario& s, const std::string& file, Origins&
     }
     Origin host_origin, cache_origin;
     std::vector<Origin> disk_origins;
+    std::int64_t count = 0;
     HostConfig host = read_host(*hosts[i], r.child_path("hosts", i), s.hosts.size(), s.profile, file, nullptr, host_origin, cache_origin,
-                                disk_origins);
-    for (const HostConfig& other : s.hosts) {
-      if (other.name == host.name) TomlReader(*hosts[i], r.child_path("hosts", i), file).fail("name", "two hosts share this name");
+                                disk_origins, &count);
+    const auto taken = [&](const std::string& name) { return origins.host_groups.count(name) != 0 || named.count(name) != 0; };
+    if (taken(host.name)) TomlReader(*hosts[i], r.child_path("hosts", i), file).fail("name", "two hosts share this name");
+    if (count == 0) {
+      origins.hosts.push_back(std::move(host_origin));
+      origins.page_caches.push_back(std::move(cache_origin));
+      origins.disks.push_back(std::move(disk_origins));
+      named.insert(host.name);
+      s.hosts.push_back(std::move(host));
+      continue;
     }
-    origins.hosts.push_back(std::move(host_origin));
-    origins.page_caches.push_back(std::move(cache_origin));
-    origins.disks.push_back(std::move(disk_origins));
-    s.hosts.push_back(std::move(host));
+    // A group: its members are hosts like any other, named after it; the group's name stands
+    // for them all where a link or the pipelines name it.
+    const std::string group = host.name;
+    for (std::int64_t k = 1; k <= count; ++k) {
+      if (taken(fmt::format("{}-{}", group, k))) {
+        TomlReader(*hosts[i], r.child_path("hosts", i), file).fail("name", fmt::format("host '{}-{}' of this group is named twice", group, k));
+      }
+    }
+    origins.host_groups[group] = {s.hosts.size(), static_cast<std::size_t>(count)};
+    s.hosts.reserve(s.hosts.size() + static_cast<std::size_t>(count));
+    for (std::int64_t k = 1; k <= count; ++k) {
+      origins.hosts.push_back(host_origin);
+      origins.page_caches.push_back(cache_origin);
+      origins.disks.push_back(disk_origins);
+      HostConfig& member = s.hosts.emplace_back(host);
+      member.name = fmt::format("{}-{}", group, k);
+      named.insert(member.name);
+    }
   }
   // By name and by pair, not by scanning: a platform shown from a cluster run has 10^4 of each.
   std::set<std::string> host_names, link_names;
@@ -465,10 +511,35 @@ void read_platform(TomlReader& r, Scenario& s, const std::string& file, Origins&
       else if (*sharing != "shared") l.fail("sharing", fmt::format("unknown sharing '{}' (use \"shared\" or \"fatpipe\")", *sharing));
     }
     if (!link_names.insert(link.name).second) l.fail("name", fmt::format("two links named '{}'", link.name));
-    // Without hosts, a link is crossed only by the routes that name it.
-    if (l.has("hosts")) std::tie(link.host_a, link.host_b) = read_ends(l, "link");
+    // A host group at one end: a link of its own for each member, named after the link.
+    const std::vector<std::string> ends = l.has("hosts") ? l.names("hosts") : std::vector<std::string>{};
+    const auto group = ends.size() == 2 ? std::find_if(ends.begin(), ends.end(), [&](const std::string& e) { return origins.host_groups.count(e) != 0; })
+                                        : ends.end();
+    if (group == ends.end()) {
+      // Without hosts, a link is crossed only by the routes that name it.
+      if (l.has("hosts")) std::tie(link.host_a, link.host_b) = read_ends(l, "link");
+      l.finish();
+      s.links.push_back(std::move(link));
+      continue;
+    }
+    const std::string& other = *group == ends[0] ? ends[1] : ends[0];
+    if (origins.host_groups.count(other) != 0) l.fail("hosts", "a link joins a host group to one host, not two groups");
+    if (host_names.count(other) == 0) l.fail("hosts", fmt::format("no host named '{}'", other));
     l.finish();
-    s.links.push_back(std::move(link));
+    const auto [first, count] = origins.host_groups.at(*group);
+    for (std::size_t k = 0; k < count; ++k) {
+      LinkSpec& member = s.links.emplace_back(link);
+      member.name = fmt::format("{}-{}", link.name, k + 1);
+      member.host_a = s.hosts[first + k].name;
+      member.host_b = other;
+      if (!link_names.insert(member.name).second) l.fail("name", fmt::format("two links named '{}'", member.name));
+      if (!joined.insert(std::minmax(member.host_a, member.host_b)).second) {
+        l.fail("hosts", fmt::format("hosts '{}' and '{}' already have a link or a route", member.host_a, member.host_b));
+      }
+      const Origin origin = origins.links.back();
+      origins.links.push_back(origin);
+    }
+    origins.links.pop_back();  // one per link made
   }
   const auto routes = r.tables("routes");
   for (std::size_t i = 0; i < routes.size(); ++i) {

@@ -4,6 +4,7 @@
 
 #include "scenario/toml_reader.hpp"
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -44,6 +45,8 @@ struct Origin {
 struct Origins {
   Origin root;
   std::vector<Origin> hosts;
+  /// Host groups ([[hosts]] with count): name -> (index of the first member, members).
+  std::map<std::string, std::pair<std::size_t, std::size_t>> host_groups;
   std::vector<Origin> page_caches;  ///< per host: its [hosts.page_cache], else the host's table
   std::vector<std::vector<Origin>> disks;  ///< per host
   std::vector<Origin> links;

@@ -51,7 +51,7 @@ std::string cache_figure(const RunResult& r) {
   c.plot.bottom = 100;
   for (const std::uint32_t p : phases) {
     const PhaseRow& row = r.timeline.at(p);
-    c.categories.push_back(fmt::format("{}/{} {}", row.app, row.task, row.phase));
+    c.categories.push_back(fmt::format("{}/{} {}", r.app_name(row), r.task_name(row), to_string(row.phase)));
   }
   std::vector<bool> apart(r.files.size(), false);
   for (std::size_t k = 0; k < files.size(); ++k) {

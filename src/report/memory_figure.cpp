@@ -68,9 +68,9 @@ std::string memory_figures(const RunResult& r) {
   double end = r.summary.end_time;
   for (const MemoryRow& m : r.memory) {
     end = std::max(end, m.time);
-    auto [it, inserted] = index.try_emplace(m.host, hosts.size());
+    auto [it, inserted] = index.try_emplace(r.host_name(m), hosts.size());
     if (inserted) {
-      hosts.push_back(m.host);
+      hosts.push_back(r.host_name(m));
       rows.emplace_back();
     }
     if (it->second < kMaxMemoryHosts) rows[it->second].push_back(&m);

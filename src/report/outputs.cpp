@@ -111,9 +111,9 @@ void write_timeline_csv(const fs::path& path, const RunResult& r) {
   CsvFile csv(path);
   fmt::format_to(csv.out(), "app,task,phase,start_s,end_s,bytes,cache_bytes,disk_bytes\n");
   for (const PhaseRow& p : r.timeline) {
-    csv.field(p.app);
-    csv.field(p.task);
-    csv.field(p.phase);
+    csv.field(r.app_name(p));
+    csv.field(r.task_name(p));
+    csv.field(to_string(p.phase));
     fmt::format_to(csv.out(), FMT_COMPILE("{:.6f},{:.6f},{},{},{}\n"), p.start, p.end, p.bytes, p.cache_bytes, p.disk_bytes);
     csv.row_written();
   }
@@ -121,7 +121,7 @@ void write_timeline_csv(const fs::path& path, const RunResult& r) {
 }
 
 void write_memory_csv(const fs::path& path, const RunResult& r) {
-  std::set<std::string> hosts;
+  std::set<std::uint32_t> hosts;
   for (const MemoryRow& m : r.memory) hosts.insert(m.host);
   const bool with_host = hosts.size() > 1;  // one host: the documented columns exactly
   CsvFile csv(path);
@@ -130,7 +130,7 @@ void write_memory_csv(const fs::path& path, const RunResult& r) {
                  with_host ? "host," : "");
   for (const MemoryRow& m : r.memory) {
     const MemoryState& s = m.state;
-    if (with_host) csv.field(m.host);
+    if (with_host) csv.field(r.host_name(m));
     // Copies in flight hold their pages: counted as cached here, so that the columns add up.
     fmt::format_to(csv.out(), FMT_COMPILE("{:.6f},{},{},{},{},{},{},{},{}\n"), m.time, s.total, s.free, s.anonymous, s.cached + s.reserved,
                    s.dirty, s.writeback, s.active, s.inactive + s.reserved);
@@ -144,7 +144,7 @@ void write_cache_csv(const fs::path& path, const RunResult& r) {
   // here, not once per row.
   std::vector<std::string> phase_fields;
   phase_fields.reserve(r.timeline.size());
-  for (const PhaseRow& p : r.timeline) phase_fields.push_back(csv_fields({p.app, p.task, p.phase}));
+  for (const PhaseRow& p : r.timeline) phase_fields.push_back(csv_fields({r.app_name(p), r.task_name(p), to_string(p.phase)}));
   std::vector<std::string> file_fields;
   file_fields.reserve(r.files.size());
   for (const std::string& file : r.files) file_fields.push_back(csv_fields({file}));
@@ -223,20 +223,20 @@ std::string readable_summary(const Scenario& scenario, const RunResult& r) {
   // Names as printable(): a control character in one cannot drive the terminal.
   if (!scenario.title.empty()) out += printable(scenario.title) + "\n";
   out += fmt::format("scenario {} (profile {})\n", printable(scenario.source), to_string(scenario.profile));
-  std::map<std::string, std::vector<const PhaseRow*>> by_app;
-  std::vector<std::string> order;
+  std::map<std::uint32_t, std::vector<const PhaseRow*>> by_app;
+  std::vector<std::uint32_t> order;
   for (const PhaseRow& p : r.timeline) {
     if (by_app.find(p.app) == by_app.end()) order.push_back(p.app);
     by_app[p.app].push_back(&p);
   }
   constexpr std::size_t kMaxApps = 8;
   for (std::size_t i = 0; i < order.size() && i < kMaxApps; ++i) {
-    out += fmt::format("\napp {}\n{:>10} {:>8} {:>10} {:>10} {:>10} {:>9} {:>9}\n", printable(order[i]), "task", "phase", "start_s",
+    out += fmt::format("\napp {}\n{:>10} {:>8} {:>10} {:>10} {:>10} {:>9} {:>9}\n", printable(r.names[order[i]]), "task", "phase", "start_s",
                        "end_s", "MB/s", "cache_GB", "disk_GB");
     for (const PhaseRow* p : by_app[order[i]]) {
       const double seconds = p->end - p->start;
       const std::string rate = p->bytes > 0 && seconds > 0 ? fmt::format("{:.1f}", static_cast<double>(p->bytes) / seconds / 1e6) : "-";
-      out += fmt::format("{:>10} {:>8} {:>10.2f} {:>10.2f} {:>10} {:>9.2f} {:>9.2f}\n", printable(p->task), printable(p->phase), p->start,
+      out += fmt::format("{:>10} {:>8} {:>10.2f} {:>10.2f} {:>10} {:>9.2f} {:>9.2f}\n", printable(r.task_name(*p)), to_string(p->phase), p->start,
                          p->end, rate, static_cast<double>(p->cache_bytes) / 1e9, static_cast<double>(p->disk_bytes) / 1e9);
     }
   }

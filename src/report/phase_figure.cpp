@@ -21,8 +21,8 @@ namespace {
 constexpr std::array<std::string_view, 3> kKinds = {"read", "compute", "write"};
 constexpr std::array<std::string_view, 3> kColours = {chart::kBlue, chart::kBluishGreen, chart::kVermillion};
 
-std::size_t kind_of(const std::string& phase) {
-  return static_cast<std::size_t>(std::find(kKinds.begin(), kKinds.end(), phase) - kKinds.begin());
+std::size_t kind_of(PhaseKind phase) {
+  return static_cast<std::size_t>(std::find(kKinds.begin(), kKinds.end(), to_string(phase)) - kKinds.begin());
 }
 
 // The run's end (dirty data written back), as the memory and activity charts end, so that the
@@ -33,7 +33,7 @@ double end_of(const RunResult& r) {
   return end;
 }
 
-std::string gantt(const RunResult& r, const std::map<std::pair<std::string, std::string>, std::size_t>& tasks) {
+std::string gantt(const RunResult& r, const std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t>& tasks) {
   chart::Gantt g;
   g.title = "phases of each task";
   g.x_title = "time (s)";
@@ -45,7 +45,7 @@ std::string gantt(const RunResult& r, const std::map<std::pair<std::string, std:
     const std::size_t t = tasks.at({p.app, p.task});
     const std::size_t kind = kind_of(p.phase);
     if (kind >= kKinds.size()) continue;
-    rows[t].label = p.app + "/" + p.task;
+    rows[t].label = r.app_name(p) + "/" + r.task_name(p);
     rows[t].bars.push_back({p.start, p.end, static_cast<std::uint8_t>(kind)});
     first_start[t] = std::min(first_start[t], p.start);
   }
@@ -114,13 +114,13 @@ std::string phase_figure(const RunResult& r) {
   std::string out = "<h2>Phases</h2>\n";
   if (r.timeline.empty()) return out + "<p class=\"note\">No task ran.</p>\n";
   // The tasks, numbered in the order they first appear; counting stops past the Gantt's limit.
-  std::map<std::pair<std::string, std::string>, std::size_t> tasks;
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> tasks;
   for (const PhaseRow& p : r.timeline) {
     tasks.try_emplace({p.app, p.task}, tasks.size());
     if (tasks.size() > kMaxGanttTasks) break;
   }
   if (tasks.size() <= kMaxGanttTasks) return out + gantt(r, tasks);
-  std::set<std::pair<std::string_view, std::string_view>> all;
+  std::set<std::pair<std::uint32_t, std::uint32_t>> all;
   for (const PhaseRow& p : r.timeline) all.insert({p.app, p.task});
   return out + aggregate(r, all.size());
 }

@@ -306,7 +306,7 @@ std::string score_here(const HereMeasurements& m) {
         std::vector<double> simulated;
         double sim_end = 0.0;
         for (const PhaseRow& row : sim.result.timeline) {
-          if (row.task != std::to_string(task) || row.phase != phase) continue;
+          if (sim.result.task_name(row) != std::to_string(task) || to_string(row.phase) != phase) continue;
           simulated.push_back(row.end - row.start);
           sim_end = std::max(sim_end, row.end);
         }

@@ -98,7 +98,7 @@ CaseResult exp1(const Options& o, int size_gb, double cpu_seconds) {
     const double tick = interval > 0.0 ? std::round(t / interval) * interval : t;
     const MemoryRow* best = nullptr;
     for (const MemoryRow& m : run.memory)
-      if (m.host == node && (best == nullptr || m.time <= tick)) best = &m;
+      if (run.host_name(m) == node && (best == nullptr || m.time <= tick)) best = &m;
     return std::pair{static_cast<double>(best->state.cached + best->state.reserved), static_cast<double>(best->state.dirty)};
   };
   const double total = static_cast<double>(scenario.hosts.front().memory);
@@ -108,8 +108,10 @@ CaseResult exp1(const Options& o, int size_gb, double cpu_seconds) {
   c.table = fmt::format("  {:<6} {:<6} {:>9} {:>9} {:>8} {:>9} {:>8} | {:>9} {:>9} {:>9} {:>9}\n", "task", "phase", "real_s", "pcsim_s",
                         "err%", "wrench_s", "err%", "dirty_GB", "real", "cached_GB", "real");
   for (const PhaseRow& p : run.timeline) {
-    if (p.phase == "compute") continue;
-    const auto key = std::pair{std::stoi(p.task), p.phase};
+    if (p.phase == PhaseKind::Compute) continue;
+    const std::string phase(to_string(p.phase));
+    const std::string& task = run.task_name(p);
+    const auto key = std::pair{std::stoi(task), phase};
     const double sim = p.end - p.start;
     const double e = pct(sim, real.at(key));
     const double we = pct(wrench.at(key), real.at(key));
@@ -120,9 +122,9 @@ CaseResult exp1(const Options& o, int size_gb, double cpu_seconds) {
     const auto [real_cached, real_dirty] = real_memory_at(real_end.at(key));
     worst_dirty = std::max(worst_dirty, 100.0 * std::abs(sim_dirty - real_dirty) / total);
     worst_cached = std::max(worst_cached, 100.0 * std::abs(sim_cached - real_cached) / total);
-    c.figures.push_back({fmt::format("task {} {}", p.task, p.phase), real.at(key), sim, wrench.at(key)});
-    c.table += fmt::format("  {:<6} {:<6} {:>9.2f} {:>9.2f} {:>8.1f} {:>9.2f} {:>8.1f} | {:>9.1f} {:>9.1f} {:>9.1f} {:>9.1f}\n", p.task,
-                           p.phase, real.at(key), sim, e, wrench.at(key), we, sim_dirty / 1e9, real_dirty / 1e9, sim_cached / 1e9,
+    c.figures.push_back({fmt::format("task {} {}", task, phase), real.at(key), sim, wrench.at(key)});
+    c.table += fmt::format("  {:<6} {:<6} {:>9.2f} {:>9.2f} {:>8.1f} {:>9.2f} {:>8.1f} | {:>9.1f} {:>9.1f} {:>9.1f} {:>9.1f}\n", task,
+                           phase, real.at(key), sim, e, wrench.at(key), we, sim_dirty / 1e9, real_dirty / 1e9, sim_cached / 1e9,
                            real_cached / 1e9);
   }
   c.mean_error_pct = sum / count;
@@ -134,7 +136,7 @@ CaseResult exp1(const Options& o, int size_gb, double cpu_seconds) {
   std::map<std::tuple<std::string, std::string, std::string>, double> sim_cache;
   for (const CacheRow& r : run.cache) {
     const PhaseRow& p = run.timeline[r.phase];
-    sim_cache[{p.task, p.phase, run.files[r.file]}] = static_cast<double>(r.cached) / 1e9;
+    sim_cache[{run.task_name(p), std::string(to_string(p.phase)), run.files[r.file]}] = static_cast<double>(r.cached) / 1e9;
   }
   for (const Row& r : read_csv(o.data_dir + "/exp1_real_cache_contents.csv")) {
     if (std::stoi(r.at("file_size_gb")) != size_gb) continue;
@@ -199,8 +201,8 @@ CaseResult concurrent(const Options& o, const std::string& name, const std::stri
     const RunResult run = run_scenario(scenario, options);
     PerN sim;
     for (const PhaseRow& p : run.timeline) {
-      if (p.phase == "read") sim.read += (p.end - p.start) / n;
-      if (p.phase == "write") sim.write += (p.end - p.start) / n;
+      if (p.phase == PhaseKind::Read) sim.read += (p.end - p.start) / n;
+      if (p.phase == PhaseKind::Write) sim.write += (p.end - p.start) / n;
     }
     const PerN w = wrench.at(n);
     const double er = pct(sim.read, truth.read), ew = pct(sim.write, truth.write);

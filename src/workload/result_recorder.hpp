@@ -5,7 +5,10 @@
 #include <pagecache/run.hpp>
 #include <pagecache/trace.hpp>
 
+#include <cstdint>
 #include <string>
+#include <string_view>
+#include <unordered_map>
 #include <vector>
 
 namespace pagecache::workload {
@@ -21,14 +24,13 @@ class ResultRecorder final : public TraceSink {
   }
 
   void on_start(const TraceStart& start) override {
-    hosts_.assign(start.hosts.begin(), start.hosts.end());
+    result_.hosts.assign(start.hosts.begin(), start.hosts.end());
     if (result_.cache_not_recorded.empty()) result_.files.assign(start.files.begin(), start.files.end());
   }
   void on_phase(const PhaseEvent& e) override {
-    result_.timeline.push_back(
-        {std::string(e.app), std::string(e.task), std::string(to_string(e.kind)), e.start, e.end, e.bytes, e.cache_bytes, e.disk_bytes});
+    result_.timeline.push_back({intern(e.app), intern(e.task), e.kind, e.start, e.end, e.bytes, e.cache_bytes, e.disk_bytes});
   }
-  void on_memory(const MemoryEvent& e) override { result_.memory.push_back({e.time, hosts_[e.host], e.state}); }
+  void on_memory(const MemoryEvent& e) override { result_.memory.push_back({e.time, e.host, e.state}); }
   void on_cache_contents(const CacheContentsEvent& e) override {
     std::uint32_t file = 0;
     for (const std::int64_t cached : e.cached) result_.cache.push_back({e.phase_row, file++, cached});
@@ -37,7 +39,14 @@ class ResultRecorder final : public TraceSink {
   RunResult& result() noexcept { return result_; }
 
  private:
-  std::vector<std::string> hosts_;
+  // A name's index in RunResult::names, added the first time it is met.
+  std::uint32_t intern(std::string_view name) {
+    const auto [it, added] = index_.try_emplace(std::string(name), static_cast<std::uint32_t>(result_.names.size()));
+    if (added) result_.names.emplace_back(name);
+    return it->second;
+  }
+
+  std::unordered_map<std::string, std::uint32_t> index_;
   RunResult result_;
 };
 

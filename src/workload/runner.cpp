@@ -183,10 +183,10 @@ class Runner {
     RunSummary& s = summary();
     s.end_time = sim_.now();
     for (const PhaseRow& row : recorder_->result().timeline) {
-      PhaseTotals& totals = row.phase == "read" ? s.read : row.phase == "write" ? s.write : s.compute;
+      PhaseTotals& totals = row.phase == PhaseKind::Read ? s.read : row.phase == PhaseKind::Write ? s.write : s.compute;
       totals.seconds += row.end - row.start;
       totals.bytes += row.bytes;
-      if (row.phase == "read") {
+      if (row.phase == PhaseKind::Read) {
         s.disk_read_bytes += row.disk_bytes;
         s.cache_read_bytes += row.cache_bytes;
       }

@@ -43,12 +43,14 @@ MemoryState memory(std::int64_t anonymous, std::int64_t cached, std::int64_t dir
 // Two tasks on two hosts: a reads f (2 s), computes; b writes g.
 RunResult small_run() {
   RunResult r;
-  r.timeline = {{"app", "a", "read", 0.0, 2.0, 2'000'000'000, 0, 2'000'000'000},
-                {"app", "a", "compute", 2.0, 5.0, 0, 0, 0},
-                {"app", "b", "write", 1.0, 3.0, 1'000'000'000, 1'000'000'000, 0}};
+  r.names = {"app", "a", "b"};
+  r.hosts = {"h1", "h2"};
+  r.timeline = {{0, 1, PhaseKind::Read, 0.0, 2.0, 2'000'000'000, 0, 2'000'000'000},
+                {0, 1, PhaseKind::Compute, 2.0, 5.0, 0, 0, 0},
+                {0, 2, PhaseKind::Write, 1.0, 3.0, 1'000'000'000, 1'000'000'000, 0}};
   for (int i = 0; i <= 6; ++i) {
-    r.memory.push_back({static_cast<double>(i), "h1", memory(1'000'000'000, i * 300'000'000, 0)});
-    r.memory.push_back({static_cast<double>(i), "h2", memory(0, i * 100'000'000, i * 50'000'000)});
+    r.memory.push_back({static_cast<double>(i), 0, memory(1'000'000'000, i * 300'000'000, 0)});
+    r.memory.push_back({static_cast<double>(i), 1, memory(0, i * 100'000'000, i * 50'000'000)});
   }
   r.files = {"f", "g"};
   r.cache = {{0, 0, 2'000'000'000}, {0, 1, 0}, {2, 0, 2'000'000'000}, {2, 1, 1'000'000'000}};
@@ -109,9 +111,11 @@ TEST_CASE("report.html says what was not recorded", "[report][html]") {
 TEST_CASE("above 200 tasks, report.html shows the tasks in each phase over time instead of a Gantt chart", "[report][html]") {
   RunResult r = small_run();
   r.timeline.clear();
+  r.names = {"t"};
   for (int i = 0; i < 201; ++i) {
     // Task i reads during [i, i + 2): at most two read at once.
-    r.timeline.push_back({"p" + std::to_string(i), "t", "read", static_cast<double>(i), i + 2.0, 1, 0, 1});
+    r.names.push_back("p" + std::to_string(i));
+    r.timeline.push_back({static_cast<std::uint32_t>(i + 1), 0, PhaseKind::Read, static_cast<double>(i), i + 2.0, 1, 0, 1});
   }
   r.summary.makespan = 202.0;
   const std::string html = report_html(scenario(), r, ReportActivity{});
@@ -129,7 +133,7 @@ TEST_CASE("10^6 memory rows make a page of bounded size, saying it was downsampl
   r.memory.clear();
   for (int i = 0; i < 1'000'000; ++i) {
     const std::int64_t wiggle = (i % 7) * 10'000'000;  // a change on every row
-    r.memory.push_back({i * 1e-3, "h1", memory(1'000'000'000 + wiggle, 2'000'000'000, wiggle)});
+    r.memory.push_back({i * 1e-3, 0, memory(1'000'000'000 + wiggle, 2'000'000'000, wiggle)});
   }
   r.summary.end_time = 1000.0;
   const std::string html = report_html(scenario(), r, ReportActivity{});
@@ -141,7 +145,11 @@ TEST_CASE("10^6 memory rows make a page of bounded size, saying it was downsampl
 TEST_CASE("more than 8 hosts: the first 8 are drawn and the page says so", "[report][html]") {
   RunResult r = small_run();
   r.memory.clear();
-  for (int h = 0; h < 12; ++h) r.memory.push_back({0.0, "h" + std::to_string(h), memory(0, 0, 0)});
+  r.hosts.clear();
+  for (int h = 0; h < 12; ++h) {
+    r.hosts.push_back("h" + std::to_string(h));
+    r.memory.push_back({0.0, static_cast<std::uint32_t>(h), memory(0, 0, 0)});
+  }
   const std::string html = report_html(scenario(), r, ReportActivity{});
   CHECK(count(html, "data-chart=\"memory\"") == 8);
   CHECK_THAT(html, Catch::Contains("12 hosts: the first 8 are drawn"));
@@ -164,9 +172,10 @@ TEST_CASE("more than 7 files: the 7 cached most apart and the others together", 
 TEST_CASE("hostile names are escaped in report.html", "[report][html][escaping]") {
   RunResult r = small_run();
   const std::string hostile = "<script>alert(1)</script> & \"quoted\" 'single'";
-  for (PhaseRow& p : r.timeline) p.task = hostile;
+  r.names.push_back(hostile);
+  for (PhaseRow& p : r.timeline) p.task = static_cast<std::uint32_t>(r.names.size() - 1);
   r.files[0] = hostile;
-  r.memory[0].host = hostile;
+  r.hosts[0] = hostile;
   Scenario s = scenario();
   s.title = hostile;
   s.source = hostile + "\x01\xff.toml";

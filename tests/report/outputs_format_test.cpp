@@ -114,12 +114,15 @@ bool starts_formula(const std::string& field) {
 pagecache::RunResult hostile_result() {
   pagecache::RunResult r;
   const std::size_t n = kHostile.size();
+  // Names are interned (RunResult::names); the phase is read, compute or write, never a name.
+  r.names.assign(kHostile.begin(), kHostile.end());
+  r.hosts.assign(kHostile.begin(), kHostile.end());
   for (std::size_t i = 0; i < n; ++i) {
-    r.timeline.push_back({kHostile[i], kHostile[(i + 1) % n], kHostile[(i + 2) % n], 0.5 * static_cast<double>(i), 1.25, 100, 60,
-                          -static_cast<std::int64_t>(i)});
+    r.timeline.push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>((i + 1) % n), pagecache::PhaseKind::Write,
+                          0.5 * static_cast<double>(i), 1.25, 100, 60, -static_cast<std::int64_t>(i)});
     pagecache::MemoryRow m;
     m.time = static_cast<double>(i);
-    m.host = kHostile[i];
+    m.host = static_cast<std::uint32_t>(i);
     m.state.total = 1000;
     m.state.free = -3;
     r.memory.push_back(m);
@@ -139,7 +142,7 @@ TEST_CASE("CSV fields with commas, quotes and line breaks read back as written, 
   write_cache_csv(dir / "cache.csv", r);
   // Plain names (no special character, not a formula) are written as they are, as ever.
   CHECK_THAT(slurp(dir / "cache.csv"),
-             Catch::Contains("\nunicode: n\xC3\xA4me \xE5\x90\x8D \xF0\x9F\x9A\x80,'starts with a quote,,plain_name,91\n"));
+             Catch::Contains("\nunicode: n\xC3\xA4me \xE5\x90\x8D \xF0\x9F\x9A\x80,'starts with a quote,write,plain_name,91\n"));
   const Rows timeline = parse_csv(slurp(dir / "timeline.csv"));
   const Rows memory = parse_csv(slurp(dir / "memory.csv"));
   const Rows cache = parse_csv(slurp(dir / "cache.csv"));
@@ -156,7 +159,7 @@ TEST_CASE("CSV fields with commas, quotes and line breaks read back as written, 
     REQUIRE(t.size() == 8);
     CHECK(t[0] == as_written(kHostile[i]));
     CHECK(t[1] == as_written(kHostile[(i + 1) % n]));
-    CHECK(t[2] == as_written(kHostile[(i + 2) % n]));
+    CHECK(t[2] == "write");
     // Numbers are never touched: a negative one keeps its sign and gets no quote.
     CHECK(t[3] == fmt::format("{:.6f}", 0.5 * static_cast<double>(i)));
     CHECK(t[4] == "1.250000");
@@ -209,7 +212,8 @@ TEST_CASE("the terminal summary shows control characters in names as escapes", "
   s.source = "dir/\x1B]0;title\x07.toml";
   s.title = "two\nlines";
   pagecache::RunResult r;
-  r.timeline.push_back({"evil\x1B[2J", "t\r", "read", 0.0, 1.0, 0, 0, 0});
+  r.names = {"evil\x1B[2J", "t\r"};
+  r.timeline.push_back({0, 1, pagecache::PhaseKind::Read, 0.0, 1.0, 0, 0, 0});
   const std::string out = readable_summary(s, r);
   for (char c : out) {
     INFO(out);

@@ -57,7 +57,8 @@ RealRun run_like_pcsim(const RealCase& spec, int repetition, double stretch) {
   run.memory_total = 16'000'000'000;
   run.dropped_all_caches = true;
   for (const PhaseRow& row : r.timeline) {
-    run.phases.push_back(RealPhase{std::stoi(row.app), std::stoi(row.task), row.phase, row.start * stretch, row.end * stretch});
+    run.phases.push_back(RealPhase{std::stoi(r.app_name(row)), std::stoi(r.task_name(row)), std::string(to_string(row.phase)), row.start * stretch,
+                                     row.end * stretch});
     run.makespan = std::max(run.makespan, row.end * stretch);
   }
   run.memory.push_back({0.0, 16'000'000'000, 0, 0, 0});

@@ -43,7 +43,7 @@ write_bw = "100 MB/s"
 std::map<std::string, std::pair<double, double>> computes(const RunResult& r) {
   std::map<std::string, std::pair<double, double>> out;
   for (const PhaseRow& row : r.timeline) {
-    if (row.phase == "compute") out[row.task] = {row.start, row.end};
+    if (row.phase == PhaseKind::Compute) out[r.task_name(row)] = {row.start, row.end};
   }
   return out;
 }

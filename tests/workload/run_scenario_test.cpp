@@ -48,9 +48,9 @@ TEST_CASE("the cache contents name their I/O phase by its timeline row and their
   REQUIRE(r.files == std::vector<std::string>{"file_1", "file_2"});
   REQUIRE(r.cache.size() == 4);  // two files after each of the two I/O phases
   const auto phase = [&](std::size_t i) { return r.timeline.at(r.cache[i].phase).phase; };
-  CHECK(phase(0) == "read");
-  CHECK(phase(2) == "write");
-  CHECK(r.timeline.at(r.cache[0].phase).task == "1");
+  CHECK(phase(0) == PhaseKind::Read);
+  CHECK(phase(2) == PhaseKind::Write);
+  CHECK(r.task_name(r.timeline.at(r.cache[0].phase)) == "1");
   CHECK(r.cache[0].file == 0);
   CHECK(r.cache[1].file == 1);
   CHECK(r.cache[0].cached == 300'000'000);
@@ -165,7 +165,7 @@ memory_max = "3 GB"
     // The cached bytes of a file after the read phase of a task.
     const auto cached_after_read = [&](const std::string& task, std::size_t file) {
       for (const auto& row : r.cache) {
-        if (row.file == file && r.timeline.at(row.phase).task == task && r.timeline.at(row.phase).phase == "read") return row.cached;
+        if (row.file == file && r.task_name(r.timeline.at(row.phase)) == task && r.timeline.at(row.phase).phase == PhaseKind::Read) return row.cached;
       }
       FAIL("no cache row for task " << task);
       return std::int64_t{-1};
@@ -238,17 +238,18 @@ TEST_CASE("sampled memory rows are the tick-time states of the every-change prof
   const RunResult sampled = run_scenario(remote_pipeline("3000 s", "0.25 s"));
   REQUIRE(every.summary.makespan == sampled.summary.makespan);
   std::vector<MemoryRow> expected;
+  REQUIRE(every.hosts == sampled.hosts);
   for (const std::string host : {"node", "server"}) {
     std::vector<const MemoryRow*> changes;
     for (const MemoryRow& m : every.memory)
-      if (m.host == host) changes.push_back(&m);
+      if (every.host_name(m) == host) changes.push_back(&m);
     REQUIRE(changes.size() > 10);
     const MemoryState* last = nullptr;
     std::size_t next = 0;
     for (double tick = 0.0; tick < every.summary.makespan; tick += 0.25) {
       while (next < changes.size() && changes[next]->time <= tick) ++next;
       const MemoryState& state = changes[next - 1]->state;
-      if (last == nullptr || !(*last == state)) expected.push_back({tick, host, state});
+      if (last == nullptr || !(*last == state)) expected.push_back({tick, changes.front()->host, state});
       last = &state;
     }
   }
@@ -258,7 +259,7 @@ TEST_CASE("sampled memory rows are the tick-time states of the every-change prof
   std::stable_sort(expected.begin(), expected.end(), [](const MemoryRow& a, const MemoryRow& b) { return a.time < b.time; });
   REQUIRE(got.size() == expected.size());
   for (std::size_t i = 0; i < got.size(); ++i) {
-    INFO("row " << i << " at " << expected[i].time << " s, " << expected[i].host);
+    INFO("row " << i << " at " << expected[i].time << " s, " << every.host_name(expected[i]));
     CHECK(got[i].time == expected[i].time);
     CHECK(got[i].host == expected[i].host);
     CHECK(got[i].state == expected[i].state);

@@ -87,7 +87,7 @@ void check_agrees(const Scenario& scenario, const RunResult& r, const Tally& t) 
   REQUIRE(t.phases.size() == r.timeline.size());
   for (std::size_t i = 0; i < r.timeline.size(); ++i) {
     CHECK(t.phases[i].row == i);
-    CHECK(to_string(t.phases[i].kind) == r.timeline[i].phase);
+    CHECK(t.phases[i].kind == r.timeline[i].phase);
     CHECK(t.phases[i].start == r.timeline[i].start);
     CHECK(t.phases[i].end == r.timeline[i].end);
     CHECK(t.phases[i].bytes == r.timeline[i].bytes);

@@ -24,7 +24,10 @@
 // bound and weight: max-min gives them one rate): O(classes in it) per change, plus O(log n)
 // for the flow's place in its class. N applications on one NFS client make a few classes;
 // N clients of one server make N, but a change on one client leaves out the server while the
-// server stays below capacity (it is then no flow's bottleneck), and solves that client only.
+// server stays below capacity (it is then no flow's bottleneck), and solves that client only;
+// once the server saturates and bottlenecks many classes it becomes a hub (storage/hub.hpp):
+// a change solves the client's part with the rest of the server folded into one flow, and the
+// flows it bottlenecks progress on one clock, O(client + log N).
 
 #include <pagecache/simulator.hpp>
 

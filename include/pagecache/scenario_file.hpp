@@ -23,6 +23,9 @@ struct ScenarioLimits {
   /// three tasks and four files peak at 0.8 GB).
   std::int64_t max_tasks = 1'000'000;
   std::int64_t max_files = 2'000'000;
+  /// Hosts, host groups expanded: each has its own page cache, flusher and devices, about
+  /// 24 kB of a run (10^4 client hosts of an NFS server peak at 0.22 GB).
+  std::int64_t max_hosts = 20'000;
   /// Estimated events: three per chunk operation (each file's bytes over its task's chunk
   /// size, for every read and write), plus the flushers' periodic wake-ups over the estimated
   /// simulated time. About ten minutes of a run at the scale of 10^5 pipelines.
@@ -33,7 +36,7 @@ struct ScenarioLimits {
   /// Estimated memory.csv rows (held in memory until written): about 100 bytes each.
   double max_memory_rows = 2e7;
 
-  /// Only what pcsim cannot represent: 5 * 10^8 tasks, 10^9 files, 10^9 s.
+  /// Only what pcsim cannot represent: 5 * 10^8 tasks, 10^9 files, 10^9 hosts, 10^9 s.
   static ScenarioLimits forced();
 };
 

@@ -18,6 +18,7 @@ ScenarioLimits ScenarioLimits::forced() {
   ScenarioLimits l;
   l.max_tasks = 500'000'000;  // three timeline rows each, indexed by 32 bits
   l.max_files = 1'000'000'000;
+  l.max_hosts = 1'000'000'000;
   l.max_events = std::numeric_limits<double>::infinity();
   l.max_simulated_time = units::kMaxSeconds;
   l.max_memory_rows = std::numeric_limits<double>::infinity();
@@ -30,7 +31,8 @@ namespace pagecache::scenario {
 
 std::string limits_hint(const ScenarioLimits& limits) {
   const ScenarioLimits forced = ScenarioLimits::forced();
-  const bool below = limits.max_tasks < forced.max_tasks || limits.max_files < forced.max_files || limits.max_events < forced.max_events ||
+  const bool below = limits.max_tasks < forced.max_tasks || limits.max_files < forced.max_files || limits.max_hosts < forced.max_hosts ||
+                     limits.max_events < forced.max_events ||
                      limits.max_simulated_time < forced.max_simulated_time || limits.max_memory_rows < forced.max_memory_rows;
   return below ? " without --force" : "";
 }
@@ -171,6 +173,14 @@ void check_limits(const Scenario& s, const Origins& o, const ScenarioLimits& lim
   }
   if (static_cast<double>(s.files.size()) > static_cast<double>(limits.max_files)) {
     o.root.fail_table(fmt::format("{} files, more than the {} a run may have{}", s.files.size(), limits.max_files, hint));
+  }
+  if (static_cast<double>(s.hosts.size()) > static_cast<double>(limits.max_hosts)) {
+    // Most likely a host group's count: blame it.
+    const auto group = std::find_if(o.host_groups.begin(), o.host_groups.end(),
+                                    [&](const auto& g) { return static_cast<double>(g.second.second) > static_cast<double>(limits.max_hosts) / 2; });
+    const std::string message = fmt::format("{} hosts, more than the {} a run may have{}", s.hosts.size(), limits.max_hosts, hint);
+    if (group != o.host_groups.end()) o.hosts[group->second.first].fail("count", message);
+    o.root.fail_table(message);
   }
 
   Demand demand(s);

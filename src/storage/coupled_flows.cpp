@@ -109,35 +109,18 @@ void FairShare::Impl::solve_from(const FlowClassKey& seed) {
 // left with nothing to limit it, and then nothing is changed). With N clients of one server
 // that is not saturated, a change on one client solves that client's classes, not N.
 bool FairShare::Impl::solve_component(const FlowClassKey& seed, bool leave_out_slack) {
-  const std::uint64_t stamp = ++visit_stamp;
-  component_resources.clear();
   left_out.clear();
-  component_classes.clear();
   bool met_hub = false;
-  const auto reach = [&](ResourceState& r) {
-    if (r.coupled == 0 || r.visit == stamp) return;
-    r.visit = stamp;
+  search_component(seed, [&](ResourceState& r) {
     met_hub = met_hub || r.hub != nullptr;
     if (leave_out_slack && r.classes.size() > kLeaveOutAbove && r.usage < 1.0 - kSlack && r.hub_bound == 0) {
       r.local = kLeftOut;
       r.pending = 0.0;
       left_out.push_back(&r);
-      return;
+      return false;
     }
-    r.local = static_cast<std::uint32_t>(component_resources.size());
-    component_resources.push_back(&r);
-  };
-  const auto take = [&](FlowClass& c) {
-    if (c.visit == stamp) return;
-    c.visit = stamp;
-    component_classes.push_back(&c);
-    for (std::uint8_t u = 0; u < c.key.usage_count; ++u) reach(resource(c.key.usages[u].resource));
-  };
-  if (auto it = classes.find(seed); it != classes.end()) take(*it->second);
-  for (std::uint8_t i = 0; i < seed.usage_count; ++i) reach(resource(seed.usages[i].resource));
-  for (std::size_t next = 0; next < component_resources.size(); ++next) {
-    for (FlowClass* c : component_resources[next]->classes) take(*c);
-  }
+    return true;
+  });
   if (met_hub) {
     // A hub solves its satellites alone; the whole component is solved without it.
     dissolve_hubs();

@@ -119,6 +119,35 @@ struct FairShare::Impl {
   void uncouple(const detail::FlowClassKey& key, std::size_t flows);
   void make_explicit(ResourceState& r);
   void make_shared(ResourceState& r);
+  // Gathers into component_classes and component_resources the classes and coupled resources
+  // reached from the seed class's resources, each resource's `local` its index there.
+  // `admit(r)` decides for each resource met whether it joins (true) or is a border not
+  // crossed (false, and then it sets r's `local` itself); the search stops once more than
+  // `limit` classes are in.
+  template <class Admit>
+  void search_component(const detail::FlowClassKey& seed, Admit admit, std::size_t limit = std::numeric_limits<std::size_t>::max()) {
+    const std::uint64_t stamp = ++visit_stamp;
+    component_resources.clear();
+    component_classes.clear();
+    const auto reach = [&](ResourceState& r) {
+      if (r.coupled == 0 || r.visit == stamp) return;
+      r.visit = stamp;
+      if (!admit(r)) return;
+      r.local = static_cast<std::uint32_t>(component_resources.size());
+      component_resources.push_back(&r);
+    };
+    const auto take = [&](detail::FlowClass& c) {
+      if (c.visit == stamp) return;
+      c.visit = stamp;
+      component_classes.push_back(&c);
+      for (std::uint8_t u = 0; u < c.key.usage_count; ++u) reach(resource(c.key.usages[u].resource));
+    };
+    if (auto it = classes.find(seed); it != classes.end()) take(*it->second);
+    for (std::uint8_t i = 0; i < seed.usage_count; ++i) reach(resource(seed.usages[i].resource));
+    for (std::size_t next = 0; next < component_resources.size() && component_classes.size() <= limit; ++next) {
+      for (detail::FlowClass* c : component_resources[next]->classes) take(*c);
+    }
+  }
   void solve_from(const detail::FlowClassKey& seed);
   bool solve_component(const detail::FlowClassKey& seed, bool leave_out_slack);
   void schedule_head(detail::FlowClass& c);

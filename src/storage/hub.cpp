@@ -155,33 +155,17 @@ void FairShare::Impl::schedule_hub(Hub& h) {
 // saturated); hubs met are then dissolved and the component is solved whole.
 bool FairShare::Impl::solve_at_hub(const FlowClassKey& seed) {
   if (hubs == 0) return false;
-  const std::uint64_t stamp = ++visit_stamp;
-  component_resources.clear();
-  component_classes.clear();
   ResourceState* hub_resource = nullptr;
   bool several = false;
-  const auto reach = [&](ResourceState& r) {
-    if (r.coupled == 0 || r.visit == stamp) return;
-    r.visit = stamp;
-    if (r.hub) {
-      several = several || (hub_resource != nullptr && hub_resource != &r);
-      hub_resource = &r;
-      return;
-    }
-    r.local = static_cast<std::uint32_t>(component_resources.size());
-    component_resources.push_back(&r);
-  };
-  const auto take = [&](FlowClass& c) {
-    if (c.visit == stamp) return;
-    c.visit = stamp;
-    component_classes.push_back(&c);
-    for (std::uint8_t u = 0; u < c.key.usage_count; ++u) reach(resource(c.key.usages[u].resource));
-  };
-  if (auto it = classes.find(seed); it != classes.end()) take(*it->second);
-  for (std::uint8_t i = 0; i < seed.usage_count; ++i) reach(resource(seed.usages[i].resource));
-  for (std::size_t next = 0; next < component_resources.size() && component_classes.size() <= kSatelliteAtMost; ++next) {
-    for (FlowClass* c : component_resources[next]->classes) take(*c);
-  }
+  search_component(
+      seed,
+      [&](ResourceState& r) {
+        if (!r.hub) return true;
+        several = several || (hub_resource != nullptr && hub_resource != &r);
+        hub_resource = &r;
+        return false;
+      },
+      kSatelliteAtMost);
   if (hub_resource == nullptr) return false;  // none met: solve_component dissolves one if it meets it
   if (several || component_classes.size() > kSatelliteAtMost) {
     dissolve_hubs();

@@ -34,6 +34,10 @@ tasks = 1
                         "<test>");
 }
 
+// The sizes the README quotes for what a run keeps per phase and per file after a phase.
+static_assert(sizeof(PhaseRow) == 56, "README: a timeline row of 56 bytes");
+static_assert(sizeof(CacheRow) == 16, "README: 16 bytes per file after each I/O phase");
+
 TEST_CASE("run_scenario runs a scenario built in code", "[run]") {
   const RunResult r = run_scenario(one_pipeline());
   CHECK(r.summary.read.bytes == 300'000'000);

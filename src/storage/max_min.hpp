@@ -11,6 +11,8 @@
 // log(flows + resources)) however many distinct levels there are (clients of one server
 // behind links of many speeds make one level per speed).
 
+#include <pagecache/fair_share.hpp>
+
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -23,8 +25,8 @@ struct MaxMinFlow {
   double weight = 1.0;
   double bound = 0.0;  // may be infinite
   std::uint8_t usage_count = 0;
-  std::array<std::uint32_t, 4> resource{};  // indices in [0, resource_count)
-  std::array<double, 4> cost{};
+  std::array<std::uint32_t, kMaxResourcesPerFlow> resource{};  // indices in [0, resource_count)
+  std::array<double, kMaxResourcesPerFlow> cost{};
   double rate = 0.0;  // output
   double level = 0.0;        // output: the level at which it froze (its rate is min(bound, weight * level))
   std::uint32_t limit = 0;   // output: the resource that froze it, or kByBound

@@ -335,3 +335,25 @@ TEST_CASE("tearing down a simulation with flows in progress is clean", "[fair_sh
   }
   SUCCEED();
 }
+
+TEST_CASE("a flow crossing eight resources is solved with all eight", "[fair_share]") {
+  // A route of six links plus two ends: flow A crosses resources 0..7 (100 MB/s each, the
+  // first 50 MB/s); B crosses resources 0 and 1. Resource 0 bottlenecks both: 25 MB/s each, so
+  // B's 25 MB end at 1 s, after which A has it alone: A's last 25 MB at 50 MB/s, 1.5 s in all.
+  // (The solver once kept four resources per flow: the others overwrote the first costs.)
+  Simulator sim;
+  FairShare share(sim);
+  std::vector<ResourceId> r;
+  for (int i = 0; i < 8; ++i) r.push_back(share.add_resource("r" + std::to_string(i)));
+  FlowSpec a{.work = 50 * MB};
+  for (int i = 0; i < 8; ++i) a.through({r[static_cast<std::size_t>(i)], 1.0 / ((i == 0 ? 50 : 100) * MB)});
+  FlowSpec b{.work = 25 * MB};
+  b.through({r[0], 1.0 / (50 * MB)}).through({r[1], 1.0 / (100 * MB)});
+  double a_done = 0;
+  double b_done = 0;
+  sim.spawn(flow_at(sim, share, 0.0, a, a_done));
+  sim.spawn(flow_at(sim, share, 0.0, b, b_done));
+  sim.run();
+  CHECK(b_done == Catch::Detail::Approx(1.0));
+  CHECK(a_done == Catch::Detail::Approx(1.5));
+}

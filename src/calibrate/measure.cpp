@@ -65,11 +65,16 @@ struct AlignedBuffer {
   std::int64_t size;
 };
 
+// Whether a loop measuring until `deadline` goes on: at least one request whatever the time
+// (a deadline passed before the first, on a loaded machine, measured nothing and left a
+// required key out of the platform), unless the user stopped calibrate.
+bool go_on(std::int64_t done, const Deadline& deadline) { return done == 0 ? !g_stop.load(std::memory_order_relaxed) : !deadline.passed(); }
+
 // Writes `size` bytes (or until the deadline) from `buffer` in requests of buffer.size.
 std::int64_t write_loop(int fd, const AlignedBuffer& buffer, std::int64_t size, const Deadline& deadline, const std::filesystem::path& file,
                         bool direct) {
   std::int64_t done = 0;
-  while (done < size && !deadline.passed()) {
+  while (done < size && go_on(done, deadline)) {
     const auto n = ::pwrite(fd, buffer.data.get(), static_cast<std::size_t>(std::min(buffer.size, size - done)), done);
     if (n < 0) {
       if (errno == EINTR) continue;
@@ -84,7 +89,7 @@ std::int64_t write_loop(int fd, const AlignedBuffer& buffer, std::int64_t size, 
 std::int64_t read_loop(int fd, char* into, std::int64_t request, std::int64_t limit, bool advance, const Deadline& deadline,
                        const std::filesystem::path& file, bool direct) {
   std::int64_t done = 0;
-  while (done < limit && !deadline.passed()) {
+  while (done < limit && go_on(done, deadline)) {
     const auto n = ::pread(fd, into + (advance ? done : 0), static_cast<std::size_t>(std::min(request, limit - done)), done);
     if (n < 0) {
       if (errno == EINTR) continue;

@@ -211,9 +211,15 @@ void FairShare::Impl::on_class_due(void* context) {
   Impl& self = *static_cast<Impl*>(c.owner);
   c.head_event.reset();  // it is firing now
   c.advance(self.sim.now());
+  self.finish_head(c);
+}
+
+// The first member of `c`, its clock advanced to now, is due: it and every member done with it
+// end, the component is solved again, and their processes wake.
+void FairShare::Impl::finish_head(FlowClass& c) {
   // The head is due now by construction; pin the clock to it so rounding cannot leave it running.
   c.virtual_time = std::max(c.virtual_time, c.members.top().key);
-  std::vector<FlowState*>& done = self.finished;
+  std::vector<FlowState*>& done = finished;
   done.clear();
   while (!c.members.empty() && c.members.top().key <= c.virtual_time) {
     done.push_back(c.members.top().flow);
@@ -221,10 +227,10 @@ void FairShare::Impl::on_class_due(void* context) {
   }
   c.head_moved = true;
   const FlowClassKey key = c.key;
-  self.drop_if_empty(c);
-  self.uncouple(key, done.size());
-  self.solve_from(key);
-  for (FlowState* flow : done) self.wake(flow);
+  drop_if_empty(c);
+  uncouple(key, done.size());
+  solve_from(key);
+  for (FlowState* flow : done) wake(flow);
 }
 
 }  // namespace pagecache

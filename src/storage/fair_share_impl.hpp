@@ -151,6 +151,7 @@ struct FairShare::Impl {
   void solve_from(const detail::FlowClassKey& seed);
   bool solve_component(const detail::FlowClassKey& seed, bool leave_out_slack);
   void schedule_head(detail::FlowClass& c);
+  void finish_head(detail::FlowClass& c);
 
   // Hubs (hub.cpp).
   bool solve_at_hub(const detail::FlowClassKey& seed);

@@ -327,21 +327,8 @@ void FairShare::Impl::on_hub_due(void* context) {
   PC_ASSERT(!h.heads.empty());
   h.advance(self.sim.now());
   FlowClass& c = *h.heads.top().flow_class;
-  self.release(c);
-  // The head is due now by construction; pin the clock to it so rounding cannot leave it running.
-  c.virtual_time = std::max(c.virtual_time, c.members.top().key);
-  std::vector<detail::FlowState*>& done = self.finished;
-  done.clear();
-  while (!c.members.empty() && c.members.top().key <= c.virtual_time) {
-    done.push_back(c.members.top().flow);
-    c.members.pop();
-  }
-  c.head_moved = true;
-  const FlowClassKey key = c.key;
-  self.drop_if_empty(c);
-  self.uncouple(key, done.size());
-  self.solve_from(key);
-  for (detail::FlowState* flow : done) self.wake(flow);
+  self.release(c);  // advances it on the hub's clock
+  self.finish_head(c);
 }
 
 }  // namespace pagecache

@@ -27,16 +27,15 @@ namespace pagecache {
 
 namespace {
 
+// A file where it is stored (its name is its host's: Host::file_name).
 struct PlacedFile {
   Host* host;
   FileRef ref;
-  const std::string* name;
 };
 
 // A task as its run reads it, made once before the run, the plans of all tasks side by side,
-// so that an I/O phase looks no name up and reads no cold string. Its files are spans of one
-// array of copies (not pointers into the map, whose nodes are scattered), in the order of the
-// task's lists.
+// so that an I/O phase looks no name up and reads no cold string. Its files are ranges of one
+// array of indices into the runner's array of placed files, in the order of the task's lists.
 struct TaskPlan {
   std::uint32_t reads = 0;  // first read; the writes follow the reads, the deletes the writes
   std::uint32_t writes = 0;
@@ -45,14 +44,26 @@ struct TaskPlan {
   std::int64_t chunk_size = 0;
   std::int64_t memory = 0;  // held besides the buffers of what it reads
   double compute = 0.0;
+  std::uint32_t name = 0;  // in Runner::task_names_
   bool fsync = false;
   bool direct_io = false;
   GroupRef group;  // its application's memory group, if it has one
 };
 
+// An application as its run reads it: its tasks' plans are `tasks` from `first`.
+struct AppPlan {
+  std::string name;
+  Host* host;
+  std::uint32_t first;
+  std::uint32_t tasks;
+};
+
 class Runner {
  public:
-  Runner(const Scenario& scenario, const RunOptions& options) : scenario_(scenario), options_(options), share_(sim_) {
+  // `owned`: the scenario is the runner's; its applications and files, all the run needs of
+  // them planned, are freed before the run starts.
+  Runner(const Scenario& scenario, const RunOptions& options, Scenario* owned = nullptr)
+      : scenario_(scenario), options_(options), share_(sim_) {
     for (const HostConfig& config : scenario.hosts) {
       auto host = std::make_unique<Host>(
           sim_, share_, HostSpec{config.name, config.cores, config.memory, config.memory_bandwidth, config.cache, config.memory_in_use});
@@ -90,23 +101,28 @@ class Runner {
       }
       routes_[{r.host_a, r.host_b}] = &routes_storage_.emplace_back(std::move(crossed));
     }
-    files_.reserve(scenario.files.size());
+    // The files by name, while the tasks are planned (views of the scenario's names).
+    std::unordered_map<std::string_view, std::uint32_t> files;
+    files.reserve(scenario.files.size());
     file_order_.reserve(scenario.files.size());
     for (const FileSpec& f : scenario.files) {
       Host& host = host_named(f.host, "file", f.name);
       const auto disk = disks_.at(f.host).find(f.disk);
       if (disk == disks_.at(f.host).end()) throw ConfigError(fmt::format("file '{}': host '{}' has no disk named '{}'", f.name, f.host, f.disk));
-      auto [it, added] = files_.try_emplace(f.name, PlacedFile{&host, host.add_file(f.name, f.size, disk->second, f.cached), nullptr});
-      if (!added) throw ConfigError(fmt::format("two files named '{}'", f.name));
-      it->second.name = &it->first;
-      file_order_.push_back(&it->second);
+      if (!files.try_emplace(f.name, static_cast<std::uint32_t>(file_order_.size())).second) {
+        throw ConfigError(fmt::format("two files named '{}'", f.name));
+      }
+      file_order_.push_back({&host, host.add_file(f.name, f.size, disk->second, f.cached)});
     }
+    reserve_plans(scenario);
+    app_plans_.reserve(scenario.apps.size());
     for (const AppSpec& app : scenario.apps) {
       Host& host = host_named(app.host, "application", app.name);
       // An application with a memory limit is a memory group of its host (a job's cgroup).
       const GroupRef group = app.memory_max > 0 ? host.add_memory_group(app.memory_max, app.memory_high) : GroupRef{};
+      app_plans_.push_back({app.name, &host, static_cast<std::uint32_t>(task_plans_.size()), static_cast<std::uint32_t>(app.tasks.size())});
       for (const TaskSpec& task : app.tasks) {
-        plan_task(task);
+        plan_task(task, files);
         task_plans_.back().group = group;
       }
     }
@@ -125,23 +141,26 @@ class Runner {
       for (const std::string& h : w.hosts) host_named(h, "workflow", w.name);
       for (const TaskSpec& task : w.tasks) {
         if (!task.host.empty()) host_named(task.host, "task", task.name);
-        plan_task(task);
+        plan_task(task, files);
       }
+    }
+    task_names_.shrink_to_fit();
+    task_name_index_ = {};
+    if (owned != nullptr) {
+      // At 10^5 pipelines the specs are a fifth of the run's memory.
+      std::vector<AppSpec>().swap(owned->apps);
+      std::vector<FileSpec>().swap(owned->files);
     }
   }
 
   RunResult run() {
-    std::size_t tasks = 0;
-    for (const AppSpec& app : scenario_.apps) tasks += app.tasks.size();
-    for (const WorkflowSpec& w : scenario_.workflows) tasks += w.tasks.size();
-    attach_consumers(tasks);
+    attach_consumers(task_plans_.size());
     const auto wall_start = std::chrono::steady_clock::now();
-    const TaskPlan* plan = task_plans_.data();
-    for (const AppSpec& app : scenario_.apps) {
+    for (const AppPlan& app : app_plans_) {
       ++running_;
-      sim_.spawn(run_app(app, plan));
-      plan += app.tasks.size();
+      sim_.spawn(run_tasks(app.name, {task_plans_.data() + app.first, app.tasks}, *app.host, true));
     }
+    const TaskPlan* plan = task_plans_.data() + (app_plans_.empty() ? 0 : app_plans_.back().first + app_plans_.back().tasks);
     for (const WorkflowSpec& w : scenario_.workflows) {
       WorkflowHosts& hosts = workflow_hosts_.emplace_back(placement_of(w));
       std::deque<Event>& done = workflow_done_.emplace_back();
@@ -231,7 +250,7 @@ class Runner {
     }
     std::vector<std::string> files;
     files.reserve(file_order_.size());
-    for (const PlacedFile* f : file_order_) files.push_back(*f->name);
+    for (const PlacedFile& f : file_order_) files.push_back(f.host->file_name(f.ref));
     sink_->on_start({.hosts = host_order_, .files = files});
   }
 
@@ -243,12 +262,34 @@ class Runner {
     return *it->second;
   }
 
-  void plan_task(const TaskSpec& task) {
+  // Exact sizes: at 10^5 pipelines a doubling array's spare half would be tens of MB.
+  void reserve_plans(const Scenario& scenario) {
+    std::size_t tasks = 0;
+    std::size_t files = 0;
+    const auto count = [&](const std::vector<TaskSpec>& of) {
+      tasks += of.size();
+      for (const TaskSpec& t : of) files += t.reads.size() + t.writes.size() + t.deletes.size();
+    };
+    for (const AppSpec& app : scenario.apps) count(app.tasks);
+    for (const WorkflowSpec& w : scenario.workflows) count(w.tasks);
+    task_plans_.reserve(tasks);
+    planned_files_.reserve(files);
+  }
+
+  // The name's index in task_names_ (each name once: a run of pipelines has a few).
+  std::uint32_t task_name(const std::string& name) {
+    const auto [it, added] = task_name_index_.try_emplace(name, static_cast<std::uint32_t>(task_names_.size()));
+    if (added) task_names_.push_back(name);
+    return it->second;
+  }
+
+  void plan_task(const TaskSpec& task, const std::unordered_map<std::string_view, std::uint32_t>& files) {
     TaskPlan& plan = task_plans_.emplace_back();
+    plan.name = task_name(task.name);
     const auto add = [&](const std::vector<std::string>& names) {
       for (const std::string& name : names) {
-        const auto it = files_.find(name);
-        if (it == files_.end()) throw ConfigError(fmt::format("task '{}': no file named '{}'", task.name, name));
+        const auto it = files.find(name);
+        if (it == files.end()) throw ConfigError(fmt::format("task '{}': no file named '{}'", task.name, name));
         planned_files_.push_back(it->second);
       }
       return static_cast<std::uint32_t>(planned_files_.size());
@@ -260,7 +301,7 @@ class Runner {
     plan.chunk_size = task.chunk_size;
     std::int64_t reading = 0;
     for (std::uint32_t f = plan.reads; f < plan.writes; ++f) {
-      const PlacedFile& placed = planned_files_[f];
+      const PlacedFile& placed = file_order_[planned_files_[f]];
       reading = std::min(reading + placed.host->file_size(placed.ref), units::kMaxBytes * 2);
     }
     plan.memory = std::max<std::int64_t>(0, task.memory - reading);
@@ -269,9 +310,8 @@ class Runner {
     plan.direct_io = task.direct_io;
   }
 
-  std::span<const PlacedFile> planned(std::uint32_t begin, std::uint32_t end) const {
-    return {planned_files_.data() + begin, planned_files_.data() + end};
-  }
+  // The file of a task's list: `f` in [reads, end) of its plan.
+  const PlacedFile& planned(std::uint32_t f) const { return file_order_[planned_files_[f]]; }
 
   // The file as seen from `client`: its own, or the server's through the link between them
   // (registered once per host and file, when first used).
@@ -283,7 +323,8 @@ class Runner {
     auto route = routes_.find({client.name(), server});
     if (route == routes_.end()) route = routes_.find({server, client.name()});
     if (route == routes_.end()) {
-      throw ConfigError(fmt::format("file '{}' is on host '{}', and no route joins it to host '{}'", *stored.name, server, client.name()));
+      throw ConfigError(fmt::format("file '{}' is on host '{}', and no route joins it to host '{}'", stored.host->file_name(stored.ref), server,
+                                    client.name()));
     }
     const FileRef ref = client.add_remote_file(*stored.host, stored.ref, *route->second);
     remote_files_.emplace(key, ref);
@@ -391,7 +432,14 @@ class Runner {
   }
 
   // A phase that has just ended, with what it moved.
-  std::uint32_t report_phase(std::string_view app, std::string_view task, const Host& host, PhaseKind kind, double start, const IoResult& moved) {
+  // What a phase moved: its files' IoResults summed, without their times.
+  struct Moved {
+    std::int64_t bytes = 0;
+    std::int64_t cache_bytes = 0;
+    std::int64_t disk_bytes = 0;
+  };
+
+  std::uint32_t report_phase(std::string_view app, std::string_view task, const Host& host, PhaseKind kind, double start, const Moved& moved) {
     const std::uint32_t row = phases_++;
     sink_->on_phase({.row = row, .host = host_index_.at(&host), .app = app, .task = task, .kind = kind, .start = start, .end = sim_.now(),
                      .bytes = moved.bytes, .cache_bytes = moved.cache_bytes, .disk_bytes = moved.disk_bytes});
@@ -402,27 +450,14 @@ class Runner {
   void record_cache(std::uint32_t phase) {
     if (!record_cache_) return;
     cached_.resize(file_order_.size());
-    for (std::size_t i = 0; i < file_order_.size(); ++i) cached_[i] = file_order_[i]->host->cached(file_order_[i]->ref);
+    for (std::size_t i = 0; i < file_order_.size(); ++i) cached_[i] = file_order_[i].host->cached(file_order_[i].ref);
     sink_->on_cache_contents({.phase_row = phase, .cached = cached_});
   }
 
-  // One I/O phase: every file read (or written) whole, one after the other. Returns the bytes
-  // moved; its row is reported when it ends. GCC keeps every local of a coroutine in its
-  // frame: the frame holds the tallies, not the row and its strings, and one co_await serves
-  // reads and writes.
-  Task<std::int64_t> io_phase(const std::string& app, const TaskSpec& task, const TaskPlan& plan, Host& host, bool reading) {
-    const double start = sim_.now();
-    IoResult sum;
-    for (const PlacedFile& placed : reading ? planned(plan.reads, plan.writes) : planned(plan.writes, plan.deletes)) {
-      const FileRef file = file_on(host, placed);
-      const IoResult r = co_await transfer(host, file, plan, reading);
-      if (!reading && plan.fsync) co_await host.fsync(file);
-      sum.bytes += r.bytes;
-      sum.cache_bytes += r.cache_bytes;
-      sum.disk_bytes += r.disk_bytes;
-    }
-    record_cache(report_phase(app, task.name, host, reading ? PhaseKind::Read : PhaseKind::Write, start, sum));
-    co_return sum.bytes;
+  static void add_moved(Moved& sum, const IoResult& r) {
+    sum.bytes += r.bytes;
+    sum.cache_bytes += r.cache_bytes;
+    sum.disk_bytes += r.disk_bytes;
   }
 
   static Task<IoResult> transfer(Host& host, FileRef file, const TaskPlan& plan, bool reading) {
@@ -430,24 +465,43 @@ class Runner {
                    : host.write_file(file, plan.chunk_size, plan.direct_io, plan.group);
   }
 
-  Task<void> run_task(const std::string& app, const TaskSpec& task, const TaskPlan& plan, Host& host) {
-    if (plan.memory > 0) co_await host.hold_memory(plan.memory, plan.group);
-    const std::int64_t read_bytes = co_await io_phase(app, task, plan, host, true);
-    const double compute_start = sim_.now();
-    if (plan.compute > 0.0) co_await host.compute(plan.compute);
-    report_phase(app, task.name, host, PhaseKind::Compute, compute_start, IoResult{});
-    co_await io_phase(app, task, plan, host, false);
-    host.release_memory(read_bytes + plan.memory, plan.group);  // the task's memory is freed when it ends
-    for (const PlacedFile& stored : planned(plan.deletes, plan.end)) {
-      co_await host.delete_file(file_on(host, stored));
-      if (stored.host != &host) co_await stored.host->delete_file(stored.ref);  // on the server too
+  // Tasks one after the other (an application's, or one workflow task): each holds its memory,
+  // reads its inputs whole one after the other, computes, writes its outputs, frees its memory
+  // and deletes what it deletes; a phase's row is reported when it ends. One coroutine for all
+  // of it: with 10^5 applications in flight every nested frame costs tens of MB (GCC keeps
+  // each local of a coroutine in its frame, and frames are recycled per size), so the phases
+  // share one loop and one co_await serves reads and writes. `ends_app`: the last task of an
+  // application ends it (finish_one).
+  Task<void> run_tasks(const std::string& app, std::span<const TaskPlan> plans, Host& host, bool ends_app) {
+    for (const TaskPlan& plan : plans) {
+      if (plan.memory > 0) co_await host.hold_memory(plan.memory, plan.group);
+      std::int64_t read_bytes = 0;
+      for (PhaseKind kind = PhaseKind::Read;; kind = kind == PhaseKind::Read ? PhaseKind::Compute : PhaseKind::Write) {
+        const double start = sim_.now();
+        Moved sum;
+        if (kind == PhaseKind::Compute) {
+          if (plan.compute > 0.0) co_await host.compute(plan.compute);
+        } else {
+          const bool reading = kind == PhaseKind::Read;
+          for (std::uint32_t f = reading ? plan.reads : plan.writes; f < (reading ? plan.writes : plan.deletes); ++f) {
+            const FileRef file = file_on(host, planned(f));
+            add_moved(sum, co_await transfer(host, file, plan, reading));
+            if (!reading && plan.fsync) co_await host.fsync(file);
+          }
+          if (reading) read_bytes = sum.bytes;
+        }
+        const std::uint32_t row = report_phase(app, task_names_[plan.name], host, kind, start, sum);
+        if (kind != PhaseKind::Compute) record_cache(row);
+        if (kind == PhaseKind::Write) break;
+      }
+      host.release_memory(read_bytes + plan.memory, plan.group);  // the task's memory is freed when it ends
+      for (std::uint32_t f = plan.deletes; f < plan.end; ++f) {
+        const PlacedFile& stored = planned(f);
+        co_await host.delete_file(file_on(host, stored));
+        if (stored.host != &host) co_await stored.host->delete_file(stored.ref);  // on the server too
+      }
     }
-  }
-
-  Task<void> run_app(const AppSpec& app, const TaskPlan* plan) {
-    Host& host = *hosts_.at(app.host);
-    for (const TaskSpec& task : app.tasks) co_await run_task(app.name, task, *plan++, host);
-    finish_one();
+    if (ends_app) finish_one();
   }
 
   // What each task of `w` waits for before it starts (`done` holds the ends of its tasks, in
@@ -496,9 +550,9 @@ class Runner {
       // Its own memory group, on the host it got (a pod's or job's cgroup).
       TaskPlan in_group = plan;
       in_group.group = hosts.hosts[host]->add_memory_group(task.memory_limits.max, task.memory_limits.high);
-      co_await run_task(w.name, task, in_group, *hosts.hosts[host]);
+      co_await run_tasks(w.name, {&in_group, 1}, *hosts.hosts[host], false);
     } else {
-      co_await run_task(w.name, task, plan, *hosts.hosts[host]);
+      co_await run_tasks(w.name, {&plan, 1}, *hosts.hosts[host], false);
     }
     hosts.cores->release(host, task.cores);
     done.trigger();
@@ -523,11 +577,13 @@ class Runner {
   std::deque<Link> links_storage_;
   std::deque<Route> routes_storage_;
   std::map<std::pair<std::string, std::string>, const Route*> routes_;
-  std::unordered_map<std::string, PlacedFile> files_;  // nodes: stable addresses
+  std::vector<AppPlan> app_plans_;    // per application, in order
   std::vector<TaskPlan> task_plans_;  // per task, apps' then workflows', in order
-  std::vector<PlacedFile> planned_files_;
+  std::vector<std::string> task_names_;  // what TaskPlan::name names
+  std::unordered_map<std::string, std::uint32_t> task_name_index_;  // while planning
+  std::vector<std::uint32_t> planned_files_;  // the files of the tasks' lists, in file_order_
   std::map<std::tuple<const Host*, const Host*, std::uint32_t>, FileRef> remote_files_;  // (client, server, server's file)
-  std::vector<const PlacedFile*> file_order_;
+  std::vector<PlacedFile> file_order_;  // the scenario's files, in its order
   bool record_cache_ = false;
   std::deque<WorkflowHosts> workflow_hosts_;  // per workflow
   std::deque<std::deque<Event>> workflow_done_;  // per workflow, its tasks' ends in workflow order
@@ -544,6 +600,12 @@ class Runner {
 
 RunResult run_scenario(const Scenario& scenario, const RunOptions& options) {
   Runner runner(scenario, options);
+  return runner.run();
+}
+
+RunResult run_scenario(Scenario&& scenario, const RunOptions& options) {
+  Scenario owned = std::move(scenario);
+  Runner runner(owned, options, &owned);
   return runner.run();
 }
 

@@ -45,6 +45,118 @@ TEST_CASE("run_scenario runs a scenario built in code", "[run]") {
   CHECK(r.timeline.size() == 3);
 }
 
+// Applications (with deletes, fsync and a memory group), pipelines and a workflow in one run.
+Scenario apps_and_workflow() {
+  return parse_scenario(R"(
+memory_sample_interval = "0 s"
+[[hosts]]
+name = "node"
+cores = 2
+memory = "4 GB"
+memory_read_bw = "6 GB/s"
+memory_write_bw = "3 GB/s"
+[[hosts.disks]]
+name = "disk"
+read_bw = "500 MB/s"
+write_bw = "400 MB/s"
+[[files]]
+name = "a"
+size = "500 MB"
+[[files]]
+name = "b"
+size = "300 MB"
+[[files]]
+name = "c"
+size = "200 MB"
+[[apps]]
+name = "writer"
+memory_max = "2 GB"
+[[apps.tasks]]
+name = "copy"
+read = "a"
+compute = "1 s"
+write = "b"
+fsync = true
+[[apps.tasks]]
+name = "drop"
+read = "b"
+delete = "b"
+[pipelines]
+count = 2
+file_size = "200 MB"
+tasks = 2
+[workflow]
+name = "wf"
+[[workflow.tasks]]
+name = "first"
+read = "a"
+write = "c"
+[[workflow.tasks]]
+name = "second"
+read = "c"
+compute = "0.5 s"
+)",
+                        "<test>");
+}
+
+// Two runs' results, but for the wall time.
+void require_same_results(const RunResult& a, const RunResult& b) {
+  REQUIRE(a.timeline.size() == b.timeline.size());
+  for (std::size_t i = 0; i < a.timeline.size(); ++i) {
+    const PhaseRow& x = a.timeline[i];
+    const PhaseRow& y = b.timeline[i];
+    INFO("timeline row " << i);
+    CHECK(a.app_name(x) == b.app_name(y));
+    CHECK(a.task_name(x) == b.task_name(y));
+    CHECK(x.phase == y.phase);
+    CHECK(x.start == y.start);
+    CHECK(x.end == y.end);
+    CHECK(x.bytes == y.bytes);
+    CHECK(x.cache_bytes == y.cache_bytes);
+    CHECK(x.disk_bytes == y.disk_bytes);
+  }
+  REQUIRE(a.memory.size() == b.memory.size());
+  for (std::size_t i = 0; i < a.memory.size(); ++i) {
+    INFO("memory row " << i);
+    CHECK(a.host_name(a.memory[i]) == b.host_name(b.memory[i]));
+    CHECK(a.memory[i].time == b.memory[i].time);
+    CHECK(a.memory[i].state == b.memory[i].state);
+  }
+  CHECK(a.files == b.files);
+  REQUIRE(a.cache.size() == b.cache.size());
+  for (std::size_t i = 0; i < a.cache.size(); ++i) {
+    INFO("cache row " << i);
+    CHECK(a.cache[i].phase == b.cache[i].phase);
+    CHECK(a.cache[i].file == b.cache[i].file);
+    CHECK(a.cache[i].cached == b.cache[i].cached);
+  }
+  CHECK(a.summary.makespan == b.summary.makespan);
+  CHECK(a.summary.end_time == b.summary.end_time);
+  CHECK(a.summary.events == b.summary.events);
+  CHECK(a.summary.evicted_bytes == b.summary.evicted_bytes);
+  CHECK(a.summary.forced_flush_bytes == b.summary.forced_flush_bytes);
+  CHECK(a.summary.periodic_flush_bytes == b.summary.periodic_flush_bytes);
+}
+
+TEST_CASE("a scenario handed over to run_scenario runs as one its caller keeps", "[run]") {
+  // The run frees the applications and files of a scenario it is given, once planned: what it
+  // runs from must be its own copies.
+  std::vector<std::pair<std::string, Scenario>> cases;
+  cases.emplace_back("apps, pipelines and a workflow", apps_and_workflow());
+  for (const char* path : {"scenarios/examples/memory-limit.toml", "scenarios/examples/nighres-over-nfs.toml",
+                           "scenarios/examples/file-no-longer-fits.toml", "tests/apps/golden/small_workflow.toml"}) {
+    cases.emplace_back(path, load_scenario(std::string(PCSIM_SOURCE_DIR) + "/" + path));
+  }
+  for (const auto& [name, scenario] : cases) {
+    INFO(name);
+    const RunResult kept = run_scenario(scenario);
+    REQUIRE_FALSE(kept.timeline.empty());
+    Scenario given = scenario;
+    const RunResult handed_over = run_scenario(std::move(given));
+    require_same_results(kept, handed_over);
+  }
+}
+
 TEST_CASE("the cache contents name their I/O phase by its timeline row and their file by its index", "[run]") {
   // One task reads file_1 (300 MB, not cached), computes, writes file_2: after the read, all
   // of file_1 is cached and none of file_2; after the write, both (4 GB of memory hold them).

@@ -125,23 +125,19 @@ class [[nodiscard]] Task {
   /// True if this Task holds a coroutine (false after a move).
   bool valid() const noexcept { return static_cast<bool>(handle_); }
 
-  struct Awaiter {
-    Handle handle;
-    bool await_ready() const noexcept { return !handle || handle.done(); }
-    bool await_suspend(std::coroutine_handle<> awaiting) noexcept {
-      auto& promise = handle.promise();
-      promise.set_continuation(awaiting);
-      promise.set_start(detail::TaskPromiseBase::Start::Inline);
-      handle.resume();
-      if (promise.start() == detail::TaskPromiseBase::Start::CompletedInline) return false;
-      promise.set_start(detail::TaskPromiseBase::Start::Detached);
-      return true;
-    }
-    T await_resume() { return handle.promise().take_result(); }
-  };
-
-  Awaiter operator co_await() && noexcept { return Awaiter{handle_}; }
-  Awaiter operator co_await() & noexcept { return Awaiter{handle_}; }
+  // A Task is its own awaiter: an awaiter object beside it would take a slot of its own in the
+  // awaiting coroutine's frame, one per co_await (GCC does not share frame slots).
+  bool await_ready() const noexcept { return !handle_ || handle_.done(); }
+  bool await_suspend(std::coroutine_handle<> awaiting) noexcept {
+    auto& promise = handle_.promise();
+    promise.set_continuation(awaiting);
+    promise.set_start(detail::TaskPromiseBase::Start::Inline);
+    handle_.resume();
+    if (promise.start() == detail::TaskPromiseBase::Start::CompletedInline) return false;
+    promise.set_start(detail::TaskPromiseBase::Start::Detached);
+    return true;
+  }
+  T await_resume() { return handle_.promise().take_result(); }
 
  private:
   void reset() noexcept {

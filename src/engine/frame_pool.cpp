@@ -3,12 +3,14 @@
 // levels deep; per-size free lists recycle them without malloc, and reuse frames still in cache.
 //
 // One pool per thread, no locking. Sizes are rounded up to 64 bytes; frames above 4 KiB go to
-// the global allocator. The free lists keep what they hold until the thread ends.
+// the global allocator. Each free list keeps at most 64 KiB of frames until the thread ends,
+// the rest goes back to the global allocator, where any size can reuse it.
 
 #include <pagecache/task.hpp>
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <new>
 
 namespace pagecache::detail {
@@ -17,6 +19,9 @@ namespace {
 
 constexpr std::size_t kGranule = 64;
 constexpr std::size_t kLargest = 4096;
+// Frames kept per size: enough for those a run frees and makes again at once. Not each size's
+// peak: peaks come at different times (10^5 applications reading, then writing, held both).
+constexpr std::size_t kKeptBytes = 64 * 1024;
 
 struct FreeFrame {
   FreeFrame* next;
@@ -36,17 +41,24 @@ class FramePool {
     const std::size_t slot = (size - 1) / kGranule;
     if (FreeFrame* frame = free_[slot]) {
       free_[slot] = frame->next;
+      --count_[slot];
       return frame;
     }
     return ::operator new((slot + 1) * kGranule);
   }
   void release(void* frame, std::size_t size) noexcept {
     const std::size_t slot = (size - 1) / kGranule;
+    if (count_[slot] >= kKeptBytes / ((slot + 1) * kGranule)) {
+      ::operator delete(frame);
+      return;
+    }
+    ++count_[slot];
     free_[slot] = new (frame) FreeFrame{free_[slot]};
   }
 
  private:
   std::array<FreeFrame*, kLargest / kGranule> free_{};
+  std::array<std::uint32_t, kLargest / kGranule> count_{};
   static thread_local bool alive_;
 };
 

@@ -49,6 +49,10 @@ void write_file(const fs::path& path, const std::string& text) {
   if (!out) throw Error(fmt::format("cannot write {}", path.string()));
 }
 
+// MB/s with one decimal, or three significant digits below 1 MB/s: a slow phase (100 MB over
+// an hour) is not shown as 0.0.
+std::string readable_rate(double mb_per_s) { return mb_per_s >= 1.0 ? fmt::format("{:.1f}", mb_per_s) : fmt::format("{:.3g}", mb_per_s); }
+
 }  // namespace
 
 // A CSV file written as it is formatted: rows go straight into one small fmt::memory_buffer,
@@ -235,7 +239,7 @@ std::string readable_summary(const Scenario& scenario, const RunResult& r) {
                        "end_s", "MB/s", "cache_GB", "disk_GB");
     for (const PhaseRow* p : by_app[order[i]]) {
       const double seconds = p->end - p->start;
-      const std::string rate = p->bytes > 0 && seconds > 0 ? fmt::format("{:.1f}", static_cast<double>(p->bytes) / seconds / 1e6) : "-";
+      const std::string rate = p->bytes > 0 && seconds > 0 ? readable_rate(static_cast<double>(p->bytes) / seconds / 1e6) : "-";
       out += fmt::format("{:>10} {:>8} {:>10.2f} {:>10.2f} {:>10} {:>9.2f} {:>9.2f}\n", printable(r.task_name(*p)), to_string(p->phase), p->start,
                          p->end, rate, static_cast<double>(p->cache_bytes) / 1e9, static_cast<double>(p->disk_bytes) / 1e9);
     }

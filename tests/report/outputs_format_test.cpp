@@ -222,3 +222,15 @@ TEST_CASE("the terminal summary shows control characters in names as escapes", "
   CHECK_THAT(out, Catch::StartsWith("two\\nlines\nscenario dir/\\u001b]0;title\\u0007.toml"));
   CHECK_THAT(out, Catch::Contains("app evil\\u001b[2J\n") && Catch::Contains("t\\r"));
 }
+
+TEST_CASE("the terminal summary shows a slow phase's rate, not 0.0", "[report]") {
+  pagecache::Scenario s;
+  pagecache::RunResult r;
+  r.names = {"app", "task"};
+  r.timeline.push_back({0, 1, pagecache::PhaseKind::Read, 0.0, 6213.0, 100'000'000, 0, 100'000'000});   // 0.0161 MB/s
+  r.timeline.push_back({0, 1, pagecache::PhaseKind::Write, 6213.0, 6313.0, 51'234'000'000, 0, 0});     // 512.34 MB/s
+  const std::string out = readable_summary(s, r);
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains(" 0.0161 "));
+  CHECK_THAT(out, Catch::Contains(" 512.3 "));
+}

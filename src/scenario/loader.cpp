@@ -450,7 +450,7 @@ void read_platform(TomlReader& r, Scenario& s, const std::string& file, Origins&
     std::int64_t count = 0;
     HostConfig host = read_host(*hosts[i], r.child_path("hosts", i), s.hosts.size(), s.profile, file, nullptr, host_origin, cache_origin,
                                 disk_origins, &count);
-    const auto taken = [&](const std::string& name) { return origins.host_groups.count(name) != 0 || named.count(name) != 0; };
+    const auto taken = [&](const std::string& candidate) { return origins.host_groups.count(candidate) != 0 || named.count(candidate) != 0; };
     if (taken(host.name)) TomlReader(*hosts[i], r.child_path("hosts", i), file).fail("name", "two hosts share this name");
     if (count == 0) {
       origins.hosts.push_back(std::move(host_origin));

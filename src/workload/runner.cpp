@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <deque>
@@ -101,15 +102,14 @@ class Runner {
       }
       routes_[{r.host_a, r.host_b}] = &routes_storage_.emplace_back(std::move(crossed));
     }
-    // The files by name, while the tasks are planned (views of the scenario's names).
-    std::unordered_map<std::string_view, std::uint32_t> files;
-    files.reserve(scenario.files.size());
+    Names names;
+    names.files.reserve(scenario.files.size());
     file_order_.reserve(scenario.files.size());
     for (const FileSpec& f : scenario.files) {
       Host& host = host_named(f.host, "file", f.name);
       const auto disk = disks_.at(f.host).find(f.disk);
       if (disk == disks_.at(f.host).end()) throw ConfigError(fmt::format("file '{}': host '{}' has no disk named '{}'", f.name, f.host, f.disk));
-      if (!files.try_emplace(f.name, static_cast<std::uint32_t>(file_order_.size())).second) {
+      if (!names.files.try_emplace(f.name, static_cast<std::uint32_t>(file_order_.size())).second) {
         throw ConfigError(fmt::format("two files named '{}'", f.name));
       }
       file_order_.push_back({&host, host.add_file(f.name, f.size, disk->second, f.cached)});
@@ -122,10 +122,11 @@ class Runner {
       const GroupRef group = app.memory_max > 0 ? host.add_memory_group(app.memory_max, app.memory_high) : GroupRef{};
       app_plans_.push_back({app.name, &host, static_cast<std::uint32_t>(task_plans_.size()), static_cast<std::uint32_t>(app.tasks.size())});
       for (const TaskSpec& task : app.tasks) {
-        plan_task(task, files);
+        plan_task(task, names);
         task_plans_.back().group = group;
       }
     }
+    first_workflow_plan_ = task_plans_.size();
     // Memory groups are never removed: a run may make at most so many (on one host).
     std::size_t groups = 0;
     for (const AppSpec& app : scenario.apps) groups += app.memory_max > 0 ? 1 : 0;
@@ -141,11 +142,10 @@ class Runner {
       for (const std::string& h : w.hosts) host_named(h, "workflow", w.name);
       for (const TaskSpec& task : w.tasks) {
         if (!task.host.empty()) host_named(task.host, "task", task.name);
-        plan_task(task, files);
+        plan_task(task, names);
       }
     }
     task_names_.shrink_to_fit();
-    task_name_index_ = {};
     if (owned != nullptr) {
       // At 10^5 pipelines the specs are a fifth of the run's memory.
       std::vector<AppSpec>().swap(owned->apps);
@@ -160,7 +160,7 @@ class Runner {
       ++running_;
       sim_.spawn(run_tasks(app.name, {task_plans_.data() + app.first, app.tasks}, *app.host, true));
     }
-    const TaskPlan* plan = task_plans_.data() + (app_plans_.empty() ? 0 : app_plans_.back().first + app_plans_.back().tasks);
+    const TaskPlan* plan = task_plans_.data() + first_workflow_plan_;
     for (const WorkflowSpec& w : scenario_.workflows) {
       WorkflowHosts& hosts = workflow_hosts_.emplace_back(placement_of(w));
       std::deque<Event>& done = workflow_done_.emplace_back();
@@ -276,20 +276,23 @@ class Runner {
     planned_files_.reserve(files);
   }
 
-  // The name's index in task_names_ (each name once: a run of pipelines has a few).
-  std::uint32_t task_name(const std::string& name) {
-    const auto [it, added] = task_name_index_.try_emplace(name, static_cast<std::uint32_t>(task_names_.size()));
-    if (added) task_names_.push_back(name);
-    return it->second;
-  }
+  // What planning looks up, by views of the scenario's names: its files (index in file_order_)
+  // and the task names met so far (index in task_names_, each name once: a run of pipelines
+  // has a few).
+  struct Names {
+    std::unordered_map<std::string_view, std::uint32_t> files;
+    std::unordered_map<std::string_view, std::uint32_t> tasks;
+  };
 
-  void plan_task(const TaskSpec& task, const std::unordered_map<std::string_view, std::uint32_t>& files) {
+  void plan_task(const TaskSpec& task, Names& names) {
     TaskPlan& plan = task_plans_.emplace_back();
-    plan.name = task_name(task.name);
-    const auto add = [&](const std::vector<std::string>& names) {
-      for (const std::string& name : names) {
-        const auto it = files.find(name);
-        if (it == files.end()) throw ConfigError(fmt::format("task '{}': no file named '{}'", task.name, name));
+    const auto [known, added] = names.tasks.try_emplace(task.name, static_cast<std::uint32_t>(task_names_.size()));
+    if (added) task_names_.push_back(task.name);
+    plan.name = known->second;
+    const auto add = [&](const std::vector<std::string>& list) {
+      for (const std::string& name : list) {
+        const auto it = names.files.find(name);
+        if (it == names.files.end()) throw ConfigError(fmt::format("task '{}': no file named '{}'", task.name, name));
         planned_files_.push_back(it->second);
       }
       return static_cast<std::uint32_t>(planned_files_.size());
@@ -472,11 +475,14 @@ class Runner {
   // each local of a coroutine in its frame, and frames are recycled per size), so the phases
   // share one loop and one co_await serves reads and writes. `ends_app`: the last task of an
   // application ends it (finish_one).
+  static constexpr std::array<PhaseKind, 3> kPhases{PhaseKind::Read, PhaseKind::Compute, PhaseKind::Write};
+
   Task<void> run_tasks(const std::string& app, std::span<const TaskPlan> plans, Host& host, bool ends_app) {
     for (const TaskPlan& plan : plans) {
       if (plan.memory > 0) co_await host.hold_memory(plan.memory, plan.group);
       std::int64_t read_bytes = 0;
-      for (PhaseKind kind = PhaseKind::Read;; kind = kind == PhaseKind::Read ? PhaseKind::Compute : PhaseKind::Write) {
+      for (std::uint8_t phase = 0; phase < kPhases.size(); ++phase) {
+        const PhaseKind kind = kPhases[phase];
         const double start = sim_.now();
         Moved sum;
         if (kind == PhaseKind::Compute) {
@@ -492,7 +498,6 @@ class Runner {
         }
         const std::uint32_t row = report_phase(app, task_names_[plan.name], host, kind, start, sum);
         if (kind != PhaseKind::Compute) record_cache(row);
-        if (kind == PhaseKind::Write) break;
       }
       host.release_memory(read_bytes + plan.memory, plan.group);  // the task's memory is freed when it ends
       for (std::uint32_t f = plan.deletes; f < plan.end; ++f) {
@@ -579,8 +584,8 @@ class Runner {
   std::map<std::pair<std::string, std::string>, const Route*> routes_;
   std::vector<AppPlan> app_plans_;    // per application, in order
   std::vector<TaskPlan> task_plans_;  // per task, apps' then workflows', in order
+  std::size_t first_workflow_plan_ = 0;
   std::vector<std::string> task_names_;  // what TaskPlan::name names
-  std::unordered_map<std::string, std::uint32_t> task_name_index_;  // while planning
   std::vector<std::uint32_t> planned_files_;  // the files of the tasks' lists, in file_order_
   std::map<std::tuple<const Host*, const Host*, std::uint32_t>, FileRef> remote_files_;  // (client, server, server's file)
   std::vector<PlacedFile> file_order_;  // the scenario's files, in its order

@@ -1,7 +1,7 @@
 // Page cache micro-benchmarks: the LRU list operations of PageCache (touch, split, evict,
 // flush) with n blocks cached, and the chunk read and write paths of a Host (I/O controller,
 // page cache, devices) on a warm cache. Figures are per operation; each list operation should
-// cost O(1) or O(log n) whatever n (MODEL.md §2), so they should stay flat as n grows.
+// cost O(1) or O(log n) whatever n (docs/model.md §2), so they should stay flat as n grows.
 #include "cache/page_cache.hpp"
 
 #include <pagecache/host.hpp>

@@ -5,10 +5,10 @@
 # medians, their ratio, and per run: the wall time, the time inside the run (scenario loaded,
 # simulated, its line formatted) and the simulation's own.
 #
-#   benchmarks/sweep_bench.sh [PCSIM] [REPS]      (PCSIM: build/apps/pcsim/pcsim)
+#   benchmarks/sweep_bench.sh [PCSIM] [REPS]      (PCSIM: build/bin/pcsim)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-pcsim=${1:-$root/build/apps/pcsim/pcsim}
+pcsim=${1:-$root/build/bin/pcsim}
 reps=${2:-5}
 work=$(mktemp -d "${TMPDIR:-/tmp}/pcsim-sweep-bench.XXXXXX")
 trap 'rm -rf "$work"' EXIT

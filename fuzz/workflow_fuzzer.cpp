@@ -1,7 +1,7 @@
 // libFuzzer target: the bytes as a workflow JSON file, through
 // pagecache::scenario::read_workflow_json (fuzz/workflow_property.hpp states the contract).
-// Seed it with the reference workflows (../shared/reference: wfcommons/instances/*.json and
-// wrench-cache-inputs/*.json) and fuzz/workflow.dict.
+// Seed it with the workflows in inputs/ (wfcommons/instances/*.json, wrench-cache/*.json) and
+// fuzz/workflow.dict (fuzz/run does).
 
 #include "import_property.hpp"
 #include "workflow_property.hpp"

@@ -5,18 +5,17 @@
 // or memory ran out.
 
 #include <pagecache/error.hpp>
+#include <pagecache/outputs.hpp>
 #include <pagecache/run.hpp>
 #include <pagecache/scenario.hpp>
 #include <pagecache/scenario_file.hpp>
 #include <pagecache/version.hpp>
 
-#include "report/output_rules.hpp"
-#include "report/outputs.hpp"
 #include "report/replace_file.hpp"
-#include "report/trace_json.hpp"
 #include "scenario/closest.hpp"
 #include "validate/validation.hpp"
 #include "calibrate_command.hpp"
+#include "data_dir.hpp"
 #include "status_line.hpp"
 #include "sweep_command.hpp"
 #include "validate_here_command.hpp"
@@ -151,15 +150,14 @@ int run_command(const std::string& path, const Inputs& in, const std::vector<std
                 const std::string& out_dir, bool quiet, bool cache_contents, bool force, bool trace, bool report) {
   pagecache::Scenario scenario = load(path, in, sets, profile, force);
   if (!quiet) print_warnings(scenario);
-  pagecache::report::check_output_folder(out_dir, path);  // before simulating, not after
+  pagecache::check_output_folder(out_dir, path);  // before simulating, not after
   Progress progress(!quiet);
   pagecache::RunOptions options;
   options.cache_contents = cache_contents;
   options.progress = [&progress](double t, std::uint64_t events) { progress.update(t, events); };
-  std::optional<pagecache::report::TraceJson> trace_json;
-  if (trace || scenario.trace) options.consumers.push_back(&trace_json.emplace());
-  std::optional<pagecache::report::ReportActivity> activity;  // report.html's activity chart
-  if (report) options.consumers.push_back(&activity.emplace());
+  // The same outputs as an embedding program writes (pagecache/outputs.hpp).
+  pagecache::RunOutputs outputs({.report = report, .trace = trace || scenario.trace});
+  outputs.attach(options);
   // The outputs name the scenario (its file, title and profile); the run takes the rest and
   // frees its applications and files once planned (at 10^5 applications, a fifth of its memory).
   pagecache::Scenario named;
@@ -174,26 +172,20 @@ int run_command(const std::string& path, const Inputs& in, const std::vector<std
     throw;
   }
   progress.clear();
-  pagecache::report::OutputOptions outputs{.report = report, .activity = activity ? &*activity : nullptr, .more = {}};
-  if (trace_json) {
-    outputs.more.push_back({"trace.json", trace_json->text(named.source)});
-    if (trace_json->truncated()) {
-      fmt::print(stderr, "pcsim: warning: trace.json holds every phase and memory row, but transfers, flushes, evictions and pauses "
-                         "only up to its first GB\n");
-    }
-    trace_json.reset();
+  const std::vector<std::string> warnings = outputs.write(out_dir, named, result);
+  if (outputs.trace_truncated()) {
+    fmt::print(stderr, "pcsim: warning: trace.json holds every phase and memory row, but transfers, flushes, evictions and pauses "
+                       "only up to its first GB\n");
   }
-  for (const std::string& warning : pagecache::report::write_outputs(out_dir, named, result, outputs)) {
-    fmt::print(stderr, "pcsim: warning: {}\n", warning);
-  }
+  for (const std::string& warning : warnings) fmt::print(stderr, "pcsim: warning: {}\n", warning);
   if (!quiet) {
-    fmt::print("{}", pagecache::report::readable_summary(named, result));
-    const std::string extra = std::string(report ? ", report.html" : "") + (outputs.more.empty() ? "" : ", trace.json");
+    fmt::print("{}", pagecache::readable_summary(named, result));
+    const std::string extra = std::string(report ? ", report.html" : "") + (outputs.writes_trace() ? ", trace.json" : "");
     if (result.cache_not_recorded.empty()) {
       fmt::print("outputs: {}/{{timeline.csv, memory.csv, cache.csv, summary.json, timing.json{}}}\n", out_dir, extra);
     } else {
       fmt::print("outputs: {}/{{timeline.csv, memory.csv, summary.json, timing.json{}}}; cache contents {}\n", out_dir, extra,
-                 pagecache::report::cache_contents_note(result));
+                 pagecache::cache_contents_note(result));
     }
   }
   return 0;
@@ -256,8 +248,10 @@ int main(int argc, char** argv) {
 
   auto* validate = app.add_subcommand("validate", "compare the paper's experiments with the real measurements");
   std::string json_path;
-  std::string data_dir = std::string(PCSIM_SOURCE_DIR) + "/validation/paper";
-  std::string scenarios_dir = std::string(PCSIM_SOURCE_DIR) + "/scenarios/paper";
+  // The shipped data beside this pcsim (data_dir.hpp); a pcsim without it needs both options.
+  const std::filesystem::path shipped = pcsim::data_dir();
+  std::string data_dir = shipped.empty() ? std::string() : (shipped / "validation" / "paper").string();
+  std::string scenarios_dir = shipped.empty() ? std::string() : (shipped / "scenarios" / "paper").string();
   validate->add_option("--json", json_path, "also write the results as JSON to this file");
   std::string report_path = "validate-report.html";
   validate->add_option("--report", report_path, "write the results as a self-contained HTML page to this file")->capture_default_str();
@@ -309,6 +303,11 @@ int main(int argc, char** argv) {
     if (calibrate.app->parsed()) return pcsim::run_calibrate_command(calibrate);
     if (validate->parsed() && (here.here || !here.from.empty())) return pcsim::run_validate_here(here);
     if (validate->parsed()) {
+      if (data_dir.empty() || scenarios_dir.empty()) {
+        throw pagecache::ConfigError(fmt::format("validate: no validation data beside this pcsim (looked in {}): give --data FOLDER and "
+                                                 "--scenarios FOLDER (validation/paper and scenarios/paper of pcsim's sources)",
+                                                 pcsim::data_dir_looked_at().string()));
+      }
       if (!json_path.empty()) pagecache::report::check_output_file(json_path);
       pagecache::report::check_output_file(report_path);
       std::vector<std::pair<std::string, bool>> forced;

@@ -1,9 +1,9 @@
 #pragma once
-// CacheSettings: how one host's page cache behaves (MODEL.md §3, §6).
+// CacheSettings: how one host's page cache behaves (docs/model.md §3, §6).
 //
 // The kernel knobs keep the kernel's names and are stored in SI units (ratios as fractions,
 // times in seconds). `policy` names the model of the decisions in which the kernel and
-// WRENCH-cache, the paper's implementation, differ (../shared/design/WRENCH-NOTES.md); the
+// WRENCH-cache, the paper's implementation, differ (docs/wrench-cache.md); the
 // switches are the parameters of the `kernel` policy, each turning one of the kernel's
 // behaviours into WRENCH-cache's. CacheSettings::paper() reproduces WRENCH-cache (the `paper`
 // profile, policy `wrench_cache`); CacheSettings::kernel() follows the kernel (the `linux`

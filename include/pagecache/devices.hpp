@@ -1,6 +1,6 @@
 #pragma once
 // Devices: the hardware a host's I/O and computation go through, as fair-share resources
-// (MODEL.md §5). Bandwidths are bytes per second, sizes bytes, latencies seconds.
+// (docs/model.md §5). Bandwidths are bytes per second, sizes bytes, latencies seconds.
 //
 //   Disk    one time-shared resource with separate read and write bandwidths: a read at rate r
 //           uses r / aggregate_read of the disk, a write r / aggregate_write; one stream (one
@@ -75,7 +75,7 @@ struct MemoryBandwidth {
   double write = 0.0;            ///< per-flow write (application buffer -> cache)
   double aggregate_read = 0.0;   ///< all flows together, reading
   double aggregate_write = 0.0;  ///< all flows together, writing
-  /// First touch of fresh application memory (MODEL.md §6.10): the page fault and the zeroing
+  /// First touch of fresh application memory (docs/model.md §6.10): the page fault and the zeroing
   /// of each page a thread writes for the first time, in bytes per second of one thread;
   /// 0: free. A read into a newly allocated buffer pays it on top of the copy.
   double first_touch = 0.0;

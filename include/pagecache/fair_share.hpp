@@ -1,5 +1,5 @@
 #pragma once
-// FairShare: how concurrent transfers share devices (MODEL.md §5).
+// FairShare: how concurrent transfers share devices (docs/model.md §5).
 //
 // The vocabulary is SimGrid's. A *resource* (a disk, a memory bus, a network link, a set of
 // CPU cores) has a capacity of 1: one second of its time per second. A *flow* is a transfer of

@@ -1,5 +1,5 @@
 #pragma once
-// MemoryState: one host's memory at an instant, in bytes (MODEL.md §1).
+// MemoryState: one host's memory at an instant, in bytes (docs/model.md §1).
 //   total = free + anonymous + cached + reserved,  cached = active + inactive,
 //   dirty + writeback <= cached.
 // `reserved` is memory taken for copies in flight into the page cache: a chunk being written

@@ -1,7 +1,7 @@
 #pragma once
 // Running a scenario and what a run produces: the phase timeline, the memory profile, the
-// cache contents after every I/O phase, and a summary (MODEL.md §8). Writers for these live
-// outside the model (pcsim's report layer).
+// cache contents after every I/O phase, and a summary (docs/model.md §8). Their writers live
+// outside the model, in the report layer: pagecache/outputs.hpp writes what `pcsim run` writes.
 
 #include <pagecache/memory_state.hpp>
 #include <pagecache/scenario.hpp>

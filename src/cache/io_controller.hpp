@@ -1,6 +1,6 @@
 #pragma once
 // IoController: turns chunked file reads and writes into page-cache changes and timed
-// transfers: it carries out the plans of paper Algorithms 2 and 3 (plan.hpp, MODEL.md §4).
+// transfers: it carries out the plans of paper Algorithms 2 and 3 (plan.hpp, docs/model.md §4).
 //
 // Every step reads the cache state as it is when the step runs; other processes may change
 // it while this one waits for a transfer. The cache bookkeeping of a chunk (new blocks,

@@ -1,5 +1,5 @@
 #pragma once
-// PageCache: the state of one host's memory as the paper's Memory Manager keeps it (MODEL.md
+// PageCache: the state of one host's memory as the paper's Memory Manager keeps it (docs/model.md
 // §1-§3): anonymous memory, and the cached data blocks on the inactive and active LRU lists.
 //
 // Synchronous and engine-free: every operation takes the current time and returns at once,

@@ -1,5 +1,5 @@
 #pragma once
-// Plans: the paper's Algorithms 2 and 3 (MODEL.md §4) as decisions. Given the page cache as it
+// Plans: the paper's Algorithms 2 and 3 (docs/model.md §4) as decisions. Given the page cache as it
 // is and a request, a plan says what to flush, evict, read from the device and from the cache,
 // or copy into it; the IoController carries it out as transfers. Synchronous and engine-free,
 // tested without a simulator.

@@ -1,5 +1,5 @@
 #pragma once
-// Policy: the decisions in which page-cache models differ (MODEL.md §6), kept apart from the
+// Policy: the decisions in which page-cache models differ (docs/model.md §6), kept apart from the
 // page cache's state. PageCache keeps blocks, lists, files and counters and offers the walks
 // over them; a Policy says which walks to take: what a re-read does, which clean data reclaim
 // takes next, which expired data is written back first, what the dirty limits are fractions
@@ -11,7 +11,7 @@
 // Implementations live in src/cache/policies/, one file each, and are named in its
 // registry.cpp: `kernel` (the kernel's behaviour; CacheSettings' switches are its
 // parameters, the `linux` profile's ablations), `wrench_cache` (WRENCH-cache's reading of the
-// paper, the `paper` profile; ../shared/design/WRENCH-NOTES.md) and `lru` (one LRU list, no
+// paper, the `paper` profile; docs/wrench-cache.md) and `lru` (one LRU list, no
 // activation: a plain baseline).
 
 #include "cache/block.hpp"
@@ -46,7 +46,7 @@ class Policy {
   };
   virtual Reread reread(const Block& inactive_block) const noexcept = 0;
   /// Whether the lists are balanced (active <= 2 x inactive) after every change, or only
-  /// after reads of cached data.
+  /// after chunk reads (every policy balances after those).
   virtual bool balances_after_every_change() const noexcept = 0;
 
   // --- Reclaim (mm/vmscan.c) --------------------------------------------------------------

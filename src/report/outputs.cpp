@@ -25,9 +25,16 @@
 #include <string_view>
 #include <utility>
 
-namespace pagecache::report {
+// The files one by one are the public API (pagecache/outputs.hpp); write_outputs, which puts
+// them in one folder, is report's.
+namespace pagecache {
 
 namespace fs = std::filesystem;
+using report::append_csv_field;
+using report::OutputFile;
+using report::OutputFolder;
+using report::OutputOptions;
+using report::ReportActivity;
 using text::json_string;
 using text::printable;
 
@@ -52,8 +59,6 @@ void write_file(const fs::path& path, const std::string& text) {
 // MB/s with one decimal, or three significant digits below 1 MB/s: a slow phase (100 MB over
 // an hour) is not shown as 0.0.
 std::string readable_rate(double mb_per_s) { return mb_per_s >= 1.0 ? fmt::format("{:.1f}", mb_per_s) : fmt::format("{:.3g}", mb_per_s); }
-
-}  // namespace
 
 // A CSV file written as it is formatted: rows go straight into one small fmt::memory_buffer,
 // written out and reused whenever it fills, so that neither a string per row nor the whole
@@ -110,6 +115,8 @@ std::string csv_fields(std::initializer_list<std::string_view> texts) {
   }
   return fmt::to_string(out);
 }
+
+}  // namespace
 
 void write_timeline_csv(const fs::path& path, const RunResult& r) {
   CsvFile csv(path);
@@ -201,10 +208,10 @@ std::string timing_json(const RunResult& r) {
                      s.events, s.events_per_second);
 }
 
-std::vector<std::string> write_outputs(const std::string& dir, const Scenario& scenario, const RunResult& result,
+std::vector<std::string> report::write_outputs(const std::string& dir, const Scenario& scenario, const RunResult& result,
                                        const OutputOptions& options) {
   for (const OutputFile& f : options.more) {
-    if (std::find(std::begin(kOutputNames), std::end(kOutputNames), f.name) == std::end(kOutputNames)) {
+    if (std::find(std::begin(report::kOutputNames), std::end(report::kOutputNames), f.name) == std::end(report::kOutputNames)) {
       throw Error(fmt::format("'{}' is not one of pcsim's output names", f.name));  // a replaced folder would keep it
     }
   }
@@ -216,7 +223,7 @@ std::vector<std::string> write_outputs(const std::string& dir, const Scenario& s
   write_file(staging / "summary.json", summary_json(scenario, result));
   write_file(staging / "timing.json", timing_json(result));
   if (options.report) {
-    write_file(staging / "report.html", report_html(scenario, result, options.activity != nullptr ? *options.activity : ReportActivity{}));
+    write_file(staging / "report.html", report::report_html(scenario, result, options.activity != nullptr ? *options.activity : ReportActivity{}));
   }
   for (const OutputFile& f : options.more) write_file(staging / f.name, f.text);
   return folder.commit();
@@ -256,4 +263,4 @@ std::string readable_summary(const Scenario& scenario, const RunResult& r) {
   return out;
 }
 
-}  // namespace pagecache::report
+}  // namespace pagecache

@@ -156,7 +156,7 @@ CacheSettings read_page_cache(const toml::table* table, const TomlReader& parent
     if (*v <= 0.0) r.fail("writeback_interval", "must be > 0");
     s.writeback_interval = *v;
   }
-  // The decisions' model (MODEL.md §6), by default the profile's.
+  // The decisions' model (docs/model.md §6), by default the profile's.
   const std::optional<std::string> policy = r.optional_string("policy");
   if (policy) {
     const std::vector<std::string> known = cache_policy_names();

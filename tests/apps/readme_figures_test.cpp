@@ -123,7 +123,7 @@ TEST_CASE("the README's embedded default: its real run and pcsim's makespan", "[
 TEST_CASE("the README's WfCommons command: the instance's tasks, machine, cores, recorded makespan and pcsim's", "[cli][docs][inputs]") {
   const auto f = figures(R"(runs the ([0-9]+) tasks of an Epigenomics instance on the machine it was recorded on \(`compute-3`, ([0-9]+) cores\) )"
                          R"(with the `linux` profile: makespan ([0-9.]+) s\. The instance records ([0-9.]+) s)");
-  const fs::path instance = fs::path(PCSIM_SOURCE_DIR) / "inputs" / "wfcommons" / "epigenomics-chameleon-hep-1seq-100k-001.json";
+  const fs::path instance = fs::path(PCSIM_SOURCE_DIR) / "inputs" / "wfcommons" / "instances" / "epigenomics-chameleon-hep-1seq-100k-001.json";
   const std::string text = slurp(instance);
   std::size_t tasks = 0;
   for (std::size_t at = text.find("\"runtimeInSeconds\""); at != std::string::npos; at = text.find("\"runtimeInSeconds\"", at + 1)) ++tasks;
@@ -135,8 +135,8 @@ TEST_CASE("the README's WfCommons command: the instance's tasks, machine, cores,
   check_figure("the recorded makespan", f[3], std::stod(m[1].str()));
   // The README's command, from the repository's root, as a user runs it.
   const std::string command = fmt::format("cd '{}' && '{}' run {} --platform platforms/wfcommons-chameleon.xml --out '{}' 2>&1", PCSIM_SOURCE_DIR,
-                                          PCSIM_BINARY, "inputs/wfcommons/epigenomics-chameleon-hep-1seq-100k-001.json", fresh("epigenomics").string());
-  REQUIRE(readme().find("build/apps/pcsim/pcsim run inputs/wfcommons/epigenomics-chameleon-hep-1seq-100k-001.json --platform "
+                                          PCSIM_BINARY, "inputs/wfcommons/instances/epigenomics-chameleon-hep-1seq-100k-001.json", fresh("epigenomics").string());
+  REQUIRE(readme().find("build/bin/pcsim run inputs/wfcommons/instances/epigenomics-chameleon-hep-1seq-100k-001.json --platform "
                         "platforms/wfcommons-chameleon.xml") != std::string::npos);
   FILE* pipe = ::popen(command.c_str(), "r");
   REQUIRE(pipe != nullptr);
@@ -212,4 +212,61 @@ TEST_CASE("the README's paper-profile figures are pcsim's against WRENCH-cache's
   CHECK(worst_task <= std::stod(exp2[0]));
   check_figure("Exp 2 mean read, paper profile vs WRENCH-cache", exp2[2], error_sum["read"] / 32);
   check_figure("Exp 2 mean write, paper profile vs WRENCH-cache", exp2[3], error_sum["write"] / 32);
+}
+
+TEST_CASE("the README's set-up commands build and run the pcsim the build makes, and name every package they install",
+          "[cli][docs]") {
+  const std::string raw = slurp(fs::path(PCSIM_SOURCE_DIR) / "README.md");
+  // The first two fenced shell blocks: the run command, then the test command (.ci/run runs it).
+  std::vector<std::string> commands;
+  for (std::size_t at = raw.find("```sh\n"); at != std::string::npos && commands.size() < 2; at = raw.find("```sh\n", at + 1)) {
+    const std::size_t begin = at + 6;
+    commands.push_back(raw.substr(begin, raw.find('\n', begin) - begin));
+  }
+  REQUIRE(commands.size() == 2);
+  // Command 1 builds the pcsim target alone and runs it where the build puts it.
+  const fs::path binary = fs::path(PCSIM_BINARY);
+  REQUIRE(binary.parent_path().filename() == "bin");
+  CHECK_THAT(commands[0], Catch::Contains("--target pcsim && build/bin/pcsim run"));
+  CHECK_THAT(commands[0], Catch::Contains("-DPAGECACHE_BUILD_TESTS=OFF"));
+  // Command 2 turns the tests back on, whatever command 1 left in the build folder's cache.
+  CHECK_THAT(commands[1], Catch::Contains("-DPAGECACHE_BUILD_TESTS=ON -DPAGECACHE_BUILD_BENCHMARKS=ON"));
+  CHECK_THAT(commands[1], Catch::Contains("ctest --test-dir build"));
+  // Every package scripts/install-deps can install is named in the README, in backquotes.
+  const std::string script = slurp(fs::path(PCSIM_SOURCE_DIR) / "scripts" / "install-deps");
+  std::size_t packages = 0;
+  const std::regex list(R"((?:^|\n)[a-z_]+_packages=\(([^)]*)\))");
+  for (auto it = std::sregex_iterator(script.begin(), script.end(), list); it != std::sregex_iterator(); ++it) {
+    std::istringstream names((*it)[1].str());
+    for (std::string name; names >> name;) {
+      ++packages;
+      INFO("scripts/install-deps installs " << name);
+      CHECK_THAT(raw, Catch::Contains("`" + name + "`"));
+    }
+  }
+  CHECK(packages >= 20);
+}
+
+TEST_CASE("the README's picture is of the report.html today's pcsim run writes", "[cli][docs]") {
+  // scripts/report-picture draws docs/report-exp1.png and records the digests of the page it
+  // drew and of the picture; a run whose page differs means the picture shows an older run.
+  const fs::path docs = fs::path(PCSIM_SOURCE_DIR) / "docs";
+  const std::string source = slurp(docs / "report-exp1.source");
+  std::smatch page, picture;
+  REQUIRE(std::regex_search(source, page, std::regex(R"(\nreport\.html sha256 ([0-9a-f]{64})\n)")));
+  REQUIRE(std::regex_search(source, picture, std::regex(R"(\nreport-exp1\.png sha256 ([0-9a-f]{64})\n)")));
+  const fs::path out = fresh("readme-picture");
+  fs::create_directories(out);
+  // The embedded default, run as the README's first command runs it.
+  const auto run = run_child({PCSIM_BINARY, "run", "--quiet"}, 600.0, out.string());
+  INFO(run.output);
+  REQUIRE(run.status == 0);
+  auto sha256 = [](const fs::path& file) {
+    const auto r = run_child({"/usr/bin/sha256sum", file.string()}, 60.0);
+    REQUIRE(r.status == 0);
+    return r.output.substr(0, 64);
+  };
+  INFO("docs/report-exp1.png shows another run's page: scripts/report-picture draws it again");
+  CHECK(sha256(out / "pcsim-out" / "report.html") == page[1].str());
+  CHECK(sha256(docs / "report-exp1.png") == picture[1].str());
 }

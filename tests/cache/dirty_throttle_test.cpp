@@ -1,5 +1,5 @@
 // DirtyThrottle without a run: what a writer does next for a given page cache, as the kernel's
-// balance_dirty_pages decides it (MODEL.md §6.5).
+// balance_dirty_pages decides it (docs/model.md §6.4).
 #include "cache/dirty_throttle.hpp"
 #include "cache/file_table.hpp"
 

@@ -1,5 +1,5 @@
 // PageCache operations on small, hand-built states: each expectation is derived in a comment
-// from MODEL.md §2-§3 (and WRENCH-NOTES.md for the paper profile's readings).
+// from docs/model.md §2-§3 (and docs/wrench-cache.md for the paper profile's readings).
 #include "cache/page_cache.hpp"
 
 #include <pagecache/error.hpp>

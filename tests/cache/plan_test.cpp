@@ -1,4 +1,4 @@
-// Plans without a simulator: the paper's Algorithms 2 and 3 (MODEL.md §4) on small, hand-built
+// Plans without a simulator: the paper's Algorithms 2 and 3 (docs/model.md §4) on small, hand-built
 // page caches. Each expectation is derived in a comment from the algorithm and the settings;
 // where a plan is carried out, the test does what the IoController does (evict, flush) and plans
 // again.

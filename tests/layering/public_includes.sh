@@ -17,6 +17,7 @@ declare -A layer_of=(
   [cache_settings]=cache [host]=cache
   [run]=workload [scenario]=workload
   [scenario_file]=scenario
+  [outputs]=report
 )
 
 check() {

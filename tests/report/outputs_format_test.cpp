@@ -16,11 +16,11 @@
 #include <vector>
 
 namespace fs = std::filesystem;
-using pagecache::report::readable_summary;
-using pagecache::report::summary_json;
-using pagecache::report::write_cache_csv;
-using pagecache::report::write_memory_csv;
-using pagecache::report::write_timeline_csv;
+using pagecache::readable_summary;
+using pagecache::summary_json;
+using pagecache::write_cache_csv;
+using pagecache::write_memory_csv;
+using pagecache::write_timeline_csv;
 
 namespace {
 

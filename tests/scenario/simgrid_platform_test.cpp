@@ -34,7 +34,7 @@ std::string file_text(const std::string& path) {
   return text.str();
 }
 
-std::string reference_text(const std::string& relative) { return file_text(std::string(PAGECACHE_REFERENCE_DIR) + "/" + relative); }
+std::string reference_text(const std::string& relative) { return file_text(std::string(PAGECACHE_INPUTS_DIR) + "/" + relative); }
 
 SgPlatform reference(const std::string& relative) { return read_simgrid_platform(reference_text(relative), relative); }
 
@@ -165,9 +165,9 @@ TEST_CASE("a cluster radical names numbers and ranges in order, within a bound c
 // ---------------------------------------------------------------- the reference platforms
 
 TEST_CASE("WRENCH-cache's single host: a host with a memory disk and a local disk, and its loopback route", "[scenario][simgrid]") {
-  const SgPlatform p = reference("wrench-cache-inputs/single_host.xml");
+  const SgPlatform p = reference("wrench-cache/single_host.xml");
   CHECK(p.version == "4.1");
-  CHECK(p.file == "wrench-cache-inputs/single_host.xml");
+  CHECK(p.file == "wrench-cache/single_host.xml");
   REQUIRE(p.hosts.size() == 1);
   const SgHost& h = p.hosts[0];
   CHECK(h.id == "host01");
@@ -203,7 +203,7 @@ TEST_CASE("WRENCH-cache's single host: a host with a memory disk and a local dis
 }
 
 TEST_CASE("WRENCH-cache's two hosts: one network link, used both ways, and a loopback each", "[scenario][simgrid]") {
-  const SgPlatform p = reference("wrench-cache-inputs/two_hosts.xml");
+  const SgPlatform p = reference("wrench-cache/two_hosts.xml");
   REQUIRE(p.hosts.size() == 2);
   CHECK(p.hosts[0].id == "compute_host");
   CHECK(p.hosts[1].id == "storage_host");
@@ -231,7 +231,7 @@ TEST_CASE("WRENCH-cache's two hosts: one network link, used both ways, and a loo
 }
 
 TEST_CASE("SimGrid's hosts with disks: read and write bandwidths apart, disk properties kept", "[scenario][simgrid]") {
-  const SgPlatform p = reference("simgrid-platforms/hosts_with_disks.xml");
+  const SgPlatform p = reference("simgrid/hosts_with_disks.xml");
   REQUIRE(p.hosts.size() == 2);
   const SgHost* bob = p.find_host("bob");
   REQUIRE(bob != nullptr);
@@ -258,7 +258,7 @@ TEST_CASE("SimGrid's hosts with disks: read and write bandwidths apart, disk pro
 }
 
 TEST_CASE("SimGrid's small platform, version 4 with <AS>: five hosts, eleven links, fifteen routes", "[scenario][simgrid]") {
-  const SgPlatform p = reference("simgrid-platforms/small_platform.xml");
+  const SgPlatform p = reference("simgrid/small_platform.xml");
   CHECK(p.version == "4");
   REQUIRE(p.hosts.size() == 5);
   CHECK(p.hosts[0].id == "Tremblay");
@@ -287,7 +287,7 @@ TEST_CASE("SimGrid's small platform, version 4 with <AS>: five hosts, eleven lin
 }
 
 TEST_CASE("SimGrid's cluster with a backbone: 100 nodes, split-duplex private links, routes up, across and down", "[scenario][simgrid]") {
-  const SgPlatform p = reference("simgrid-platforms/cluster_backbone.xml");
+  const SgPlatform p = reference("simgrid/cluster_backbone.xml");
   REQUIRE(p.hosts.size() == 100);
   CHECK(p.hosts[0].id == "node-0.acme.org");
   CHECK(p.hosts[99].id == "node-99.acme.org");
@@ -470,7 +470,7 @@ TEST_CASE("a platform built by hand is searched without its index, and build_ind
 }
 
 TEST_CASE("find_route may be called from several threads at once", "[scenario][simgrid]") {
-  const SgPlatform p = reference("simgrid-platforms/cluster_backbone.xml");
+  const SgPlatform p = reference("simgrid/cluster_backbone.xml");
   std::vector<const SgRoute*> seen(4 * 100);
   std::vector<std::thread> threads;
   for (int t = 0; t < 4; ++t) {
@@ -649,9 +649,9 @@ TEST_CASE("zones nested beyond a bound are refused rather than overflowing the s
 TEST_CASE("the platform fuzzer's contract holds on the reference platforms and its seeds, which read within its bounds",
           "[scenario][simgrid][fuzz]") {
   std::vector<std::string> files;
-  for (const char* name : {"wrench-cache-inputs/single_host.xml", "wrench-cache-inputs/two_hosts.xml", "simgrid-platforms/hosts_with_disks.xml",
-                           "simgrid-platforms/small_platform.xml", "simgrid-platforms/cluster_backbone.xml"}) {
-    files.push_back(std::string(PAGECACHE_REFERENCE_DIR) + "/" + name);
+  for (const char* name : {"wrench-cache/single_host.xml", "wrench-cache/two_hosts.xml", "simgrid/hosts_with_disks.xml",
+                           "simgrid/small_platform.xml", "simgrid/cluster_backbone.xml"}) {
+    files.push_back(std::string(PAGECACHE_INPUTS_DIR) + "/" + name);
   }
   for (const auto& entry : std::filesystem::directory_iterator(PAGECACHE_FUZZ_SEEDS_DIR)) {
     if (entry.path().extension() == ".xml") files.push_back(entry.path().string());

@@ -26,7 +26,7 @@ namespace {
 
 using nlohmann::json;
 
-const std::filesystem::path kReference = PAGECACHE_REFERENCE_DIR;
+const std::filesystem::path kInputs = PAGECACHE_INPUTS_DIR;
 
 WfWorkflow read(const std::string& text, std::int64_t max_tasks = 100'000, std::int64_t max_files = 100'000) {
   return read_workflow_json(text, "w.json", max_tasks, max_files);
@@ -112,7 +112,7 @@ std::int64_t total_bytes(const WfWorkflow& w) {
 
 TEST_CASE("every WfCommons instance reads as its JSON says: counts, sizes, dependencies and each task's record", "[scenario][workflow]") {
   std::vector<std::filesystem::path> files;
-  for (const auto& entry : std::filesystem::directory_iterator(kReference / "wfcommons" / "instances")) files.push_back(entry.path());
+  for (const auto& entry : std::filesystem::directory_iterator(kInputs / "wfcommons" / "instances")) files.push_back(entry.path());
   std::sort(files.begin(), files.end());
   REQUIRE(files.size() == 8);
   for (const auto& path : files) {
@@ -163,7 +163,7 @@ TEST_CASE("every WfCommons instance reads as its JSON says: counts, sizes, depen
 
 TEST_CASE("the WfCommons instances' figures, checked by hand against the files", "[scenario][workflow]") {
   const auto load = [](const char* name) {
-    const std::filesystem::path path = kReference / "wfcommons" / "instances" / name;
+    const std::filesystem::path path = kInputs / "wfcommons" / "instances" / name;
     return read_workflow_json(testing::slurp(path), path.string(), 100'000, 100'000);
   };
   const WfWorkflow montage = load("montage-chameleon-dss-05d-001.json");
@@ -212,7 +212,7 @@ TEST_CASE("the WfCommons instances' figures, checked by hand against the files",
 }
 
 TEST_CASE("the WRENCH page-cache workflows read in the format before 1.5", "[scenario][workflow]") {
-  const std::filesystem::path dir = kReference / "wrench-cache-inputs";
+  const std::filesystem::path dir = kInputs / "wrench-cache";
   const WfWorkflow simple = read_workflow_json(testing::slurp(dir / "simple_workflow.json"), "simple_workflow.json", 100, 100);
   CHECK(simple.format == "WRENCH 2.x (schema before 1.5)");
   CHECK(simple.name == "simple-workflow");
@@ -637,7 +637,7 @@ TEST_CASE("warnings stop at a hundred, the last saying how many more there were"
 
 TEST_CASE("the fuzz target's contract holds for the reference workflows, the seeds and hostile inputs", "[scenario][workflow][fuzz]") {
   std::vector<std::filesystem::path> inputs;
-  for (const auto& dir : {kReference / "wfcommons" / "instances", kReference / "wrench-cache-inputs",
+  for (const auto& dir : {kInputs / "wfcommons" / "instances", kInputs / "wrench-cache",
                           std::filesystem::path(PAGECACHE_FUZZ_SEEDS_DIR)}) {
     for (const auto& entry : std::filesystem::directory_iterator(dir)) {
       if (entry.path().extension() == ".json") inputs.push_back(entry.path());

@@ -1,7 +1,7 @@
 #pragma once
 // Test helpers for the paper's synthetic application: a pipeline of three tasks, task k
 // reading file k, computing, writing file k+1, releasing its memory at the end; and the
-// paper's platform as WRENCH-cache modelled it (WRENCH-NOTES.md).
+// paper's platform as WRENCH-cache modelled it (docs/wrench-cache.md).
 
 #include <pagecache/host.hpp>
 

@@ -1,5 +1,5 @@
 // The wrench_cache policy: the paper's model as WRENCH-cache implements it
-// (../shared/design/WRENCH-NOTES.md), where the paper leaves a decision open. Fixed: it has
+// (docs/wrench-cache.md), where the paper leaves a decision open. Fixed: it has
 // no parameters beyond the kernel knobs every policy reads (ratios, expiry, interval).
 
 #include "cache/page_cache.hpp"

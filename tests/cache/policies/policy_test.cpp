@@ -1,5 +1,5 @@
 // The policy seam: which policy a CacheSettings names, what kernel and wrench_cache decide
-// where they differ (MODEL.md §6, WRENCH-NOTES.md), and a policy of a test's own reaching
+// where they differ (docs/model.md §6, docs/wrench-cache.md), and a policy of a test's own reaching
 // every decision PageCache delegates.
 #include "cache/page_cache.hpp"
 #include "cache/policy.hpp"

@@ -2,7 +2,7 @@
 
 #include "calibrate/calibrate.hpp"
 #include "calibrate/measure.hpp"
-#include "report/replace_file.hpp"
+#include "report/output_file.hpp"
 #include "status_line.hpp"
 
 #include <pagecache/error.hpp>
@@ -33,7 +33,7 @@ void add_calibrate_command(CLI::App& app, CalibrateCommand& c) {
 }
 
 int run_calibrate_command(const CalibrateCommand& c) {
-  if (!c.out.empty()) pagecache::report::check_output_file(c.out);
+  if (!c.out.empty()) pagecache::report::check_output_file(c.out, "--out");
   cal::Options options;
   options.dir = c.dir;
   options.quick = c.quick;
@@ -90,7 +90,7 @@ int run_calibrate_command(const CalibrateCommand& c) {
   if (c.out.empty()) {
     fmt::print("{}", toml);
   } else {
-    pagecache::report::replace_file(c.out, toml);
+    pagecache::report::write_output_file(c.out, toml, "--out");
     fmt::print("platform: {}\n", c.out);
   }
   return 0;

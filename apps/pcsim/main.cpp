@@ -11,8 +11,10 @@
 #include <pagecache/scenario_file.hpp>
 #include <pagecache/version.hpp>
 
-#include "report/replace_file.hpp"
+#include "report/interrupt_cleanup.hpp"
+#include "report/output_file.hpp"
 #include "scenario/closest.hpp"
+#include "validate/switches.hpp"
 #include "validate/validation.hpp"
 #include "calibrate_command.hpp"
 #include "data_dir.hpp"
@@ -74,29 +76,15 @@ bool ends_with(const std::string& s, const std::string& tail) {
 
 std::string absolute(const std::string& path) { return std::filesystem::absolute(path).lexically_normal().string(); }
 
-// A workflow instance (WfFormat JSON) on a platform file: read as the scenario
-//   platform = "PLATFORM"
-//   [workflow]
-//   file = "WORKFLOW"   (with files_host and hosts if given)
-// so that --set reaches every key, and errors in the options name them.
+// A workflow instance (WfFormat JSON) on a platform file (pagecache::load_workflow): --set
+// reaches every key, and a problem with an option names it.
 pagecache::Scenario load_workflow(const std::string& path, const Inputs& in, const std::vector<std::string>& sets, const std::string& profile,
                                   const pagecache::ScenarioLimits& limits) {
-  if (in.platform.empty()) {
-    throw pagecache::ConfigError(fmt::format("{}: a workflow file runs on a platform: add --platform PLATFORM.xml (SimGrid) or .toml", path));
-  }
-  toml::table workflow{{"file", absolute(path)}};
-  if (!in.files_host.empty()) workflow.insert("files_host", in.files_host);
-  if (!in.hosts.empty()) {
-    toml::array hosts;
-    for (const std::string& h : in.hosts) hosts.push_back(h);
-    workflow.insert("hosts", std::move(hosts));
-  }
-  const toml::table root{{"platform", absolute(in.platform)}, {"workflow", std::move(workflow)}};
-  std::ostringstream text;
-  text << root;
-  pagecache::Scenario s = pagecache::parse_scenario(text.str(), "(pcsim options --platform, --files-host, --hosts)", parse_sets(sets), profile, limits);
-  s.source = path;
-  return s;
+  pagecache::WorkflowOptions options;
+  options.platform = in.platform;
+  options.files_host = in.files_host;
+  options.hosts = in.hosts;
+  return pagecache::load_workflow(path, options, parse_sets(sets), profile, limits);
 }
 
 pagecache::Scenario load(const std::string& path, const Inputs& in, const std::vector<std::string>& sets, const std::string& profile, bool force) {
@@ -194,6 +182,9 @@ int run_command(const std::string& path, const Inputs& in, const std::vector<std
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Ctrl-C, kill or a closed terminal while an output is written: its staging folder or
+  // temporary file goes too (exit 130, 143 or 129).
+  pagecache::report::install_interrupt_cleanup();
   CLI::App app{"pcsim: a discrete-event simulator of the Linux page cache"};
   app.set_version_flag("--version", std::string("pcsim ") + pagecache::kVersion);
   app.require_subcommand(1);
@@ -308,17 +299,13 @@ int main(int argc, char** argv) {
                                                  "--scenarios FOLDER (validation/paper and scenarios/paper of pcsim's sources)",
                                                  pcsim::data_dir_looked_at().string()));
       }
-      if (!json_path.empty()) pagecache::report::check_output_file(json_path);
-      pagecache::report::check_output_file(report_path);
-      std::vector<std::pair<std::string, bool>> forced;
-      for (const auto& [name, value] : parse_sets(switches)) {
-        if (value != "true" && value != "false") throw pagecache::ConfigError("--switch " + name + ": use true or false");
-        forced.emplace_back(name, value == "true");
-      }
+      if (!json_path.empty()) pagecache::report::check_output_file(json_path, "--json");
+      pagecache::report::check_output_file(report_path, "--report");
+      const auto forced = pagecache::validate::parse_switches(switches);
       const auto report = pagecache::validate::run({data_dir, scenarios_dir, validate_profile, parse_sets(sets), forced});
       fmt::print("{}", report.text());
-      if (!json_path.empty()) pagecache::report::replace_file(json_path, report.json());
-      pagecache::report::replace_file(report_path, report.html());
+      if (!json_path.empty()) pagecache::report::write_output_file(json_path, report.json(), "--json");
+      pagecache::report::write_output_file(report_path, report.html(), "--report");
       fmt::print("report: {}\n", report_path);
       return 0;
     }

@@ -83,7 +83,11 @@ void check_output_folder(const std::string& dir, const std::string& scenario_fil
 /// The files one by one. The CSV files are RFC 4180: a name holding a comma, a quote, CR or
 /// LF, or starting or ending with a space is quoted; one starting with =, +, -, @, TAB or CR
 /// gets a ' before it, so that no spreadsheet runs it as a formula. They are written as they
-/// are formatted (never whole in memory); Error if `path` cannot be written.
+/// are formatted (never whole in memory), by the rule of every file pcsim writes: a regular
+/// file (or none yet) is written beside `path` and renamed over it whole, a link's regular
+/// target likewise (the link stays), a character device or FIFO is written through; a folder,
+/// a link to nothing, a socket or a missing folder is a ConfigError. Error if it cannot be
+/// written.
 void write_timeline_csv(const std::filesystem::path& path, const RunResult& result);
 void write_memory_csv(const std::filesystem::path& path, const RunResult& result);
 void write_cache_csv(const std::filesystem::path& path, const RunResult& result);

@@ -26,12 +26,15 @@ struct ScenarioLimits {
   /// Hosts, host groups expanded: each has its own page cache, flusher and devices, about
   /// 24 kB of a run (10^4 client hosts of an NFS server peak at 0.22 GB).
   std::int64_t max_hosts = 20'000;
-  /// Estimated events: three per chunk operation (each file's bytes over its task's chunk
-  /// size, for every read and write), plus the flushers' periodic wake-ups over the estimated
-  /// simulated time. About ten minutes of a run at the scale of 10^5 pipelines.
+  /// Estimated events, from every source: each chunk's transfers (each file's bytes over its
+  /// task's chunk size, for every read and write) and the writeback of what is written, the
+  /// pauses of writers held by dirty throttling, the flushers' and the memory sampler's
+  /// wake-ups, the tasks' starts and computations. Within a factor of 3 of the events a run
+  /// takes on the shipped scenarios. About ten minutes of a run at the scale of 10^5 pipelines.
   double max_events = 3e9;
-  /// Estimated simulated seconds: the longest of what the busiest disk, link or memory must
-  /// move at its bandwidth and of what the busiest application must compute.
+  /// Estimated simulated seconds: the longest of what the busiest disk, link, memory or host's
+  /// cores must move or compute, and of what the busiest application must compute and wait
+  /// for the latency of the routes it crosses (paid by every transfer).
   double max_simulated_time = 1e8;
   /// Estimated memory.csv rows (held in memory until written): about 100 bytes each.
   double max_memory_rows = 2e7;
@@ -53,6 +56,23 @@ Scenario load_scenario(const std::string& path, const std::vector<std::pair<std:
 Scenario parse_scenario(const std::string& toml_text, const std::string& source_name,
                         const std::vector<std::pair<std::string, std::string>>& overrides = {},
                         const std::string& profile_override = {}, const ScenarioLimits& limits = {});
+/// What `pcsim run WORKFLOW.json --platform PLATFORM [--files-host H] [--hosts A,B]` gives
+/// besides the workflow instance: the platform it runs on and, if given, where its files live
+/// and where its tasks may run (empty: as the instance and the platform say; see the README).
+struct WorkflowOptions {
+  std::string platform;
+  std::string files_host;
+  std::vector<std::string> hosts;
+};
+
+/// A workflow instance (WfFormat JSON) on a platform file (SimGrid XML or TOML), read as the
+/// scenario `platform = "PLATFORM"` with a [workflow] table of `file = "WORKFLOW"`,
+/// `files_host` and `hosts`, so that `overrides` reach every key (workflow.chunk_size, ...).
+/// A problem with an option's value names the option ("--files-host x: ..."); one of the
+/// instance's own names the workflow file and its task or file. Otherwise as parse_scenario.
+Scenario load_workflow(const std::string& workflow, const WorkflowOptions& options,
+                       const std::vector<std::pair<std::string, std::string>>& overrides = {},
+                       const std::string& profile_override = {}, const ScenarioLimits& limits = {});
 /// A platform file alone (TOML, or SimGrid XML with WRENCH-cache's conventions), with every
 /// route it lists (up to 10^5; Scenario::warnings says how many more), for `pcsim show`. The
 /// hosts of an XML file may lack what a run needs: their memory and memory bandwidths are then

@@ -1,5 +1,6 @@
 #include "report/output_folder.hpp"
 
+#include "report/interrupt_cleanup.hpp"
 #include "report/output_rules.hpp"
 #include "report/unique_name.hpp"
 
@@ -7,10 +8,15 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <climits>
+#include <csignal>
 #include <cstdio>
 #include <fcntl.h>
 #include <fstream>
+#include <iterator>
+#include <regex>
 #include <sys/stat.h>
 #include <system_error>
 #include <unistd.h>
@@ -33,19 +39,97 @@ bool changed_meanwhile(int error) {
   throw Error(fmt::format("{}: {}", what, std::generic_category().message(error)));
 }
 
+// Staging folders are "<stem>-<pid>-<8 hex digits>"; earlier versions named them
+// ".<target>.tmp-<pid>-<hex>". Temporary files inside one are OutputFile's ".pcsim.tmp-...".
+constexpr const char* kStagingStem = ".pcsim.tmp";
+const std::regex& staging_name() {
+  static const std::regex name(R"(\..*\.tmp-([0-9]+)-[0-9a-f]{8})");
+  return name;
+}
+
+bool is_temporary_file_name(const std::string& name) {
+  static const std::regex temp(R"(\.pcsim\.tmp-[0-9]+-[0-9a-f]{8})");
+  return std::regex_match(name, temp);
+}
+
 // pcsim's own files in `folder`, then the folder: never anything else. True if it is gone.
 bool remove_own_files(const fs::path& folder) {
   for (const char* name : kOutputNames) ::unlink((folder / name).c_str());
   return ::rmdir(folder.c_str()) == 0 || errno == ENOENT;
 }
 
+bool process_gone(long pid) { return pid > 0 && pid <= INT_MAX && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH; }
+
+// A staging folder its process left (killed beyond catching): named as pcsim names them, its
+// process gone, holding pcsim's marker as pcsim writes it and nothing but pcsim's outputs and
+// temporary files. Anything else in `parent` is left alone.
+void remove_abandoned_staging(const fs::path& parent) {
+  std::error_code ec;
+  for (fs::directory_iterator it(parent, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    std::smatch m;
+    if (!std::regex_match(name, m, staging_name())) continue;
+    long pid = 0;
+    try {
+      pid = std::stol(m[1].str());
+    } catch (const std::exception&) {
+      continue;
+    }
+    struct stat st{};
+    if (::lstat(it->path().c_str(), &st) != 0 || !S_ISDIR(st.st_mode) || !process_gone(pid)) continue;
+    std::ifstream marker(it->path() / kMarkerName, std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(marker)), std::istreambuf_iterator<char>());
+    if (text != kMarkerText) continue;
+    std::vector<fs::path> temporaries;
+    bool only_pcsim = true;
+    std::error_code inner;
+    for (fs::directory_iterator f(it->path(), inner), fend; !inner && f != fend; f.increment(inner)) {
+      const std::string file = f->path().filename().string();
+      struct stat fst{};
+      const bool regular = ::lstat(f->path().c_str(), &fst) == 0 && S_ISREG(fst.st_mode);
+      if (regular && is_temporary_file_name(file)) temporaries.push_back(f->path());
+      else if (!regular || std::find(std::begin(kOutputNames), std::end(kOutputNames), file) == std::end(kOutputNames)) only_pcsim = false;
+    }
+    if (inner || !only_pcsim) continue;
+    for (const fs::path& t : temporaries) ::unlink(t.c_str());
+    remove_own_files(it->path());
+  }
+}
+
 }  // namespace
 
 OutputFolder::OutputFolder(const std::string& dir) : dir_(dir), target_(output_folder_path(dir)) {
-  std::error_code ec;
-  fs::create_directories(target_.parent_path(), ec);
-  if (ec) throw Error(fmt::format("cannot make the folder {}: {}", target_.parent_path().string(), ec.message()));
-  staging_ = create_unique_folder(target_.parent_path(), fmt::format(".{}.tmp", target_.filename().string()));
+  const fs::path parent = target_.parent_path();
+  // The folders above, made as needed; removed again (if still empty) should the run fail.
+  std::vector<fs::path> missing;
+  struct stat st{};
+  for (fs::path p = parent; ::lstat(p.c_str(), &st) != 0 && errno == ENOENT && p != p.parent_path(); p = p.parent_path()) {
+    missing.push_back(p);
+  }
+  for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
+    if (::mkdir(it->c_str(), 0777) == 0) {
+      made_.insert(made_.begin(), *it);  // deepest first
+    } else if (errno != EEXIST) {
+      const int error = errno;
+      remove_made_folders();
+      fail(fmt::format("cannot make the folder {}", it->string()), error);
+    }
+  }
+  if (::stat(parent.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) {
+    remove_made_folders();
+    throw Error(fmt::format("cannot make the folder {}: it is not a folder", parent.string()));
+  }
+  remove_abandoned_staging(parent);
+  // Made and registered with signals held, so that no interruption falls between the two.
+  const SignalsHeld held;
+  try {
+    // A short name, so that a target name at the file system's limit still has a staging one.
+    staging_ = create_unique_folder(parent, kStagingStem);
+  } catch (...) {
+    remove_made_folders();
+    throw;
+  }
+  cleanup_ = std::make_unique<RemovedOnInterrupt>(staging_.string(), RemovedOnInterrupt::Kind::StagingFolder);
   // First, so that a staging folder left by a killed run is recognisably pcsim's.
   std::ofstream marker(staging_ / kMarkerName, std::ios::binary);
   marker << kMarkerText;
@@ -53,12 +137,20 @@ OutputFolder::OutputFolder(const std::string& dir) : dir_(dir), target_(output_f
   if (!marker) {
     ::unlink((staging_ / kMarkerName).c_str());
     ::rmdir(staging_.c_str());
+    remove_made_folders();
     throw Error(fmt::format("cannot write {}", (staging_ / kMarkerName).string()));
   }
 }
 
 OutputFolder::~OutputFolder() {
-  if (!committed_) remove_own_files(staging_);
+  if (committed_) return;
+  remove_own_files(staging_);
+  remove_made_folders();
+}
+
+void OutputFolder::remove_made_folders() {
+  for (const fs::path& p : made_) ::rmdir(p.c_str());  // deepest first; a folder in use stays
+  made_.clear();
 }
 
 std::vector<std::string> OutputFolder::commit(Swap swap) {
@@ -66,12 +158,19 @@ std::vector<std::string> OutputFolder::commit(Swap swap) {
   auto retire = [&](const fs::path& old) {
     if (auto warning = remove_replaced(old, target_)) warnings.push_back(*warning);
   };
+  // Signals held until the folder is in place and no longer registered for removal: an
+  // interruption in between would remove the folder just put in place, or leave the staging one.
+  const SignalsHeld held;
+  auto done = [&] {
+    committed_ = true;
+    cleanup_.reset();
+  };
   for (int attempt = 0; attempt < kAttempts; ++attempt) {
     struct stat st{};
     if (::lstat(target_.c_str(), &st) != 0 && errno == ENOENT) {
       // Fails (EEXIST or ENOTEMPTY) if another run made the folder meanwhile: then replace it.
       if (::rename(staging_.c_str(), target_.c_str()) == 0) {
-        committed_ = true;
+        done();
         return warnings;
       }
       if (!changed_meanwhile(errno)) fail(fmt::format("cannot rename {} to {}", staging_.string(), target_.string()), errno);
@@ -81,7 +180,7 @@ std::vector<std::string> OutputFolder::commit(Swap swap) {
     ::chmod(staging_.c_str(), st.st_mode & 07777);  // an empty folder made for pcsim keeps its permissions
     if (swap == Swap::Exchange) {
       if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, target_.c_str(), RENAME_EXCHANGE) == 0) {
-        committed_ = true;
+        done();
         retire(staging_);  // which now holds the folder replaced
         return warnings;
       }
@@ -89,7 +188,7 @@ std::vector<std::string> OutputFolder::commit(Swap swap) {
       if (errno != EINVAL && errno != ENOSYS) fail(fmt::format("cannot replace {}", target_.string()), errno);
       swap = Swap::AsideThenIn;
     }
-    const fs::path aside = create_unique_folder(target_.parent_path(), fmt::format(".{}.old", target_.filename().string()));
+    const fs::path aside = create_unique_folder(target_.parent_path(), ".pcsim.old");
     if (::rename(target_.c_str(), aside.c_str()) != 0) {
       const int error = errno;
       ::rmdir(aside.c_str());
@@ -98,11 +197,9 @@ std::vector<std::string> OutputFolder::commit(Swap swap) {
     }
     const bool in = ::rename(staging_.c_str(), target_.c_str()) == 0;
     const int error = errno;
+    if (in) done();
     retire(aside);
-    if (in) {
-      committed_ = true;
-      return warnings;
-    }
+    if (in) return warnings;
     // Another run's folder came in between: go round and replace that one.
     if (!changed_meanwhile(error)) fail(fmt::format("cannot rename {} to {}", staging_.string(), target_.string()), error);
   }

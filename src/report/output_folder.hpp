@@ -5,11 +5,14 @@
 // mix. A folder replaced is deleted name by name, and only if it is pcsim's (output_rules.hpp).
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace pagecache::report {
+
+class RemovedOnInterrupt;
 
 class OutputFolder {
  public:
@@ -18,9 +21,13 @@ class OutputFolder {
   enum class Swap { Exchange, AsideThenIn };
 
   /// Makes the staging folder, with the marker in it, next to the folder `dir` names (and the
-  /// folders above, as needed). Throws ConfigError for an empty `dir`, Error if it cannot.
+  /// folders above, as needed; removed again if the run fails while they are empty). First
+  /// removes the staging folders that runs killed beyond catching left beside it (theirs by
+  /// name, marker and content; their process gone). Throws ConfigError for an empty `dir`,
+  /// Error if it cannot.
   explicit OutputFolder(const std::string& dir);
-  /// Not committed (the run failed): removes the staging folder, and only it.
+  /// Not committed (the run failed): removes the staging folder, and only it, and the folders
+  /// above it that it made, if empty.
   ~OutputFolder();
   OutputFolder(const OutputFolder&) = delete;
   OutputFolder& operator=(const OutputFolder&) = delete;
@@ -37,6 +44,9 @@ class OutputFolder {
   std::filesystem::path target_;
   std::filesystem::path staging_;
   bool committed_ = false;
+  std::vector<std::filesystem::path> made_;        // folders above made for it, deepest first
+  std::unique_ptr<RemovedOnInterrupt> cleanup_;    // the staging folder, if interrupted
+  void remove_made_folders();
 };
 
 /// Deletes `old`, the folder that was just put aside from `target`, if it is pcsim's: its

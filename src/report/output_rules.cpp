@@ -58,6 +58,7 @@ std::optional<std::string> refusal(const fs::path& path, const std::string& scen
   struct stat st{};
   if (::lstat(path.c_str(), &st) != 0) {
     if (errno == ENOENT) return std::nullopt;
+    if (errno == ENAMETOOLONG) return "is a name longer than the file system allows";
     return fmt::format("cannot be examined ({})", std::generic_category().message(errno));
   }
   if (S_ISLNK(st.st_mode)) return "is a symbolic link (pcsim neither replaces a link nor writes through one)";

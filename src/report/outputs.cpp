@@ -2,6 +2,7 @@
 
 #include "report/csv_field.hpp"
 #include "report/html_report.hpp"
+#include "report/output_file.hpp"
 #include "report/output_folder.hpp"
 #include "report/output_rules.hpp"
 #include "text/json_string.hpp"
@@ -31,7 +32,7 @@ namespace pagecache {
 
 namespace fs = std::filesystem;
 using report::append_csv_field;
-using report::OutputFile;
+using report::NamedOutput;
 using report::OutputFolder;
 using report::OutputOptions;
 using report::ReportActivity;
@@ -65,14 +66,8 @@ std::string readable_rate(double mb_per_s) { return mb_per_s >= 1.0 ? fmt::forma
 // file is ever made in memory.
 class CsvFile {
  public:
-  explicit CsvFile(const fs::path& path) : path_(path), file_(std::fopen(path.c_str(), "wb")) {
-    if (file_ == nullptr) throw Error(fmt::format("cannot write {}", path_.string()));
-  }
-  CsvFile(const CsvFile&) = delete;
-  CsvFile& operator=(const CsvFile&) = delete;
-  ~CsvFile() {
-    if (file_ != nullptr) std::fclose(file_);
-  }
+  // Any path, by the rule of output_file.hpp (a device written through, a file replaced whole).
+  explicit CsvFile(const fs::path& path) : file_(path.string()) {}
 
   fmt::appender out() { return fmt::appender(buffer_); }
   /// A text field and the comma after it (see csv_field.hpp); numbers go through out().
@@ -88,21 +83,17 @@ class CsvFile {
   }
   void close() {
     flush();
-    const bool failed = std::fclose(std::exchange(file_, nullptr)) != 0;
-    if (failed) throw Error(fmt::format("cannot write {}", path_.string()));
+    file_.commit();
   }
 
  private:
   static constexpr std::size_t kFlushAt = 1 << 16;
   void flush() {
-    if (std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size()) {
-      throw Error(fmt::format("cannot write {}", path_.string()));
-    }
+    file_.write(std::string_view(buffer_.data(), buffer_.size()));
     buffer_.clear();
   }
 
-  fs::path path_;
-  std::FILE* file_;
+  report::OutputFile file_;
   fmt::memory_buffer buffer_;
 };
 
@@ -210,7 +201,7 @@ std::string timing_json(const RunResult& r) {
 
 std::vector<std::string> report::write_outputs(const std::string& dir, const Scenario& scenario, const RunResult& result,
                                        const OutputOptions& options) {
-  for (const OutputFile& f : options.more) {
+  for (const NamedOutput& f : options.more) {
     if (std::find(std::begin(report::kOutputNames), std::end(report::kOutputNames), f.name) == std::end(report::kOutputNames)) {
       throw Error(fmt::format("'{}' is not one of pcsim's output names", f.name));  // a replaced folder would keep it
     }
@@ -225,7 +216,7 @@ std::vector<std::string> report::write_outputs(const std::string& dir, const Sce
   if (options.report) {
     write_file(staging / "report.html", report::report_html(scenario, result, options.activity != nullptr ? *options.activity : ReportActivity{}));
   }
-  for (const OutputFile& f : options.more) write_file(staging / f.name, f.text);
+  for (const NamedOutput& f : options.more) write_file(staging / f.name, f.text);
   return folder.commit();
 }
 

@@ -17,7 +17,7 @@
 namespace pagecache::report {
 
 /// An output made by one of the run's consumers (trace.json); its name is one of kOutputNames.
-struct OutputFile {
+struct NamedOutput {
   std::string name;
   std::string text;
 };
@@ -28,7 +28,7 @@ struct OutputOptions {
   /// The ReportActivity attached to the run, drawn in report.html (nullptr: the page says it
   /// was not recorded).
   const ReportActivity* activity = nullptr;
-  std::vector<OutputFile> more;
+  std::vector<NamedOutput> more;
 };
 
 /// Writes every output into `dir`, replacing it if it is pcsim's (output_rules.hpp); cache.csv

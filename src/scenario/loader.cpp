@@ -4,11 +4,13 @@
 #include <pagecache/scenario.hpp>
 #include <pagecache/scenario_file.hpp>
 
+#include "scenario/deleted_files.hpp"
 #include "scenario/limits.hpp"
 #include "scenario/route_index.hpp"
 #include "scenario/simgrid_import.hpp"
 #include "scenario/workflow_import.hpp"
 #include "scenario/origins.hpp"
+#include "scenario/resolve.hpp"
 #include "scenario/text_file.hpp"
 #include "scenario/toml_reader.hpp"
 
@@ -379,14 +381,20 @@ void expand_pipelines(const toml::table& table, Scenario& s, const std::string& 
 }
 
 // A cycle of dependencies, reported with its tasks. Iterative: a workflow may be a chain of
-// 10^5 tasks, deeper than the stack a recursive search would need.
-void check_workflow_acyclic(const WorkflowSpec& w, const Origin& r) {
+// 10^5 tasks, deeper than the stack a recursive search would need. `tasks`: where each task
+// is; a workflow file's (JSON) are named there, its tasks having no TOML table.
+void check_workflow_acyclic(const WorkflowSpec& w, const Origin& r, const std::vector<Origin>& tasks) {
   std::map<std::string, std::size_t> by_name;
   std::map<std::string, std::size_t> producer;
   for (std::size_t i = 0; i < w.tasks.size(); ++i) {
     if (!by_name.emplace(w.tasks[i].name, i).second) r.fail("tasks", fmt::format("two tasks named '{}'", w.tasks[i].name));
     for (const auto& f : w.tasks[i].writes) {
-      if (!producer.emplace(f, i).second) r.fail("tasks", fmt::format("file '{}' is written by two tasks", f));
+      const auto [first, added] = producer.emplace(f, i);
+      if (added) continue;
+      if (!w.source.empty()) {
+        tasks[i].fail_table(fmt::format("file '{}' is written by two tasks, '{}' and '{}'", f, w.tasks[first->second].name, w.tasks[i].name));
+      }
+      r.fail("tasks", fmt::format("file '{}' is written by two tasks", f));
     }
   }
   std::vector<std::vector<std::size_t>> deps(w.tasks.size());
@@ -686,11 +694,14 @@ void read_workflow_file(TomlReader& root, Scenario& s, const std::string& file, 
     if (options.chunk_size <= 0) table->fail("chunk_size", "must be > 0");
     options.memory_limits = read_memory_limits(*table, "each task's");
   }
+  const std::string json = relative_path(file, path);
   const auto fail = [&](const std::string& key, const std::string& message) {
+    // Not given, and the table has no place in a file (pcsim's options made it: load_workflow):
+    // the workflow file decided it.
+    if (table && !table->has(key) && node->source().begin.line == 0) throw ConfigError(fmt::format("{}: {}", json, message));
     if (table) table->fail(key, message);
     root.fail("workflow", message);
   };
-  const std::string json = relative_path(file, path);
   std::string text;
   try {
     text = scenario::read_text_file(json, "workflow file");
@@ -701,7 +712,7 @@ void read_workflow_file(TomlReader& root, Scenario& s, const std::string& file, 
   const scenario::WfWorkflow workflow = scenario::read_workflow_json(text, json, limits.max_tasks, limits.max_files);
   scenario::add_json_workflow(workflow, options, s, origins, fail);
   if (table) table->finish();
-  check_workflow_acyclic(s.workflows.back(), origins.workflows.back());
+  check_workflow_acyclic(s.workflows.back(), origins.workflows.back(), origins.workflow_tasks.back());
 }
 
 // A run on a SimGrid platform keeps what it uses: the hosts that run tasks or store files, the
@@ -940,7 +951,7 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
       task_origins.push_back({tasks[t], wr.child_path("tasks", t), &file});
       workflow.tasks.push_back(read_task(*tasks[t], wr.child_path("tasks", t), t, chunk, file, true, memory_limits));
     }
-    check_workflow_acyclic(workflow, origins.workflows.back());
+    check_workflow_acyclic(workflow, origins.workflows.back(), task_origins);
     wr.finish();
     s.workflows.push_back(std::move(workflow));
   }
@@ -980,12 +991,13 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
   // of hosts is looked at once: a workflow's tasks may run on every host of a cluster.
   const scenario::RouteIndex routes(s);
   std::set<std::pair<std::string, std::string>> reachable;
-  const auto check_reach = [&](const std::string& owner, const std::string& task, const std::string& file_name, const std::string& host,
-                               const std::string& server) {
+  // `where`: the file the tasks were read from, named in messages (a workflow file's own).
+  const auto check_reach = [&](const std::string& where, const std::string& owner, const std::string& task, const std::string& file_name,
+                               const std::string& host, const std::string& server) {
     if (server == host || !reachable.emplace(host, server).second) return;
     const std::vector<const LinkSpec*>& route = routes.between(host, server);
     if (route.empty()) {
-      throw ConfigError(fmt::format("{}: {}, task '{}': file '{}' is on host '{}', and no link or route joins it to '{}'", file, owner,
+      throw ConfigError(fmt::format("{}: {}, task '{}': file '{}' is on host '{}', and no link or route joins it to '{}'", where, owner,
                                     task, file_name, server, host));
     }
     // A transfer is one flow through its route's shared links, the two memories and a disk
@@ -993,38 +1005,56 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
     const auto shared = std::count_if(route.begin(), route.end(), [](const LinkSpec* l) { return l->sharing == LinkSharing::Shared; });
     if (static_cast<std::size_t>(shared) + 2 > kMaxResourcesPerFlow) {
       throw ConfigError(fmt::format("{}: {}, task '{}': the route from '{}' to '{}' crosses {} shared links; pcsim models routes of at most {}",
-                                    file, owner, task, host, server, shared, kMaxResourcesPerFlow - 2));
+                                    where, owner, task, host, server, shared, kMaxResourcesPerFlow - 2));
     }
   };
   std::set<std::string> host_names;
   for (const HostConfig& h : s.hosts) host_names.insert(h.name);
-  auto check_tasks = [&](const std::string& owner, const std::vector<std::string>& hosts, const std::vector<TaskSpec>& tasks) {
+  auto check_tasks = [&](const std::string& where, const std::string& owner, const std::vector<std::string>& hosts,
+                         const std::vector<TaskSpec>& tasks) {
     for (const std::string& host : hosts) {
-      if (host_names.count(host) == 0) throw ConfigError(fmt::format("{}: {}: no host named '{}'", file, owner, host));
+      if (host_names.count(host) == 0) throw ConfigError(fmt::format("{}: {}: no host named '{}'", where, owner, host));
     }
     // The hosts storing the files of the tasks that may run on any of `hosts`: (task, file) first
     // needing each, checked against every such host after.
     std::map<std::string, std::pair<const std::string*, const std::string*>> servers;
     for (const TaskSpec& t : tasks) {
       if (!t.host.empty() && host_names.count(t.host) == 0) {
-        throw ConfigError(fmt::format("{}: {}, task '{}': no host named '{}'", file, owner, t.name, t.host));
+        throw ConfigError(fmt::format("{}: {}, task '{}': no host named '{}'", where, owner, t.name, t.host));
       }
       for (const auto* list : {&t.reads, &t.writes, &t.deletes}) {
         for (const std::string& name : *list) {
           auto it = by_name.find(name);
-          if (it == by_name.end()) throw ConfigError(fmt::format("{}: {}, task '{}': unknown file '{}'", file, owner, t.name, name));
+          if (it == by_name.end()) throw ConfigError(fmt::format("{}: {}, task '{}': unknown file '{}'", where, owner, t.name, name));
           const std::string& server = it->second->host;
-          if (!t.host.empty()) check_reach(owner, t.name, name, t.host, server);
+          if (!t.host.empty()) check_reach(where, owner, t.name, name, t.host, server);
           else servers.try_emplace(server, &t.name, &it->first);
         }
       }
     }
     for (const auto& [server, first] : servers) {
-      for (const std::string& host : hosts) check_reach(owner, *first.first, *first.second, host, server);
+      for (const std::string& host : hosts) check_reach(where, owner, *first.first, *first.second, host, server);
     }
   };
-  for (const AppSpec& a : s.apps) check_tasks("application '" + a.name + "'", {a.host}, a.tasks);
-  for (const WorkflowSpec& w : s.workflows) check_tasks("workflow '" + w.name + "'", w.hosts, w.tasks);
+  for (const AppSpec& a : s.apps) check_tasks(file, "application '" + a.name + "'", {a.host}, a.tasks);
+  for (const WorkflowSpec& w : s.workflows) check_tasks(w.source.empty() ? file : w.source, "workflow '" + w.name + "'", w.hosts, w.tasks);
+  // A workflow task needing more cores than any host it may run on has would wait for ever.
+  for (std::size_t w = 0; w < s.workflows.size(); ++w) {
+    const WorkflowSpec& flow = s.workflows[w];
+    int most = 0;
+    for (const std::string& h : flow.hosts) most = std::max(most, host_by_name.at(h)->cores);
+    for (std::size_t t = 0; t < flow.tasks.size(); ++t) {
+      const TaskSpec& task = flow.tasks[t];
+      const int cores = task.host.empty() ? most : host_by_name.at(task.host)->cores;
+      if (task.cores <= cores) continue;
+      const std::string message = fmt::format("needs {} cores, more than {} has ({})", task.cores,
+                                              task.host.empty() ? "any of its workflow's hosts" : fmt::format("its host '{}'", task.host), cores);
+      // A workflow file's task is named by its place.
+      if (flow.source.empty()) origins.workflow_tasks[w][t].fail("cores", fmt::format("task '{}': {}", task.name, message));
+      origins.workflow_tasks[w][t].fail_table(message);
+    }
+  }
+  scenario::check_reads_of_deleted_files(s, origins);
   scenario::check_limits(s, origins, limits);
   return s;
 }
@@ -1039,6 +1069,11 @@ Scenario parse_scenario(const std::string& toml_text, const std::string& source_
   } catch (const toml::parse_error& e) {
     throw ConfigError(fmt::format("{}:{}:{}: {}", source_name, e.source().begin.line, e.source().begin.column, e.description()));
   }
+  return scenario::resolve_document(std::move(root), source_name, overrides, profile_override, limits);
+}
+
+Scenario scenario::resolve_document(toml::table root, const std::string& source_name, const Overrides& overrides,
+                                    const std::string& profile_override, const ScenarioLimits& limits) {
   // A key of the platform's hosts, links or routes, in a scenario that takes them from a
   // platform file, changes that file's table (as read for this run only).
   Overrides of_platform;

@@ -7,8 +7,11 @@ namespace pagecache::scenario {
 
 std::string location(const toml::source_region& where, const std::string& file) {
   if (where.path != nullptr) {
-    // An override's value is parsed with the option as its source (loader.cpp).
-    if (where.path->rfind("--set ", 0) == 0) return *where.path;
+    // An override's value, or an option's (load_workflow), is parsed with the option as its
+    // source (loader.cpp).
+    for (const char* option : {"--set ", "--platform ", "--files-host ", "--hosts "}) {
+      if (where.path->rfind(option, 0) == 0) return *where.path;
+    }
     return fmt::format("{}:{}:{}", *where.path, where.begin.line, where.begin.column);
   }
   // A table that --set made on its way to a key has no place in any file.

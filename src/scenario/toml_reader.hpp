@@ -1,7 +1,7 @@
 #pragma once
 // TomlReader: reads one TOML table of a scenario with the project's units and rules, and
 // remembers which keys it read, so that finish() can reject every key it does not know.
-// Every error names the file, the line and column (or the --set option the value came from),
+// Every error names the file, the line and column (or the option the value came from),
 // and the key's full path; an unknown key comes with the known key it most resembles.
 
 #include <pagecache/error.hpp>
@@ -23,7 +23,8 @@
 
 namespace pagecache::scenario {
 
-/// Where a value came from: "file:line:col", or "--set KEY=VALUE" for an override.
+/// Where a value came from: "file:line:col", or the option it was given with: "--set KEY=VALUE"
+/// for an override, "--files-host H" for an option of load_workflow.
 std::string location(const toml::source_region& where, const std::string& file);
 /// Empty if `name` can name a host, disk, file, application or task; else why not (control
 /// characters, invalid UTF-8, a leading = + - @ that a spreadsheet would run as a formula).

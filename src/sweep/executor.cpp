@@ -1,9 +1,11 @@
 #include "sweep/executor.hpp"
 
 #include "report/outputs.hpp"
-#include "report/replace_file.hpp"
+#include "report/output_file.hpp"
+#include "scenario/text_file.hpp"
+#include "sweep/result_line.hpp"
 #include "sweep/results_file.hpp"
-#include "text/json_string.hpp"
+#include "sweep/results_folder.hpp"
 
 #include <pagecache/error.hpp>
 #include <pagecache/run.hpp>
@@ -15,13 +17,13 @@
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
-#include <fstream>
 #include <mutex>
 #include <new>
-#include <sstream>
 #include <thread>
 #include <unordered_set>
 #include <vector>
+
+#include <sys/stat.h>
 
 namespace pagecache::sweep {
 
@@ -32,31 +34,6 @@ namespace fs = std::filesystem;
 std::optional<std::size_t> whole_number(const std::string& text) {
   if (text.empty() || text.size() > 12 || text.find_first_not_of("0123456789") != std::string::npos) return std::nullopt;
   return static_cast<std::size_t>(std::stoull(text));
-}
-
-// The run's figures, or its failure, as one JSON line; `wall`: the run's time in this process,
-// its scenario loaded and its result formatted, beside the simulation's own (sim_wall_s).
-std::string result_line(const Run& run, const RunResult* result, int exit_code, const std::string& error, double wall) {
-  std::string out = fmt::format("{{\"id\": \"{}\", \"run\": {}, \"overrides\": {{", run.id, run.index);
-  bool first = true;
-  for (const Override& o : run.overrides) {
-    if (o.toml.empty()) continue;
-    out += fmt::format("{}{}: {}", first ? "" : ", ", text::json_string(o.key), text::json_string(o.toml));
-    first = false;
-  }
-  out += "}, ";
-  if (result == nullptr) {
-    out += fmt::format("\"status\": \"failed\", \"exit_code\": {}, \"error\": {}", exit_code, text::json_string(error));
-  } else {
-    const RunSummary& s = result->summary;
-    out += fmt::format(
-        "\"status\": \"ok\", \"exit_code\": 0, \"makespan_s\": {:.6f}, \"end_time_s\": {:.6f}, \"read_s\": {:.6f}, \"compute_s\": {:.6f}, "
-        "\"write_s\": {:.6f}, \"disk_read_bytes\": {}, \"cache_read_bytes\": {}, \"forced_flush_bytes\": {}, \"periodic_flush_bytes\": {}, "
-        "\"evicted_bytes\": {}, \"peak_dirty_bytes\": {}, \"events\": {}",
-        s.makespan, s.end_time, s.read.seconds, s.compute.seconds, s.write.seconds, s.disk_read_bytes, s.cache_read_bytes, s.forced_flush_bytes,
-        s.periodic_flush_bytes, s.evicted_bytes, s.peak_dirty_bytes, s.events);
-  }
-  return out + fmt::format(", \"wall_s\": {:.6f}, \"sim_wall_s\": {:.6f}}}", wall, result != nullptr ? result->summary.wall_seconds : 0.0);
 }
 
 struct Finished {
@@ -78,7 +55,7 @@ Finished execute(const Plan& plan, const Run& run, const SweepOptions& options) 
     if (options.keep_outputs) {
       report::write_outputs((fs::path(options.out_dir) / "runs" / run.id).string(), scenario, result, {.report = false, .activity = nullptr, .more = {}});
     }
-    return {result_line(run, &result, 0, {}, wall()), false};
+    return {result_line(plan.fingerprint(), run, &result, 0, {}, wall()), false};
   } catch (const ConfigError& e) {
     code = 2;
     error = e.what();
@@ -93,38 +70,53 @@ Finished execute(const Plan& plan, const Run& run, const SweepOptions& options) 
   } catch (const std::exception& e) {
     error = e.what();
   }
-  return {result_line(run, nullptr, code, error, wall()), true};
+  return {result_line(plan.fingerprint(), run, nullptr, code, error, wall()), true};
 }
 
 }  // namespace
 
-// out_dir/sweep-plan.json: written by the first shard, the same for every other.
-void prepare_out_dir(const Plan& plan, const std::string& out_dir) {
+// out_dir/sweep-plan.json: written by the first shard, the same for every other. Everything
+// in the folder is read and checked before the plan is written.
+std::unordered_set<std::string> prepare_out_dir(const Plan& plan, const std::string& out_dir) {
+  std::error_code ec;
+  if (fs::exists(out_dir, ec) && !fs::is_directory(out_dir, ec)) throw ConfigError(fmt::format("--out {}: is not a folder", out_dir));
   fs::create_directories(out_dir);
   const fs::path path = fs::path(out_dir) / "sweep-plan.json";
   const std::string text = plan.json();
-  if (fs::exists(path)) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream there;
-    there << in.rdbuf();
-    if (there.str() == text) return;
+  std::optional<std::string> there;
+  if (struct stat st {}; ::lstat(path.c_str(), &st) == 0) {
+    if (!S_ISREG(st.st_mode)) {
+      throw ConfigError(fmt::format("--out {}: its sweep-plan.json {}, not the plan pcsim wrote: left as it is; give another --out", out_dir,
+                                    S_ISLNK(st.st_mode) ? "is a symbolic link" : S_ISDIR(st.st_mode) ? "is a folder" : "is not a regular file"));
+    }
+    there = scenario::read_text_file(path.string(), "sweep plan");
+  }
+  if (there && *there != text) {
+    const Plan before = Plan::from_json(*there, path.string());
+    // The runs there are this sweep's only if they ran on the same base: a scenario edited
+    // since, or another one, would mix two bases in one results.csv.
+    if (const std::string changes = base_changes(before.base(), plan.base()); !changes.empty()) {
+      throw ConfigError(fmt::format("--out {}: holds the results of a sweep of another base scenario ({}): {}; give another --out", out_dir,
+                                    path.string(), changes));
+    }
     // A sweep grown by new axis values (its runs keep their ids) goes on in the same folder;
     // one that drops a run of the folder's sweep would leave results merge cannot place.
-    const Plan before = Plan::from_json(there.str(), path.string());
-    if (!plan.same_base(before)) {
-      throw ConfigError(fmt::format("{}: holds the results of a sweep of another base scenario ({}): give another --out", out_dir, path.string()));
-    }
     std::unordered_set<std::string> now;
     for (std::size_t i = 0; i < plan.size(); ++i) now.insert(plan.run(i).id);
     for (std::size_t i = 0; i < before.size(); ++i) {
       const Run run = before.run(i);
       if (now.count(run.id) == 0) {
-        throw ConfigError(fmt::format("{}: holds the results of another sweep, with runs this one lacks (run {}, of {}): give another --out",
+        throw ConfigError(fmt::format("--out {}: holds the results of another sweep, with runs this one lacks (run {}, of {}): give another --out",
                                       out_dir, run.id, path.string()));
       }
     }
   }
-  report::replace_file(path.string(), text);  // written whole, then renamed: concurrent shards write the same bytes
+  // Every shard's results, of any split: a run there is done, whichever split runs next.
+  std::unordered_set<std::string> done;
+  for_each_result(out_dir, plan.fingerprint(), [&](const std::string& id, std::string_view, const std::string&, std::size_t) { done.insert(id); });
+  // Written whole, then renamed: concurrent shards write the same bytes.
+  if (!there || *there != text) report::write_output_file(path.string(), text, "--out");
+  return done;
 }
 
 Shard parse_shard(const std::string& text) {
@@ -155,14 +147,14 @@ std::string results_path(const std::string& out_dir, const Shard& shard) {
 
 SweepOutcome run_sweep(const Plan& plan, const SweepOptions& options) {
   if (options.out_dir.empty()) throw ConfigError("sweep run: --out DIR is needed");
-  prepare_out_dir(plan, options.out_dir);
+  const std::unordered_set<std::string> done = prepare_out_dir(plan, options.out_dir);
   SweepOutcome outcome;
   outcome.results = results_path(options.out_dir, options.shard);
-  ResultsFile results(outcome.results);
+  ResultsFile results(outcome.results, plan.fingerprint());
   std::vector<Run> pending;
   for (std::size_t i = options.shard.index; i < plan.size(); i += options.shard.count) {
     Run run = plan.run(i);
-    if (results.done().count(run.id) != 0) ++outcome.skipped;
+    if (done.count(run.id) != 0 || results.done().count(run.id) != 0) ++outcome.skipped;
     else pending.push_back(std::move(run));
   }
   std::atomic<std::size_t> next{0};

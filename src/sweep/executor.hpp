@@ -1,8 +1,9 @@
 #pragma once
 // `pcsim sweep run`: the runs of one shard of a plan, `jobs` at a time in this process (each
 // run single-threaded, so each is what `pcsim run` gives), each finished run appended to the
-// shard's results file as one JSON line. Runs already there are skipped (a rerun resumes); a
-// run that fails is recorded with its error and exit code, and the shard goes on.
+// shard's results file as one JSON line. Runs already in any results file of the folder are
+// skipped, whatever shard split wrote them (a rerun resumes, a grown sweep runs only its new
+// runs); a run that fails is recorded with its error and exit code, and the shard goes on.
 
 #include "sweep/plan.hpp"
 
@@ -10,6 +11,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <unordered_set>
 
 namespace pagecache::sweep {
 
@@ -47,13 +49,17 @@ struct SweepOutcome {
 /// The file a shard writes: out_dir/results-I-of-N.jsonl.
 std::string results_path(const std::string& out_dir, const Shard& shard);
 
-/// Makes out_dir and writes its sweep-plan.json. A sweep-plan.json there already is replaced
-/// if every run it lists is one of this plan's (the sweep grew: new axis values keep the old
-/// runs' ids, and their results stay valid); otherwise ConfigError, naming a run it would lose.
-void prepare_out_dir(const Plan& plan, const std::string& out_dir);
+/// Makes out_dir, checks what it holds, and writes its sweep-plan.json; returns the ids of the
+/// runs its results files hold, of whatever shard split. A sweep-plan.json there already is
+/// replaced if its base has the plan's fingerprint and every run it lists is one of this
+/// plan's (the sweep grew: new axis values keep the old runs' ids, and their results stay
+/// valid). Throws ConfigError, changing nothing, naming what differs in the base (a file
+/// edited since, another file, another profile) or a run the plan would lose, or naming the
+/// file and line of a results line that is not a result of this sweep (results_folder.hpp).
+std::unordered_set<std::string> prepare_out_dir(const Plan& plan, const std::string& out_dir);
 
-/// Writes out_dir/sweep-plan.json (or checks that the one there is this plan's: ConfigError if
-/// not, naming it), then runs the shard. Throws Error if the results cannot be written.
+/// prepare_out_dir, then runs the shard's runs that no results file of out_dir holds. Throws
+/// ConfigError as prepare_out_dir and ResultsFile do; Error if the results cannot be written.
 SweepOutcome run_sweep(const Plan& plan, const SweepOptions& options);
 
 }  // namespace pagecache::sweep

@@ -1,9 +1,11 @@
 #include "sweep/merge.hpp"
 
 #include "report/csv_field.hpp"
-#include "report/replace_file.hpp"
+#include "report/output_file.hpp"
 #include "scenario/text_file.hpp"
 #include "sweep/plan.hpp"
+#include "sweep/result_line.hpp"
+#include "sweep/results_folder.hpp"
 
 #include <pagecache/error.hpp>
 
@@ -12,8 +14,6 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <map>
-#include <regex>
 #include <unordered_map>
 #include <vector>
 
@@ -22,11 +22,6 @@ namespace pagecache::sweep {
 namespace {
 
 namespace fs = std::filesystem;
-
-// The figures of a result, in results.csv's order after the swept keys.
-constexpr const char* kFigures[] = {"makespan_s",         "end_time_s",           "read_s",        "compute_s",        "write_s",
-                                    "disk_read_bytes",    "cache_read_bytes",     "forced_flush_bytes", "periodic_flush_bytes",
-                                    "evicted_bytes",      "peak_dirty_bytes",     "events"};
 
 struct Found {
   nlohmann::json result;
@@ -43,47 +38,33 @@ std::string some(const std::vector<std::string>& ids) {
 
 MergeOutcome merge(const MergeOptions& options) {
   const fs::path dir(options.dir);
+  MergeOutcome outcome;
+  // The user's --csv, checked before the work; the default is in the folder.
+  outcome.csv = options.csv.empty() ? (dir / "results.csv").string() : options.csv;
+  const std::string_view option = options.csv.empty() ? std::string_view() : std::string_view("--csv");
+  report::check_output_file(outcome.csv, option);
   const fs::path plan_path = dir / "sweep-plan.json";
   if (!fs::exists(plan_path)) throw ConfigError(fmt::format("{}: no sweep-plan.json: not a folder of `pcsim sweep run --out`", options.dir));
   const Plan plan = Plan::from_json(scenario::read_text_file(plan_path.string(), "sweep plan"), plan_path.string());
 
-  // Every shard's results, whatever the sharding (shards of several runs may be merged).
-  std::vector<fs::path> files;
-  const std::regex shard_file(R"(results-[0-9]+-of-[0-9]+\.jsonl)");
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    if (entry.is_regular_file() && std::regex_match(entry.path().filename().string(), shard_file)) files.push_back(entry.path());
-  }
-  std::sort(files.begin(), files.end());
+  // Every shard's results, whatever the sharding (shards of several splits may be merged), each
+  // line a result of this sweep's base. A last line cut short (a shard still running, or
+  // killed mid-line) is not a result: its run is not done.
   std::unordered_map<std::string, Found> found;
   std::vector<std::string> duplicated;
-  for (const fs::path& file : files) {
-    const std::string text = scenario::read_text_file(file.string(), "results file");
-    std::size_t line_no = 0;
-    for (std::size_t at = 0; at < text.size();) {
-      const std::size_t end = text.find('\n', at);
-      if (end == std::string::npos) break;  // a shard still running, or killed mid-line: its run is not done
-      ++line_no;
-      nlohmann::json result = nlohmann::json::parse(text.begin() + static_cast<std::ptrdiff_t>(at), text.begin() + static_cast<std::ptrdiff_t>(end), nullptr, false);
-      at = end + 1;
-      if (!result.is_object() || !result.contains("id") || !result["id"].is_string()) {
-        throw ConfigError(fmt::format("{}:{}: not a result pcsim wrote", file.string(), line_no));
-      }
-      const std::string id = result["id"];
-      const std::string where = fmt::format("{}:{}", file.filename().string(), line_no);
-      if (const auto it = found.find(id); it != found.end()) {
-        duplicated.push_back(fmt::format("{} ({} and {})", id, it->second.where, where));
-        continue;
-      }
-      found.emplace(id, Found{std::move(result), where});
+  for_each_result(options.dir, plan.fingerprint(), [&](const std::string& id, std::string_view line, const std::string& file, std::size_t number) {
+    const std::string where = fmt::format("{}:{}", file, number);
+    if (const auto it = found.find(id); it != found.end()) {
+      duplicated.push_back(fmt::format("{} ({} and {})", id, it->second.where, where));
+      return;
     }
-  }
+    found.emplace(id, Found{nlohmann::json::parse(line), where});
+  });
   if (!duplicated.empty()) {
-    throw ConfigError(fmt::format("{}: {} run(s) have more than one result (shards of two different splits?): {}", options.dir, duplicated.size(),
+    throw ConfigError(fmt::format("{}: {} run(s) have more than one result (shards of two splits run at the same time?): {}", options.dir, duplicated.size(),
                                   some(duplicated)));
   }
 
-  MergeOutcome outcome;
-  outcome.csv = options.csv.empty() ? (dir / "results.csv").string() : options.csv;
   fmt::memory_buffer csv;
   const auto field = [&](const std::string& text) { report::append_csv_field(csv, text); };
   field("id");
@@ -92,7 +73,7 @@ MergeOutcome merge(const MergeOptions& options) {
     field(key);
   }
   csv.append(std::string_view(",status,exit_code"));
-  for (const char* f : kFigures) fmt::format_to(std::back_inserter(csv), ",{}", f);
+  for (const char* f : kResultFigures) fmt::format_to(std::back_inserter(csv), ",{}", f);
   csv.append(std::string_view(",error,wall_s,sim_wall_s\n"));
   std::vector<std::string> missing;
   std::size_t used = 0;
@@ -115,7 +96,7 @@ MergeOutcome merge(const MergeOptions& options) {
     }
     const std::string status = r.value("status", "");
     fmt::format_to(std::back_inserter(csv), ",{},{}", status, r.value("exit_code", -1));
-    for (const char* f : kFigures) {
+    for (const char* f : kResultFigures) {
       csv.push_back(',');
       if (r.contains(f)) csv.append(r[f].dump());
     }
@@ -140,7 +121,7 @@ MergeOutcome merge(const MergeOptions& options) {
     throw ConfigError(fmt::format("{}: {} of {} runs have no result yet: {} (run their shards again, or --allow-missing)", options.dir,
                                   missing.size(), plan.size(), some(missing)));
   }
-  report::replace_file(outcome.csv, std::string(csv.data(), csv.size()));
+  report::write_output_file(outcome.csv, std::string_view(csv.data(), csv.size()), option);
   return outcome;
 }
 

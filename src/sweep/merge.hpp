@@ -23,7 +23,9 @@ struct MergeOutcome {
 };
 
 /// Throws ConfigError naming the missing (unless allowed) or duplicated runs, a result that is
-/// not of the plan's runs, or a DIR without a sweep-plan.json.
+/// not of the plan's runs, a line that is not a result of the plan's base (file and line), a
+/// results file pcsim did not make, a DIR without a sweep-plan.json, or a --csv that cannot
+/// receive the CSV ("--csv PATH: is a folder", checked first).
 MergeOutcome merge(const MergeOptions& options);
 
 }  // namespace pagecache::sweep

@@ -2,6 +2,8 @@
 
 #include "scenario/text_file.hpp"
 #include "scenario/toml_reader.hpp"
+#include "sweep/hash.hpp"
+#include "sweep/range.hpp"
 #include "text/json_string.hpp"
 
 #include <pagecache/error.hpp>
@@ -13,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -25,14 +28,6 @@ using scenario::location;
 
 [[noreturn]] void fail_at(const toml::node& node, const std::string& file, const std::string& what) {
   throw ConfigError(fmt::format("{}: {}", location(node.source(), file), what));
-}
-
-// A float as TOML text that reads back as the same float: 12 significant digits drop the
-// residue of from + k * step (0.30000000000000004 is 0.3).
-std::string float_text(double v) {
-  std::string s = fmt::format("{:.12g}", v);
-  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
-  return s;
 }
 
 // A value of an axis or a point as an override.
@@ -63,53 +58,9 @@ Override override_of(const std::string& key, const toml::node& value, const std:
   return {key, text.str(), shown};
 }
 
-// range = { from, to, step } or { from, to, factor }: the values from `from` up to `to`.
-std::vector<Override> range_values(const std::string& key, const toml::table& range, const std::string& file, const std::string& where) {
-  scenario::TomlReader r(range, where + ".range", file);
-  const toml::node* from = r.raw("from");
-  const toml::node* to = r.raw("to");
-  const toml::node* step = r.raw("step");
-  const toml::node* factor = r.raw("factor");
-  r.finish();
-  if (from == nullptr || to == nullptr) r.fail_table("a range needs from and to, and step or factor");
-  if ((step == nullptr) == (factor == nullptr)) r.fail_table("a range has a step or a factor (a log range), one of them");
-  const toml::node& by = step != nullptr ? *step : *factor;
-  for (const toml::node* n : {from, to, &by}) {
-    if (!n->is_number()) fail_at(*n, file, fmt::format("{}: from, to, step and factor are numbers", where));
-  }
-  const bool integers = from->is_integer() && to->is_integer() && by.is_integer();
-  const double a = *from->value<double>(), b = *to->value<double>(), s = *by.value<double>();
-  const auto text = [&](double v) { return integers ? fmt::format("{}", static_cast<std::int64_t>(std::llround(v))) : float_text(v); };
-  std::vector<Override> out;
-  constexpr double kMaxValues = 1e7;
-  if (step != nullptr) {
-    if (!(s != 0.0) || !std::isfinite(s)) fail_at(by, file, fmt::format("{}: the step cannot be 0", where));
-    const double n = std::floor((b - a) / s * (1.0 + 1e-12)) + 1.0;
-    if (!(n >= 1.0)) fail_at(by, file, fmt::format("{}: from {} the step {} never reaches {}", where, a, s, b));
-    if (n > kMaxValues) fail_at(by, file, fmt::format("{}: {:.0f} values, more than an axis may have ({:.0f})", where, n, kMaxValues));
-    for (double k = 0; k < n; ++k) out.push_back({key, text(a + k * s), text(a + k * s)});
-  } else {
-    const bool up = s > 1.0 && a > 0.0 && b >= a;
-    const bool down = s > 0.0 && s < 1.0 && b > 0.0 && a >= b;
-    if (!up && !down) fail_at(by, file, fmt::format("{}: a factor range needs 0 < from <= to with factor > 1, or from >= to > 0 with 0 < factor < 1", where));
-    double v = a;
-    for (double k = 0; up ? v <= b * (1.0 + 1e-12) : v >= b * (1.0 - 1e-12); ++k, v = a * std::pow(s, k)) {
-      if (k >= kMaxValues) fail_at(by, file, fmt::format("{}: more values than an axis may have ({:.0f})", where, kMaxValues));
-      if (!out.empty() && out.back().toml == text(v)) continue;  // integers: a factor below 2 can round to the same value
-      out.push_back({key, text(v), text(v)});
-    }
-  }
-  return out;
-}
-
 std::string absolute_beside(const std::string& path, const std::string& file) {
   const fs::path p(path);
   return (p.is_absolute() ? p : fs::absolute(fs::path(file).parent_path() / p)).lexically_normal().string();
-}
-
-std::uint64_t fnv1a(std::string_view text, std::uint64_t h = 0xcbf29ce484222325ULL) {
-  for (const unsigned char c : text) h = (h ^ c) * 0x100000001b3ULL;
-  return h;
 }
 
 }  // namespace
@@ -119,15 +70,16 @@ std::string run_id(const std::vector<Override>& overrides) {
   for (const Override& o : overrides)
     if (!o.toml.empty()) sorted.push_back(&o);
   std::sort(sorted.begin(), sorted.end(), [](const Override* a, const Override* b) { return a->key < b->key; });
-  std::uint64_t h = fnv1a("");
+  std::uint64_t h = kFnvStart;
   for (const Override* o : sorted) h = fnv1a(o->key + "=" + o->toml + "\n", h);
-  return fmt::format("{:016x}", h);
+  return hex16(h);
 }
 
-Plan Plan::load(const std::string& path, bool force) {
+Plan Plan::load(const std::string& path, bool force) { return parse(scenario::read_text_file(path, "sweep file"), path, force); }
+
+Plan Plan::parse(const std::string& text, const std::string& path, bool force, const PlanLimits& limits) {
   Plan plan;
   plan.file_ = fs::absolute(path).lexically_normal().string();
-  const std::string text = scenario::read_text_file(path, "sweep file");
   toml::table root;
   try {
     root = toml::parse(text, path);
@@ -166,35 +118,72 @@ Plan Plan::load(const std::string& path, bool force) {
   }
   if (axes.empty() == points.empty()) r.fail_table("a sweep has [[axes]] (a grid) or [[points]] (a list of runs), one of them");
 
-  std::vector<std::pair<std::size_t, std::string>> to_check;  // (axis, where) of the values to try on the base
+  // First each axis's length, and the grid's, without making a value: a range of 10^9 values
+  // is refused at once, not once it has filled the memory.
+  struct Axis {
+    std::string key, name;
+    const toml::array* values = nullptr;
+    std::optional<Range> range;
+    double length = 0;
+  };
+  std::vector<Axis> grid;
   double runs = 1.0;
   for (std::size_t i = 0; i < axes.size(); ++i) {
-    const std::string where = fmt::format("axes[{}]", i);
-    scenario::TomlReader a(*axes[i], where, path);
-    const std::string key = a.required_string("key");
+    scenario::TomlReader a(*axes[i], fmt::format("axes[{}]", i), path);
+    Axis axis;
+    axis.key = a.required_string("key");
     const toml::node* values = a.raw("values");
     const toml::table* range = a.optional_table("range");
     a.finish();
-    const std::string axis = fmt::format("axis '{}'", key);
-    if (std::find(plan.keys_.begin(), plan.keys_.end(), key) != plan.keys_.end()) a.fail("key", fmt::format("{} is swept twice", axis));
-    if ((values == nullptr) == (range == nullptr)) a.fail_table(fmt::format("{}: give values = [...] or range = {{...}}, one of them", axis));
-    std::vector<Override> list;
+    axis.name = fmt::format("axis '{}'", axis.key);
+    for (const Axis& earlier : grid)
+      if (earlier.key == axis.key) a.fail("key", fmt::format("{} is swept twice", axis.name));
+    if ((values == nullptr) == (range == nullptr)) a.fail_table(fmt::format("{}: give values = [...] or range = {{...}}, one of them", axis.name));
     if (values != nullptr) {
-      const toml::array* array = values->as_array();
-      if (array == nullptr) a.fail("values", fmt::format("{}: expected an array of values", axis));
-      for (const toml::node& v : *array) list.push_back(override_of(key, v, path, axis));
+      axis.values = values->as_array();
+      if (axis.values == nullptr) a.fail("values", fmt::format("{}: expected an array of values", axis.name));
+      axis.length = static_cast<double>(axis.values->size());
+      if (axis.length == 0) a.fail("values", fmt::format("{} has no value", axis.name));
+      if (axis.length > limits.axis_values) {
+        a.fail("values", fmt::format("{}: {} values, more than an axis may have ({:.0f})", axis.name, axis.values->size(), limits.axis_values));
+      }
     } else {
-      list = range_values(key, *range, path, axis);
+      axis.range = read_range(axis.key, *range, path, axis.name);
+      axis.length = range_length(*axis.range, limits.axis_values);
     }
-    if (list.empty()) a.fail("values", fmt::format("{} has no value", axis));
+    runs *= axis.length;
+    grid.push_back(std::move(axis));
+  }
+  if (!points.empty()) runs = static_cast<double>(points.size());
+  const double allowed = force ? kMaxNumberedRuns : limits.runs;
+  if (runs > allowed) {
+    if (runs > kMaxNumberedRuns) throw ConfigError(fmt::format("{}: {:.3g} runs, more than pcsim can number", path, runs));
+    std::string shape;
+    for (std::size_t i = 0; i < grid.size(); ++i) shape += fmt::format("{}{} {:.0f}", i ? " x " : "", grid[i].name, grid[i].length);
+    if (shape.empty()) shape = "points";
+    throw ConfigError(fmt::format("{}: {:.0f} runs ({}), more than {:.0f}: give --force to sweep them all", path, runs, shape, allowed));
+  }
+
+  std::vector<std::pair<std::size_t, std::string>> to_check;  // (axis, where) of the values to try on the base
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    const Axis& axis = grid[i];
+    std::vector<Override> list;
+    if (axis.values != nullptr) {
+      list.reserve(axis.values->size());
+      for (const toml::node& v : *axis.values) list.push_back(override_of(axis.key, v, path, axis.name));
+    } else {
+      list = range_values(*axis.range);
+    }
     std::set<std::string> seen;
     for (const Override& o : list) {
-      if (!seen.insert(o.toml).second) a.fail(values ? "values" : "range", fmt::format("{}: the value {} is there twice", axis, o.toml));
+      if (!seen.insert(o.toml).second) {
+        scenario::TomlReader(*axes[i], fmt::format("axes[{}]", i), path)
+            .fail(axis.values != nullptr ? "values" : "range", fmt::format("{}: the value {} is there twice", axis.name, o.toml));
+      }
     }
-    runs *= static_cast<double>(list.size());
-    plan.keys_.push_back(key);
+    plan.keys_.push_back(axis.key);
     plan.axes_.push_back(std::move(list));
-    to_check.emplace_back(i, axis);
+    to_check.emplace_back(i, axis.name);
   }
   if (!points.empty()) {
     // Keys in the order they first appear; a point leaves unset what it does not name.
@@ -218,33 +207,44 @@ Plan Plan::load(const std::string& path, bool force) {
     for (std::size_t i = 0; i < rows.size(); ++i) {
       if (!ids.insert(run_id(rows[i])).second) fail_at(*points[i], path, fmt::format("points[{}] is the same run as an earlier point", i));
     }
-    runs = static_cast<double>(rows.size());
     plan.points_ = std::move(rows);
   }
-  if (runs > kMaxRuns && !force) {
-    std::string shape;
-    for (std::size_t i = 0; i < plan.axes_.size(); ++i) shape += fmt::format("{}axis '{}' {}", i ? " x " : "", plan.keys_[i], plan.axes_[i].size());
-    throw ConfigError(fmt::format("{}: {:.0f} runs ({}), more than {:.0f}: give --force to sweep them all", path, runs, shape, kMaxRuns));
+  // The grid as made: a log range of integers may have merged values that round alike.
+  std::size_t size = plan.points_.size();
+  if (plan.points_.empty()) {
+    size = 1;
+    for (const auto& values : plan.axes_) size *= values.size();
   }
-  if (runs > 1e12) throw ConfigError(fmt::format("{}: {:.3g} runs, more than pcsim can number", path, runs));
-  plan.size_ = static_cast<std::size_t>(runs);
-  plan.check_values(to_check);
+  plan.size_ = size;
+  plan.check_values(to_check, limits.scenario);
   if (!plan.points_.empty()) {
     for (std::size_t i = 0; i < plan.points_.size(); ++i) {
       try {
-        plan.scenario(plan.run(i));
+        std::vector<std::pair<std::string, std::string>> overrides;
+        for (const Override& o : plan.points_[i])
+          if (!o.toml.empty()) overrides.emplace_back(o.key, o.toml);
+        plan.load_base(overrides, limits.scenario);
       } catch (const ConfigError& e) {
         fail_at(*points[i], path, fmt::format("points[{}]: {}", i, e.what()));
       }
     }
   }
+  plan.base_ = identify_base(plan.scenario_, plan.workflow_text_, plan.profile_);
+  plan.fingerprint_ = plan.base_.fingerprint();
   return plan;
+}
+
+std::size_t Plan::values_held() const noexcept {
+  std::size_t n = 0;
+  for (const auto& values : axes_) n += values.size();
+  for (const auto& point : points_) n += point.size();
+  return n;
 }
 
 // Each value of each axis on the base alone, so that a value of the wrong type for its key is
 // refused before any run, naming its axis. A range's values share one type: its ends stand
 // for it.
-void Plan::check_values(const std::vector<std::pair<std::size_t, std::string>>& where) const {
+void Plan::check_values(const std::vector<std::pair<std::size_t, std::string>>& where, const ScenarioLimits& limits) const {
   for (const auto& [axis, name] : where) {
     const std::vector<Override>& values = axes_[axis];
     std::vector<const Override*> tried;
@@ -255,7 +255,7 @@ void Plan::check_values(const std::vector<std::pair<std::size_t, std::string>>& 
     }
     for (const Override* v : tried) {
       try {
-        load_base({{v->key, v->toml}});
+        load_base({{v->key, v->toml}}, limits);
       } catch (const ConfigError& e) {
         throw ConfigError(fmt::format("{}: {}, value {}: {}", file_, name, v->toml, e.what()));
       }
@@ -281,10 +281,10 @@ Run Plan::run(std::size_t index) const {
   return run;
 }
 
-Scenario Plan::load_base(const std::vector<std::pair<std::string, std::string>>& overrides) const {
-  if (!scenario_.empty()) return load_scenario(scenario_, overrides, profile_);
-  if (!workflow_text_.empty()) return parse_scenario(workflow_text_, file_, overrides, profile_);
-  return parse_scenario(default_scenario_text(), "<embedded default>", overrides, profile_);
+Scenario Plan::load_base(const std::vector<std::pair<std::string, std::string>>& overrides, const ScenarioLimits& limits) const {
+  if (!scenario_.empty()) return load_scenario(scenario_, overrides, profile_, limits);
+  if (!workflow_text_.empty()) return parse_scenario(workflow_text_, file_, overrides, profile_, limits);
+  return parse_scenario(default_scenario_text(), "<embedded default>", overrides, profile_, limits);
 }
 
 Scenario Plan::scenario(const Run& run) const {
@@ -301,8 +301,14 @@ std::string Plan::base_description() const {
 }
 
 std::string Plan::json() const {
-  std::string out = fmt::format("{{\"sweep\": {}, \"scenario\": {}, \"workflow\": {}, \"profile\": {}, \"runs\": {}, \"keys\": [", text::json_string(file_),
-                                text::json_string(scenario_), text::json_string(workflow_text_), text::json_string(profile_), size_);
+  std::string out = fmt::format("{{\"sweep\": {}, \"scenario\": {}, \"workflow\": {}, \"profile\": {},\n \"base\": {{\"fingerprint\": \"{}\", \"settings\": {}, \"files\": [",
+                                text::json_string(file_), text::json_string(scenario_), text::json_string(workflow_text_), text::json_string(profile_),
+                                fingerprint_, text::json_string(base_.settings));
+  for (std::size_t i = 0; i < base_.files.size(); ++i) {
+    const BaseFile& f = base_.files[i];
+    out += fmt::format("{}[{}, {}, \"{}\"]", i ? ", " : "", text::json_string(f.role), text::json_string(f.path), f.hash);
+  }
+  out += fmt::format("]}},\n \"runs\": {}, \"keys\": [", size_);
   for (std::size_t i = 0; i < keys_.size(); ++i) out += (i ? ", " : "") + text::json_string(keys_[i]);
   out += "],\n \"axes\": [";
   // Each value as [TOML text, as shown]; an unset key of a point as [].
@@ -328,6 +334,18 @@ Plan Plan::from_json(const std::string& text, const std::string& origin) {
     plan.scenario_ = doc.at("scenario").get<std::string>();
     plan.workflow_text_ = doc.at("workflow").get<std::string>();
     plan.profile_ = doc.at("profile").get<std::string>();
+    if (!doc.contains("base")) {
+      throw ConfigError(fmt::format("{}: the plan of a sweep run by an earlier pcsim, which did not record its base's fingerprint: merge it with "
+                                    "that pcsim, or run the sweep again into another folder", origin));
+    }
+    const nlohmann::json& base = doc.at("base");
+    plan.base_.settings = base.at("settings").get<std::string>();
+    for (const nlohmann::json& f : base.at("files")) {
+      plan.base_.files.push_back({f.at(0).get<std::string>(), f.at(1).get<std::string>(), f.at(2).get<std::string>()});
+      if (f.size() != 3 || !is_hex16(plan.base_.files.back().hash)) throw ConfigError(fmt::format("{}: not a sweep plan pcsim wrote (a base file)", origin));
+    }
+    plan.fingerprint_ = base.at("fingerprint").get<std::string>();
+    if (plan.fingerprint_ != plan.base_.fingerprint()) throw ConfigError(fmt::format("{}: a sweep plan whose base does not add up", origin));
     plan.size_ = doc.at("runs").get<std::size_t>();
     plan.keys_ = doc.at("keys").get<std::vector<std::string>>();
     const auto list = [&](const nlohmann::json& values) {

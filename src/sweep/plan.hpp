@@ -15,7 +15,10 @@
 //
 // Runs are made on demand from their index (a plan of 10^7 runs holds only its axes). A run's
 // id is a hash of its overrides alone, sorted by key: adding a value to an axis, or reordering
-// the axes, renames no run.
+// the axes, renames no run. What the runs share, the base, has its own fingerprint
+// (base_identity.hpp): a run is its id under its base's fingerprint.
+
+#include "sweep/base_identity.hpp"
 
 #include <pagecache/scenario_file.hpp>
 
@@ -43,15 +46,33 @@ struct Run {
 
 /// Above this many runs a sweep needs --force (ten million: a day of small runs on 100 cores).
 inline constexpr double kMaxRuns = 1e7;
+/// The most values one axis may have, --force or not (each is held in memory).
+inline constexpr double kMaxAxisValues = 1e7;
+/// The most runs pcsim numbers, --force or not.
+inline constexpr double kMaxNumberedRuns = 1e12;
+
+/// How much a sweep file may ask for before any value is made.
+struct PlanLimits {
+  double runs = kMaxRuns;  ///< without --force
+  double axis_values = kMaxAxisValues;
+  /// What the base, tried with each axis value, may ask of a scenario.
+  ScenarioLimits scenario;
+};
 
 class Plan {
  public:
   /// Reads the sweep file. Throws ConfigError naming the file, line and axis of the first
-  /// problem: an unknown key, an empty axis, a range with step 0 or that never reaches its
-  /// end, a value twice on one axis, two identical points, a value of the wrong type for its
-  /// key (each axis value is tried on the base scenario), more than kMaxRuns runs without `force`.
+  /// problem: an unknown key, an empty axis, a range whose step or factor is 0, not a finite
+  /// number, or never reaches its end, a value twice on one axis, two identical points, a
+  /// value of the wrong type for its key (each axis value is tried on the base scenario), an
+  /// axis of more than kMaxAxisValues values, more than kMaxRuns runs without `force`. Axis
+  /// lengths and the grid's size are computed, and checked, before any value is made.
   static Plan load(const std::string& path, bool force = false);
-  /// The plan json() wrote (`origin` names it in errors). Throws ConfigError if it is not one.
+  /// The same from the sweep file's text; `path` places the files it names and is named in
+  /// messages.
+  static Plan parse(const std::string& text, const std::string& path, bool force = false, const PlanLimits& limits = {});
+  /// The plan json() wrote (`origin` names it in errors). Throws ConfigError if it is not one,
+  /// or is one of an earlier pcsim, which recorded no fingerprint of its base.
   static Plan from_json(const std::string& text, const std::string& origin);
 
   const std::string& file() const noexcept { return file_; }
@@ -61,20 +82,21 @@ class Plan {
   Run run(std::size_t index) const;
   /// The base scenario with the run's overrides, resolved and checked (ConfigError if not).
   Scenario scenario(const Run& run) const;
-  /// What defines the sweep (base and runs), as JSON: two plans with the same text make the
-  /// same runs.
+  /// What defines the sweep (base, with its files' hashes and fingerprint, and runs), as JSON:
+  /// two plans with the same text make the same runs.
   std::string json() const;
-  /// Whether `other` runs the same base scenario (file, workflow, profile): then runs of the
-  /// two with one id are the same run.
-  bool same_base(const Plan& other) const noexcept {
-    return scenario_ == other.scenario_ && workflow_text_ == other.workflow_text_ && profile_ == other.profile_;
-  }
+  /// The base, as read when the plan was made: runs of two plans with one fingerprint and
+  /// one id are the same run.
+  const BaseIdentity& base() const noexcept { return base_; }
+  const std::string& fingerprint() const noexcept { return fingerprint_; }
+  /// The values held in memory: the axes' (or the points'), whatever the number of runs.
+  std::size_t values_held() const noexcept;
   /// How to name the base on a `pcsim run` command line (the arguments before --set).
   std::string base_description() const;
 
  private:
-  Scenario load_base(const std::vector<std::pair<std::string, std::string>>& overrides) const;
-  void check_values(const std::vector<std::pair<std::size_t, std::string>>& where) const;
+  Scenario load_base(const std::vector<std::pair<std::string, std::string>>& overrides, const ScenarioLimits& limits = {}) const;
+  void check_values(const std::vector<std::pair<std::size_t, std::string>>& where, const ScenarioLimits& limits) const;
 
   std::string file_;
   std::string scenario_;       // absolute path, or empty
@@ -84,6 +106,8 @@ class Plan {
   std::vector<std::vector<Override>> axes_;  // per key, its values (grid)
   std::vector<std::vector<Override>> points_;  // or the explicit runs, each a value per key ("" toml: not set)
   std::size_t size_ = 0;
+  BaseIdentity base_;
+  std::string fingerprint_;
 };
 
 /// The id of a run with these overrides: 16 hex digits of a 64-bit FNV-1a hash of "key=value"

@@ -8,9 +8,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <map>
 #include <sstream>
+#include <string>
 
 namespace pagecache::validate {
 
@@ -49,46 +49,12 @@ double spread_pct(const std::vector<double>& v) {
 
 double error_pct(double simulated, double real) { return real > 0.0 ? std::abs(simulated - real) / real * 100.0 : 0.0; }
 
-// --- Reading the files back ------------------------------------------------------------------
-
-// Rows of `fields` fields, or of `fewer` (an older file without the last columns; 0: none).
-std::vector<std::vector<std::string>> read_csv(const std::filesystem::path& file, std::size_t fields, std::size_t fewer = 0) {
-  std::ifstream in(file);
-  if (!in) throw ConfigError(fmt::format("{}: cannot read", file.string()));
-  std::vector<std::vector<std::string>> rows;
-  std::string line;
-  int number = 0;
-  while (std::getline(in, line)) {
-    ++number;
-    if (number == 1) continue;  // the header
-    if (line.empty()) continue;
-    std::vector<std::string> row;
-    std::stringstream parts(line);
-    std::string part;
-    while (std::getline(parts, part, ',')) row.push_back(part);
-    if (row.size() != fields && (fewer == 0 || row.size() != fewer)) {
-      throw ConfigError(fmt::format("{}:{}: {} fields, expected {}", file.string(), number, row.size(), fields));
-    }
-    rows.push_back(std::move(row));
-  }
-  return rows;
-}
-
-double number(const std::string& text, const std::filesystem::path& file, std::size_t row) {
-  try {
-    std::size_t used = 0;
-    const double v = std::stod(text, &used);
-    if (used != text.size() || !std::isfinite(v)) throw std::invalid_argument(text);
-    return v;
-  } catch (const std::exception&) {
-    throw ConfigError(fmt::format("{}:{}: '{}' is not a number", file.string(), row + 2, text));
-  }
-}
-
-std::int64_t integer(const std::string& text, const std::filesystem::path& file, std::size_t row) {
-  const double v = number(text, file, row);
-  if (v != std::floor(v) || std::abs(v) > 9e18) throw ConfigError(fmt::format("{}:{}: '{}' is not a whole number", file.string(), row + 2, text));
-  return static_cast<std::int64_t>(v);
+// The error against a real figure the files give (above 0: here_data.cpp), refused rather than
+// printed as inf when the figure is so short that it overflows.
+double finite_error(double simulated, double real, const std::string& what) {
+  const double e = error_pct(simulated, real);
+  if (!std::isfinite(e)) throw ConfigError(fmt::format("{}, {} s, is too short to compare with: the error relative to it is not a finite number", what, real));
+  return e;
 }
 
 // --- Simulating a case -------------------------------------------------------------------------
@@ -133,7 +99,7 @@ MemorySample real_memory(const RealRun& run, double time) {
 std::string activity_notes(const HereMeasurements& m) {
   std::string out;
   double busiest = -1.0, steal = -1.0;
-  std::int64_t reported = -1;
+  double reported = -1.0;  // bytes; a sum of many runs' could overflow an integer
   const RealRun* busiest_run = nullptr;
   for (const RealRun& r : m.runs) {
     if (r.others_busy_cores > busiest) {
@@ -141,7 +107,7 @@ std::string activity_notes(const HereMeasurements& m) {
       busiest_run = &r;
     }
     steal = std::max(steal, r.steal_pct);
-    if (r.reported >= 0) reported = std::max<std::int64_t>(reported, 0) + r.reported;
+    if (r.reported >= 0) reported = std::max(reported, 0.0) + static_cast<double>(r.reported);
   }
   if (busiest > 0.2 && busiest_run != nullptr) {
     out += fmt::format("note: other work kept up to {:.2f} cores busy during a run ({} repetition {}): other load, or the kernel's own threads "
@@ -152,7 +118,7 @@ std::string activity_notes(const HereMeasurements& m) {
   if (reported > 0) {
     out += fmt::format("note: {:.1f} GB of free memory went back to the virtual machine's host during the runs (free page reporting): a "
                        "later first touch of it waits for the host, which pcsim does not model\n",
-                       static_cast<double>(reported) / GB);
+                       reported / GB);
   }
   // The calibration's notes, kept in the platform file.
   std::istringstream platform(m.platform_toml);
@@ -201,68 +167,6 @@ std::vector<std::pair<std::string, std::string>> here_files(const HereMeasuremen
   return {{"platform.toml", m.platform_toml}, {"runs.csv", runs}, {"phases.csv", phases}, {"memory.csv", memory}};
 }
 
-HereMeasurements load_here(const std::filesystem::path& folder) {
-  HereMeasurements m;
-  {
-    const std::filesystem::path file = folder / "platform.toml";
-    std::ifstream in(file);
-    if (!in) throw ConfigError(fmt::format("{}: cannot read (is {} a folder that validate --here wrote?)", file.string(), folder.string()));
-    std::ostringstream text;
-    text << in.rdbuf();
-    m.platform_toml = text.str();
-  }
-  std::map<std::pair<std::string, int>, std::size_t> index;  // (case, repetition) -> run
-  const std::filesystem::path runs = folder / "runs.csv";
-  const auto run_rows = read_csv(runs, 15, 12);  // 12: before the machine's activity was recorded
-  for (std::size_t i = 0; i < run_rows.size(); ++i) {
-    const auto& f = run_rows[i];
-    RealRun r;
-    r.spec = RealCase{f[0], static_cast<int>(integer(f[1], runs, i)), static_cast<int>(integer(f[2], runs, i)), integer(f[3], runs, i),
-                      number(f[4], runs, i), integer(f[5], runs, i)};
-    if (r.spec.pipelines < 1 || r.spec.tasks < 1 || r.spec.file_size < 1 || r.spec.chunk < 1 || r.spec.compute < 0.0) {
-      throw ConfigError(fmt::format("{}:{}: a case needs pipelines, tasks, file size and chunk above 0", runs.string(), i + 2));
-    }
-    r.repetition = static_cast<int>(integer(f[6], runs, i));
-    r.makespan = number(f[7], runs, i);
-    r.memory_total = integer(f[8], runs, i);
-    r.in_use_at_start = integer(f[9], runs, i);
-    r.free_at_start = integer(f[10], runs, i);
-    r.dropped_all_caches = integer(f[11], runs, i) != 0;
-    if (f.size() == 15) {
-      r.others_busy_cores = number(f[12], runs, i);
-      r.steal_pct = number(f[13], runs, i);
-      r.reported = integer(f[14], runs, i);
-    }
-    if (!index.emplace(std::pair{r.spec.name, r.repetition}, m.runs.size()).second) {
-      throw ConfigError(fmt::format("{}:{}: case {} repetition {} twice", runs.string(), i + 2, r.spec.name, r.repetition));
-    }
-    m.runs.push_back(std::move(r));
-  }
-  const auto run_of = [&](const std::string& name, const std::string& rep, const std::filesystem::path& file, std::size_t row) -> RealRun& {
-    const auto it = index.find({name, static_cast<int>(integer(rep, file, row))});
-    if (it == index.end()) throw ConfigError(fmt::format("{}:{}: case {} repetition {} is not in runs.csv", file.string(), row + 2, name, rep));
-    return m.runs[it->second];
-  };
-  const std::filesystem::path phases = folder / "phases.csv";
-  const auto phase_rows = read_csv(phases, 7);
-  for (std::size_t i = 0; i < phase_rows.size(); ++i) {
-    const auto& f = phase_rows[i];
-    run_of(f[0], f[1], phases, i)
-        .phases.push_back(RealPhase{static_cast<int>(integer(f[2], phases, i)), static_cast<int>(integer(f[3], phases, i)), f[4], number(f[5], phases, i),
-                                    number(f[6], phases, i)});
-  }
-  const std::filesystem::path memory = folder / "memory.csv";
-  const auto memory_rows = read_csv(memory, 7);
-  for (std::size_t i = 0; i < memory_rows.size(); ++i) {
-    const auto& f = memory_rows[i];
-    run_of(f[0], f[1], memory, i)
-        .memory.push_back(MemorySample{number(f[2], memory, i), integer(f[3], memory, i), integer(f[4], memory, i), integer(f[5], memory, i),
-                                       integer(f[6], memory, i)});
-  }
-  if (m.runs.empty()) throw ConfigError(fmt::format("{}: no runs", runs.string()));
-  return m;
-}
-
 std::string score_here(const HereMeasurements& m) {
   std::vector<std::string> order;
   std::map<std::string, std::vector<const RealRun*>> by_case;
@@ -284,7 +188,7 @@ std::string score_here(const HereMeasurements& m) {
     const Simulated sim = simulate(m.platform_toml, spec, static_cast<std::int64_t>(mean(in_use)));
     std::vector<double> makespans;
     for (const RealRun* r : runs) makespans.push_back(r->makespan);
-    const double makespan_error = error_pct(sim.result.summary.makespan, mean(makespans));
+    const double makespan_error = finite_error(sim.result.summary.makespan, mean(makespans), fmt::format("runs.csv: case {}: the real makespan", name));
     makespan_errors.push_back(makespan_error);
     noisy = noisy || spread_pct(makespans) > 10.0;
     std::string table = "  task  phase   real_s  spread%   pcsim_s    err% |  dirty_GB    real | cached_GB    real\n";
@@ -312,7 +216,7 @@ std::string score_here(const HereMeasurements& m) {
         }
         if (per_run.empty() || simulated.empty()) continue;
         const double real = mean(per_run);
-        const double error = error_pct(mean(simulated), real);
+        const double error = finite_error(mean(simulated), real, fmt::format("phases.csv: case {}: the real {} of task {}", name, phase, task));
         errors.push_back(error);
         const MemorySample rm = real_memory(*runs.front(), real_end);
         const double cached_at_start = runs.front()->memory.empty() ? 0.0 : static_cast<double>(runs.front()->memory.front().cached);

@@ -30,8 +30,8 @@ std::vector<calibrate::RealCase> here_cases(std::int64_t available, bool quick);
 
 /// The measurements as files (name, text): platform.toml, runs.csv, phases.csv, memory.csv.
 std::vector<std::pair<std::string, std::string>> here_files(const HereMeasurements& m);
-/// Reads them back from a folder here_files' files were written to. Throws ConfigError naming
-/// the file and line of anything it cannot read.
+/// Reads them back from a folder here_files' files were written to, as strictly as
+/// here_data.hpp says. Throws ConfigError naming the file, line and column of any fault.
 HereMeasurements load_here(const std::filesystem::path& folder);
 
 /// Simulates every case on the platform and compares: the printable tables.

@@ -1,7 +1,7 @@
 #include "validate/validation.hpp"
 
 #include "text/json_string.hpp"
-#include "validate/csv.hpp"
+#include "validate/paper_data.hpp"
 
 #include <pagecache/error.hpp>
 #include <pagecache/run.hpp>
@@ -12,18 +12,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <map>
-#include <set>
-#include <sstream>
+#include <tuple>
 
 namespace pagecache::validate {
 
 namespace {
-
-using Row = CsvRow;
-
-double num(const Row& row, const char* key) { return std::stod(row.at(key)); }
 
 Scenario load(const Options& o, const std::string& file, const std::vector<std::pair<std::string, std::string>>& overrides) {
   Scenario s = load_scenario(file, overrides, o.profile);
@@ -44,6 +38,16 @@ Scenario load(const Options& o, const std::string& file, const std::vector<std::
 }
 double pct(double sim, double real) { return 100.0 * std::abs(sim - real) / real; }
 
+// The error of `value` against a real duration the data gives, which the readers keep above 0
+// and finite; one so short that the error overflows is refused rather than written as inf.
+double error_against(double value, double real, const std::string& where) {
+  const double e = pct(value, real);
+  if (!std::isfinite(e)) {
+    throw ConfigError(fmt::format("{}: {} s is too short to compare with: the error relative to it is not a finite number", where, real));
+  }
+  return e;
+}
+
 using Overrides = std::vector<std::pair<std::string, std::string>>;
 
 Overrides with(const Options& o, Overrides more) {
@@ -60,35 +64,53 @@ Overrides with(const Options& o, Overrides more) {
 // cluster starts from it; the paper profile models WRENCH-cache, which starts empty.
 std::string exp1_memory_in_use(int size_gb) { return size_gb == 100 ? "\"4020 MB\"" : "\"7069 MB\""; }
 
-CaseResult exp1(const Options& o, int size_gb, double cpu_seconds) {
+// The rows of `data` for one file size; some are needed.
+template <class R>
+std::vector<const R*> rows_of_size(const DataFile<R>& data, int size_gb, const char* what) {
+  std::vector<const R*> rows;
+  for (const R& r : data.rows)
+    if (r.size_gb == size_gb) rows.push_back(&r);
+  if (rows.empty()) throw ConfigError(fmt::format("{}: no row with file_size_gb {}: the {} GB run's {} are needed", data.file, size_gb, size_gb, what));
+  return rows;
+}
+
+using PhaseKey = std::pair<int, std::string>;  // task, phase
+
+std::map<PhaseKey, const PhaseTime*> by_phase(const std::vector<const PhaseTime*>& rows) {
+  std::map<PhaseKey, const PhaseTime*> out;
+  for (const PhaseTime* r : rows) out[{r->task, r->phase}] = r;
+  return out;
+}
+
+const PhaseTime& phase_row(const std::map<PhaseKey, const PhaseTime*>& rows, const PhaseKey& key, const std::string& file, int size_gb) {
+  const auto it = rows.find(key);
+  if (it == rows.end()) {
+    throw ConfigError(fmt::format("{}: no row with file_size_gb {}, task {}, phase {}: the simulated run has that phase", file, size_gb,
+                                  key.first, key.second));
+  }
+  return *it->second;
+}
+
+CaseResult exp1(const Options& o, const PaperData& data, int size_gb, double cpu_seconds) {
   CaseResult c;
   c.name = fmt::format("exp1_{}gb", size_gb);
+  const auto real = by_phase(rows_of_size(data.exp1_real, size_gb, "phase times"));
+  const auto wrench = by_phase(rows_of_size(data.exp1_wrench, size_gb, "phase times"));
+  const std::vector<const MemoryProfileRow*> memory = rows_of_size(data.exp1_memory, size_gb, "memory samples");
+  const std::vector<const CachedFileRow*> contents = rows_of_size(data.exp1_cache, size_gb, "cache contents");
+
   Overrides run_conditions = {{"pipelines.file_size", fmt::format("\"{} GB\"", size_gb)},
                               {"pipelines.cpu_time", fmt::format("\"{} s\"", cpu_seconds)}};
   if (o.profile == "linux") run_conditions.emplace_back("start.memory_in_use.node", exp1_memory_in_use(size_gb));
   const Scenario scenario = load(o, o.scenario_dir + "/exp1.toml", with(o, run_conditions));
   const RunResult run = run_scenario(scenario);
 
-  std::map<std::pair<int, std::string>, double> real, wrench, real_end;
-  for (const Row& r : read_csv(o.data_dir + "/exp1_real_phase_times.csv")) {
-    if (std::stoi(r.at("file_size_gb")) != size_gb) continue;
-    real[{std::stoi(r.at("task")), r.at("phase")}] = num(r, "duration_s");
-    real_end[{std::stoi(r.at("task")), r.at("phase")}] = num(r, "end_s");
-  }
-  for (const Row& r : read_csv(o.data_dir + "/exp1_wrench_cache_phase_times.csv")) {
-    if (std::stoi(r.at("file_size_gb")) == size_gb) wrench[{std::stoi(r.at("task")), r.at("phase")}] = num(r, "duration_s");
-  }
-  if (real.empty()) throw ConfigError(fmt::format("no real Exp 1 data for {} GB", size_gb));
-
   // Real memory at an instant: the atop sample nearest in time. Page cache without tmpfs.
-  std::vector<Row> memory;
-  for (Row& r : read_csv(o.data_dir + "/exp1_real_memory_profile.csv"))
-    if (std::stoi(r.at("file_size_gb")) == size_gb) memory.push_back(std::move(r));
   auto real_memory_at = [&](double t) {
-    const Row* best = &memory.front();
-    for (const Row& r : memory)
-      if (std::abs(num(r, "time_s") - t) < std::abs(num(*best, "time_s") - t)) best = &r;
-    return std::pair{(num(*best, "cached_mb") - num(*best, "shmem_mb")) * 1e6, num(*best, "dirty_mb") * 1e6};
+    const MemoryProfileRow* best = memory.front();
+    for (const MemoryProfileRow* r : memory)
+      if (std::abs(r->time_s - t) < std::abs(best->time_s - t)) best = r;
+    return std::pair{(best->cached_mb - best->shmem_mb) * 1e6, best->dirty_mb * 1e6};
   };
   // Simulated memory at an instant: the compute node's at the sampling tick nearest in time,
   // which is its last row at or before that tick (a row is written only when it changed).
@@ -112,21 +134,25 @@ CaseResult exp1(const Options& o, int size_gb, double cpu_seconds) {
     const std::string phase(to_string(p.phase));
     const std::string& task = run.task_name(p);
     const auto key = std::pair{std::stoi(task), phase};
+    const PhaseTime& r = phase_row(real, key, data.exp1_real.file, size_gb);
+    const PhaseTime& w = phase_row(wrench, key, data.exp1_wrench.file, size_gb);
+    const std::string where = fmt::format("{}:{}: column 'duration_s'", data.exp1_real.file, r.line);
     const double sim = p.end - p.start;
-    const double e = pct(sim, real.at(key));
-    const double we = pct(wrench.at(key), real.at(key));
+    const double e = error_against(sim, r.duration_s, where);
+    const double we = error_against(w.duration_s, r.duration_s, where);
     sum += e;
     wsum += we;
     ++count;
     const auto [sim_cached, sim_dirty] = sim_memory_at(p.end);
-    const auto [real_cached, real_dirty] = real_memory_at(real_end.at(key));
+    const auto [real_cached, real_dirty] = real_memory_at(r.end_s);
     worst_dirty = std::max(worst_dirty, 100.0 * std::abs(sim_dirty - real_dirty) / total);
     worst_cached = std::max(worst_cached, 100.0 * std::abs(sim_cached - real_cached) / total);
-    c.figures.push_back({fmt::format("task {} {}", task, phase), real.at(key), sim, wrench.at(key)});
+    c.figures.push_back({fmt::format("task {} {}", task, phase), r.duration_s, sim, w.duration_s});
     c.table += fmt::format("  {:<6} {:<6} {:>9.2f} {:>9.2f} {:>8.1f} {:>9.2f} {:>8.1f} | {:>9.1f} {:>9.1f} {:>9.1f} {:>9.1f}\n", task,
-                           phase, real.at(key), sim, e, wrench.at(key), we, sim_dirty / 1e9, real_dirty / 1e9, sim_cached / 1e9,
+                           phase, r.duration_s, sim, e, w.duration_s, we, sim_dirty / 1e9, real_dirty / 1e9, sim_cached / 1e9,
                            real_cached / 1e9);
   }
+  if (count == 0) throw ConfigError(fmt::format("{}/exp1.toml: its run has no read or write to compare with the real ones", o.scenario_dir));
   c.mean_error_pct = sum / count;
   c.wrench_mean_error_pct = wsum / count;
   c.extra.emplace_back("max_dirty_diff_pct_of_memory", worst_dirty);
@@ -138,10 +164,9 @@ CaseResult exp1(const Options& o, int size_gb, double cpu_seconds) {
     const PhaseRow& p = run.timeline[r.phase];
     sim_cache[{run.task_name(p), std::string(to_string(p.phase)), run.files[r.file]}] = static_cast<double>(r.cached) / 1e9;
   }
-  for (const Row& r : read_csv(o.data_dir + "/exp1_real_cache_contents.csv")) {
-    if (std::stoi(r.at("file_size_gb")) != size_gb) continue;
-    const auto it = sim_cache.find({r.at("after_task"), r.at("after_phase"), r.at("file")});
-    if (it != sim_cache.end()) worst_file = std::max(worst_file, std::abs(it->second - num(r, "cached_gb")));
+  for (const CachedFileRow* r : contents) {
+    const auto it = sim_cache.find({r->after_task, r->after_phase, r->file});
+    if (it != sim_cache.end()) worst_file = std::max(worst_file, std::abs(it->second - r->cached_gb));
   }
   c.extra.emplace_back("max_file_cache_diff_gb", worst_file);
   return c;
@@ -154,12 +179,13 @@ struct PerN {
   double write = 0.0;
 };
 
-std::map<int, PerN> real_per_n(const std::string& path) {
+std::map<int, PerN> real_per_n(const DataFile<ConcurrentPhase>& data) {
   // Sum over pipelines and tasks, divided by n, averaged over repetitions.
   std::map<std::pair<int, int>, PerN> per_rep;
-  for (const Row& r : read_csv(path)) {
-    PerN& p = per_rep[{std::stoi(r.at("n_pipelines")), std::stoi(r.at("repetition"))}];
-    (r.at("phase") == "read" ? p.read : p.write) += num(r, "duration_s");
+  for (const ConcurrentPhase& r : data.rows) {
+    if (r.phase == "compute") continue;
+    PerN& p = per_rep[{r.n, r.repetition}];
+    (r.phase == "read" ? p.read : p.write) += r.duration_s;
   }
   std::map<int, PerN> sums;
   std::map<int, int> reps;
@@ -172,25 +198,31 @@ std::map<int, PerN> real_per_n(const std::string& path) {
     p.read /= reps[n];
     p.write /= reps[n];
   }
+  if (sums.empty()) throw ConfigError(fmt::format("{}: no read or write rows: the real runs' durations are needed", data.file));
   return sums;
 }
 
-std::map<int, PerN> simulated_per_n(const std::string& path) {
+std::map<int, PerN> simulated_per_n(const DataFile<ConcurrentPhase>& data) {
   std::map<int, PerN> out;
-  for (const Row& r : read_csv(path)) {
-    const int n = std::stoi(r.at("n_pipelines"));
-    if (r.at("phase") == "read") out[n].read += num(r, "duration_s") / n;
-    if (r.at("phase") == "write") out[n].write += num(r, "duration_s") / n;
+  for (const ConcurrentPhase& r : data.rows) {
+    if (r.phase == "read") out[r.n].read += r.duration_s / r.n;
+    if (r.phase == "write") out[r.n].write += r.duration_s / r.n;
   }
   return out;
 }
 
-CaseResult concurrent(const Options& o, const std::string& name, const std::string& scenario_file, const std::string& real_file,
-                      const std::string& wrench_file) {
+CaseResult concurrent(const Options& o, const std::string& name, const std::string& scenario_file, const DataFile<ConcurrentPhase>& real_data,
+                      const DataFile<ConcurrentPhase>& wrench_data) {
   CaseResult c;
   c.name = name;
-  const auto real = real_per_n(o.data_dir + "/" + real_file);
-  const auto wrench = simulated_per_n(o.data_dir + "/" + wrench_file);
+  const auto real = real_per_n(real_data);
+  const auto wrench = simulated_per_n(wrench_data);
+  for (const auto& [n, truth] : real) {
+    if (wrench.count(n) == 0) {
+      throw ConfigError(fmt::format("{}: no row with n_pipelines {}: the real runs ({}) have that number of pipelines", wrench_data.file, n,
+                                    real_data.file));
+    }
+  }
   double r_sum = 0, w_sum = 0, wr_sum = 0, ww_sum = 0;
   c.table = fmt::format("  {:>3} {:>9} {:>9} {:>7} {:>9} {:>7} | {:>9} {:>9} {:>7} {:>9} {:>7}\n", "n", "read_real", "pcsim", "err%",
                         "wrench", "err%", "write_real", "pcsim", "err%", "wrench", "err%");
@@ -205,8 +237,10 @@ CaseResult concurrent(const Options& o, const std::string& name, const std::stri
       if (p.phase == PhaseKind::Write) sim.write += (p.end - p.start) / n;
     }
     const PerN w = wrench.at(n);
-    const double er = pct(sim.read, truth.read), ew = pct(sim.write, truth.write);
-    const double wer = pct(w.read, truth.read), wew = pct(w.write, truth.write);
+    const std::string reads = fmt::format("{}: n_pipelines {}: the mean read time per pipeline,", real_data.file, n);
+    const std::string writes = fmt::format("{}: n_pipelines {}: the mean write time per pipeline,", real_data.file, n);
+    const double er = error_against(sim.read, truth.read, reads), ew = error_against(sim.write, truth.write, writes);
+    const double wer = error_against(w.read, truth.read, reads), wew = error_against(w.write, truth.write, writes);
     r_sum += er;
     w_sum += ew;
     wr_sum += wer;
@@ -229,13 +263,38 @@ CaseResult concurrent(const Options& o, const std::string& name, const std::stri
 }  // namespace
 
 Report run(const Options& o) {
+  // Every file read and checked before anything is simulated.
+  const PaperData data = read_paper_data(o.data_dir);
   Report report;
   report.profile = o.profile.empty() ? "(the scenarios' own)" : o.profile;
-  report.cases.push_back(exp1(o, 20, 28.0));
-  report.cases.push_back(exp1(o, 100, 155.0));
-  report.cases.push_back(concurrent(o, "exp2_local", "exp2.toml", "exp2_real_phase_times.csv", "exp2_wrench_cache_phase_times.csv"));
-  report.cases.push_back(concurrent(o, "exp3_nfs", "exp3.toml", "exp3_real_phase_times.csv", "exp3_wrench_cache_phase_times.csv"));
+  report.cases.push_back(exp1(o, data, 20, 28.0));
+  report.cases.push_back(exp1(o, data, 100, 155.0));
+  report.cases.push_back(concurrent(o, "exp2_local", "exp2.toml", data.exp2_real, data.exp2_wrench));
+  report.cases.push_back(concurrent(o, "exp3_nfs", "exp3.toml", data.exp3_real, data.exp3_wrench));
+  check_finite(report);
   return report;
+}
+
+void check_finite(const Report& report) {
+  for (const CaseResult& c : report.cases) {
+    const auto check = [&](double v, const std::string& what) {
+      if (!std::isfinite(v)) throw InvariantError(fmt::format("validate: case {}: {} is {}, which JSON and HTML cannot hold", c.name, what, v));
+    };
+    check(c.mean_error_pct, "mean_error_pct");
+    check(c.read_mean_error_pct, "read_mean_error_pct");
+    check(c.write_mean_error_pct, "write_mean_error_pct");
+    check(c.wrench_mean_error_pct, "wrench_cache_mean_error_pct");
+    check(c.wrench_read_mean_error_pct, "wrench_cache_read_mean_error_pct");
+    check(c.wrench_write_mean_error_pct, "wrench_cache_write_mean_error_pct");
+    for (const auto& [key, value] : c.extra) check(value, key);
+    for (const Figure& f : c.figures) {
+      check(f.real, f.label + " real");
+      check(f.simulated, f.label + " pcsim");
+      check(f.wrench, f.label + " WRENCH-cache");
+      check(pct(f.simulated, f.real), f.label + " error");
+      check(pct(f.wrench, f.real), f.label + " WRENCH-cache error");
+    }
+  }
 }
 
 std::string Report::text() const {
@@ -254,6 +313,7 @@ std::string Report::text() const {
 }
 
 std::string Report::json() const {
+  check_finite(*this);
   std::string out = "[\n";
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const CaseResult& c = cases[i];

@@ -53,6 +53,12 @@ struct Report {
   std::string html() const;
 };
 
+/// Reads and checks the data (paper_data.hpp), then simulates and compares; a fault in the data
+/// is a ConfigError naming its file, line and column.
 Report run(const Options& options);
+
+/// Throws InvariantError naming the case and figure if a number of `report` is NaN or infinite:
+/// run() never makes one, and JSON and HTML cannot hold them. json() and html() check first.
+void check_finite(const Report& report);
 
 }  // namespace pagecache::validate

@@ -90,6 +90,7 @@ std::string case_section(const CaseResult& c) {
 }  // namespace
 
 std::string Report::html() const {
+  check_finite(*this);
   std::string body = "<h1>pcsim validate: the paper's experiments against the real runs</h1>\n";
   body += fmt::format("<p class=\"note\">Profile {}, pcsim {}. Error: |simulated - real| / real, per phase (Exp 1) or per number of "
                       "pipelines (Exp 2 and 3, the mean over the real repetitions); the mean errors average them.</p>\n",

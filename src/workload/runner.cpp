@@ -490,6 +490,7 @@ class Runner {
         } else {
           const bool reading = kind == PhaseKind::Read;
           for (std::uint32_t f = reading ? plan.reads : plan.writes; f < (reading ? plan.writes : plan.deletes); ++f) {
+            if (!deleted_.empty()) note_access(planned_files_[f], reading, app, plan, ends_app);
             const FileRef file = file_on(host, planned(f));
             add_moved(sum, co_await transfer(host, file, plan, reading));
             if (!reading && plan.fsync) co_await host.fsync(file);
@@ -504,9 +505,27 @@ class Runner {
         const PlacedFile& stored = planned(f);
         co_await host.delete_file(file_on(host, stored));
         if (stored.host != &host) co_await stored.host->delete_file(stored.ref);  // on the server too
+        deleted_.insert_or_assign(planned_files_[f], Deletion{task_names_[plan.name], app, ends_app, sim_.now()});
       }
     }
     if (ends_app) finish_one();
+  }
+
+  // A deleted file is gone until a task writes it again: reading it is an error, named with the
+  // task that deleted it (the loader refuses the reads whose order the scenario fixes; here are
+  // those the run's order decides). `file` is an index into file_order_.
+  void note_access(std::uint32_t file, bool reading, std::string_view app, const TaskPlan& plan, bool in_application) {
+    const auto it = deleted_.find(file);
+    if (it == deleted_.end()) return;
+    if (!reading) {
+      deleted_.erase(it);
+      return;
+    }
+    const Deletion& d = it->second;
+    const auto owner = [](bool application, std::string_view name) { return fmt::format("{} '{}'", application ? "application" : "workflow", name); };
+    throw SimulationError(fmt::format("task '{}' of {} reads file '{}', which task '{}' of {} deleted at t = {:.6f} s", task_names_[plan.name],
+                                      owner(in_application, app), file_order_[file].host->file_name(file_order_[file].ref), d.task,
+                                      owner(d.in_application, d.owner), d.time));
   }
 
   // What each task of `w` waits for before it starts (`done` holds the ends of its tasks, in
@@ -589,6 +608,14 @@ class Runner {
   std::vector<std::uint32_t> planned_files_;  // the files of the tasks' lists, in file_order_
   std::map<std::tuple<const Host*, const Host*, std::uint32_t>, FileRef> remote_files_;  // (client, server, server's file)
   std::vector<PlacedFile> file_order_;  // the scenario's files, in its order
+  // The files deleted and not written since, by index in file_order_, and who deleted them.
+  struct Deletion {
+    std::string task;
+    std::string owner;  // its application or workflow
+    bool in_application;
+    double time;
+  };
+  std::unordered_map<std::uint32_t, Deletion> deleted_;
   bool record_cache_ = false;
   std::deque<WorkflowHosts> workflow_hosts_;  // per workflow
   std::deque<std::deque<Event>> workflow_done_;  // per workflow, its tasks' ends in workflow order

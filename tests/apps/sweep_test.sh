@@ -3,7 +3,10 @@
 # --jobs 2 and (b) as four shards started by GNU parallel from `sweep plan --commands` must
 # merge into the same results.csv but for the wall times; (c) a shard killed mid-way and run
 # again completes its sweep with each run exactly once; (d) bad sweep files exit 2 naming the
-# axis, with no results folder made.
+# axis, with no results folder made; (e) a results file pcsim did not write is refused and left
+# as it is; (f) a folder holds one sweep: results of another base, or of this base edited since,
+# are refused naming what changed, and any mix of shard splits runs each run once; (g) merge
+# --csv names its option.
 #
 #   sweep_test.sh PCSIM_BINARY SOURCE_DIR
 set -euo pipefail
@@ -113,6 +116,62 @@ bad unknown_key "pipelines.colour" $'[[axes]]\nkey = "pipelines.colour"\nvalues 
 bad empty_axis "axis 'pipelines.count'" $'[[axes]]\nkey = "pipelines.count"\nvalues = []'
 bad wrong_type "axis 'hosts.0.memory'" $'[[axes]]\nkey = "hosts.0.memory"\nvalues = [true]'
 bad step_zero "axis 'pipelines.count'" $'[[axes]]\nkey = "pipelines.count"\nrange = { from = 1, to = 3, step = 0 }'
+
+# A log range of 34657361 steps is refused at once (it took 20 s and 1.6 GB), and a step that
+# is not a number says so.
+bad factor_tiny "by factor 1.0000001 makes 34657361 values" $'[[axes]]\nkey = "pipelines.count"\nrange = { from = 1, to = 32, factor = 1.0000001 }'
+bad step_nan "step = nan is not a number" $'[[axes]]\nkey = "pipelines.count"\nrange = { from = 1, to = 3, step = nan }'
+
+# (e) Results files pcsim did not write: refused, left as they are.
+mkdir -p "$work/e/base"
+sed 's|"\.\./\.\./platforms/|"'"$source_dir"'/platforms/|g' "$source_dir/scenarios/paper/exp2.toml" >"$work/e/base/exp2.toml"
+small() {  # small FILE VALUES [SCENARIO]: a sweep of pipelines.count over VALUES
+  printf 'scenario = "%s"\n[[axes]]\nkey = "pipelines.count"\nvalues = [%s]\n' "${3:-$work/e/base/exp2.toml}" "$2" >"$1"
+}
+small "$work/e/two.toml" "1, 2"
+refused() {  # refused NAME MESSAGE COMMAND...: exit 2, MESSAGE on stderr
+  local name=$1 message=$2 status=0
+  shift 2
+  "$@" >/dev/null 2>"$work/e/$name.err" || status=$?
+  [ "$status" = 2 ] && grep -q -F -- "$message" "$work/e/$name.err" || fail "($name): exit $status, $(cat "$work/e/$name.err")"
+}
+mkdir "$work/e/hello"
+printf 'hello\nworld' >"$work/e/hello/results-0-of-1.jsonl"
+refused hello "results-0-of-1.jsonl:1: not a result pcsim wrote" "$pcsim" sweep run "$work/e/two.toml" --out "$work/e/hello" --quiet
+[ "$(cat "$work/e/hello/results-0-of-1.jsonl")" = "$(printf 'hello\nworld')" ] || fail "(hello): the file was changed"
+mkdir "$work/e/link"
+printf '{"id": "x"}\npartial' >"$work/e/elsewhere.jsonl"
+ln -s ../elsewhere.jsonl "$work/e/link/results-0-of-1.jsonl"
+refused link "results-0-of-1.jsonl: is a symbolic link" "$pcsim" sweep run "$work/e/two.toml" --out "$work/e/link" --quiet
+mkdir "$work/e/hard"
+ln "$work/e/elsewhere.jsonl" "$work/e/hard/results-0-of-1.jsonl"
+refused hard "results-0-of-1.jsonl: has 2 hard links" "$pcsim" sweep run "$work/e/two.toml" --out "$work/e/hard" --quiet
+[ "$(cat "$work/e/elsewhere.jsonl")" = "$(printf '{"id": "x"}\npartial')" ] || fail "(link, hard): the file they name was changed"
+
+# (f) One sweep per folder. A results file of another base, copied in: refused by merge.
+sed 's/cpu_time = "4.4 s"/cpu_time = "5 s"/' "$work/e/base/exp2.toml" >"$work/e/base/other.toml"
+small "$work/e/other.toml" "1, 2" "$work/e/base/other.toml"
+"$pcsim" sweep run "$work/e/two.toml" --out "$work/e/A" --quiet
+"$pcsim" sweep run "$work/e/other.toml" --out "$work/e/B" --quiet
+mv "$work/e/B/results-0-of-1.jsonl" "$work/e/A/results-0-of-2.jsonl"
+rm "$work/e/A/results-0-of-1.jsonl"
+refused copied "results-0-of-2.jsonl:1: the result of a run of another sweep" "$pcsim" sweep merge "$work/e/A"
+# The base edited, then the sweep grown: refused, naming the file.
+"$pcsim" sweep run "$work/e/two.toml" --out "$work/e/C" --quiet
+sed -i 's/cpu_time = "4.4 s"/cpu_time = "9 s"/' "$work/e/base/exp2.toml"
+small "$work/e/three.toml" "1, 2, 3"
+refused edited "$work/e/base/exp2.toml (the scenario file) has changed" "$pcsim" sweep run "$work/e/three.toml" --out "$work/e/C" --quiet
+sed -i 's/cpu_time = "9 s"/cpu_time = "4.4 s"/' "$work/e/base/exp2.toml"
+# Shards of 3, then the grown sweep without --shard: only its new run runs.
+for i in 0 1 2; do "$pcsim" sweep run "$work/e/three.toml" --out "$work/e/D" --shard "$i/3" --quiet; done
+small "$work/e/four.toml" "1, 2, 3, 4"
+"$pcsim" sweep run "$work/e/four.toml" --out "$work/e/D" >"$work/e/four.out"
+grep -q "1 runs done (0 failed), 3 already there" "$work/e/four.out" || fail "(shards): $(cat "$work/e/four.out")"
+"$pcsim" sweep merge "$work/e/D" >/dev/null || fail "(shards): merge refused"
+
+# (g) merge --csv names its option.
+mkdir "$work/e/a-folder"
+refused csv "--csv $work/e/a-folder: is a folder" "$pcsim" sweep merge "$work/e/C" --csv "$work/e/a-folder"
 
 echo "sweep tests: $failures failures"
 [ "$failures" = 0 ]

@@ -3,8 +3,8 @@
 # repetition, a quick calibration): (a) it runs the real pipelines, prints the error table,
 # keeps the measurements in a new folder and leaves --dir as it found it; (b) --from scores
 # the kept folder again, without I/O, to the same table; (c) an existing --out, a missing
-# --dir and a folder that is not one of its own are refused with exit 2 and nothing written;
-# (d) when run by root, the same as the ordinary user nobody, which says what it could not
+# --dir, a folder that is not one of its own and a kept folder whose phases are gone are
+# refused with exit 2 and nothing written; (d) when run by root, the same as the ordinary user nobody, which says what it could not
 # do. The committed measurements of the development machine are scored again too. No error
 # is judged: the figures measure this machine.
 #
@@ -49,6 +49,9 @@ expect_refused "existing --out" "exists" --here --quick --dir "$work/dir" --out 
 expect_refused "no --dir" "needs --dir" --here --quick --out "$work/new"
 expect_refused "--dir missing" "not a folder" --here --quick --dir "$work/nowhere" --out "$work/new"
 expect_refused "--from elsewhere" "cannot read" --from "$work/dir"
+cp -r "$work/results" "$work/broken"
+head -1 "$work/results/phases.csv" >"$work/broken/phases.csv"
+expect_refused "--from without phases" "runs.csv:2: case exp1-quick repetition 1: no read phase of pipeline 1, task 1 in phases.csv" --from "$work/broken"
 [ ! -e "$work/new" ] || fail "(c): --out was made"
 cmp -s "$work/again.txt" "$work/results/report.txt" || fail "(c): the kept measurements changed"
 

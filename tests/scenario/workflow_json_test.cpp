@@ -10,6 +10,7 @@
 #include "workflow_property.hpp"
 
 #include <pagecache/error.hpp>
+#include <pagecache/scenario_file.hpp>
 
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
@@ -17,6 +18,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <string>
 #include <vector>
@@ -677,6 +679,70 @@ TEST_CASE("the fuzz target's property check catches each broken promise", "[scen
   w = good;
   w.tasks[0].cores = 0;
   CHECK(fuzz::workflow_problem(w) == "cores out of range: a");
+}
+
+
+// A workflow of tasks on the recorded machines' platform, run from pcsim's options
+// (load_workflow): what the options give wrong names the option, what the instance gives wrong
+// names its file and task, never the scenario document the options make.
+TEST_CASE("a workflow run from pcsim's options names the option at fault, or the workflow file and its task", "[scenario][workflow]") {
+  const std::filesystem::path dir = testing::scratch("workflow-options");
+  const std::string platform = (std::filesystem::path(PCSIM_SOURCE_DIR) / "platforms/wfcommons-chameleon.xml").string();
+  // Tasks `tasks` ({id, outputs, cores, machine}) writing file x, with their records.
+  const auto write = [&](const std::string& name, const json& tasks) {
+    json doc = small_wfformat();
+    json& spec = doc["workflow"]["specification"];
+    json& records = doc["workflow"]["execution"]["tasks"];
+    spec["tasks"] = json::array();
+    records = json::array();
+    spec["files"] = json::array({{{"id", "x"}, {"sizeInBytes", 1000}}});
+    doc["workflow"]["execution"]["machines"] = json::array({{{"nodeName", "compute-3"}}, {{"nodeName", "pegasus-5"}}});
+    for (const json& t : tasks) {
+      const bool writes = t[1].get<bool>();
+      spec["tasks"].push_back({{"id", t[0]}, {"parents", json::array()}, {"inputFiles", writes ? json::array() : json::array({"x"})},
+                               {"outputFiles", writes ? json::array({"x"}) : json::array()}});
+      records.push_back({{"id", t[0]}, {"runtimeInSeconds", 1}, {"coreCount", t[2]}, {"machines", json::array({t[3]})}});
+    }
+    const std::string path = (dir / name).string();
+    std::ofstream(path) << doc.dump();
+    return path;
+  };
+  const auto options = [&](const std::string& on, const std::string& files_host = {}, const std::vector<std::string>& hosts = {}) {
+    WorkflowOptions o;
+    o.platform = on;
+    o.files_host = files_host;
+    o.hosts = hosts;
+    return o;
+  };
+  const auto error_of_run = [](const std::string& workflow, const WorkflowOptions& o) -> std::string {
+    try {
+      load_workflow(workflow, o);
+    } catch (const ConfigError& e) {
+      return e.what();
+    }
+    return "(loaded)";
+  };
+  const std::string fine = write("fine.json", json::array({{"a", true, 1, "compute-3"}, {"b", false, 1, "compute-3"}}));
+  REQUIRE(load_workflow(fine, options(platform)).workflows.at(0).tasks.size() == 2);
+  CHECK(error_of_run(fine, options(platform, "nowhere")) ==
+        "--files-host nowhere: key 'workflow.files_host': no host named 'nowhere'");
+  CHECK(error_of_run(fine, options(platform, {}, {"compute-3", "nowhere"})) ==
+        "--hosts compute-3,nowhere: key 'workflow.hosts': no host named 'nowhere'");
+  CHECK_THAT(error_of_run(fine, options((dir / "none.xml").string())),
+             Catch::StartsWith(fmt::format("--platform {}: key 'platform': ", (dir / "none.xml").string())) && Catch::Contains("cannot open"));
+
+  // The instance's own faults: two tasks writing one file, a task needing more cores than its
+  // machine has, a task on a machine its file's host has no route to.
+  const std::string twice = write("twice.json", json::array({{"a", true, 1, "compute-3"}, {"b", true, 1, "compute-3"}}));
+  CHECK(error_of_run(twice, options(platform)) == twice + ": task 'b': file 'x' is written by two tasks, 'a' and 'b'");
+  const std::string wide = write("wide.json", json::array({{"a", true, 1000, "compute-3"}}));
+  CHECK(error_of_run(wide, options(platform)) == wide + ": task 'a': needs 1000 cores, more than its host 'compute-3' has (48)");
+  const std::string apart = write("apart.json", json::array({{"a", true, 1, "pegasus-5"}, {"b", false, 1, "compute-3"}}));
+  CHECK(error_of_run(apart, options(platform)) ==
+        apart + ": workflow 'small', task 'a': file 'x' is on host 'compute-3', and no link or route joins it to 'pegasus-5'");
+  // The same from a scenario file's [workflow] table.
+  std::ofstream(dir / "s.toml") << fmt::format("platform = \"{}\"\nworkflow = \"wide.json\"\n", platform);
+  CHECK_THROWS_WITH(load_scenario((dir / "s.toml").string()), wide + ": task 'a': needs 1000 cores, more than its host 'compute-3' has (48)");
 }
 
 }  // namespace

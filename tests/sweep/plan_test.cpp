@@ -1,6 +1,7 @@
 // Sweep files: the runs they make, their ids, and the bad ones refused naming the axis.
 #include "support/files.hpp"
 #include "sweep/plan.hpp"
+#include "sweep/result_line.hpp"
 #include "sweep/results_file.hpp"
 
 #include <pagecache/error.hpp>
@@ -158,19 +159,49 @@ TEST_CASE("bad sweep files are refused, naming the axis", "[sweep][errors]") {
   CHECK(Plan::load(sweep_file("huge_forced", huge).string(), true).size() == 90'030'000);
 }
 
+TEST_CASE("a range's length is computed before its values are made; one that is not a finite number says so", "[sweep][errors]") {
+  const auto range = [](const std::string& r) { return kBase + "[[axes]]\nkey = \"pipelines.count\"\nrange = { " + r + " }\n"; };
+  // 34657361 steps: refused at once, not after making them (10 s and 1.6 GB before).
+  expect_refused("factor_tiny", range("from = 1, to = 32, factor = 1.0000001"),
+                 {"axis 'pipelines.count'", "by factor 1.0000001 makes 34657361 values", "more than an axis may have (10000000)"});
+  expect_refused("step_tiny", range("from = 0.0, to = 1.0, step = 1e-300"), {"axis 'pipelines.count'", "more than an axis may have"});
+  expect_refused("step_nan", range("from = 1, to = 4, step = nan"), {"axis 'pipelines.count'", "step = nan is not a number"});
+  expect_refused("step_inf", range("from = 1, to = 4, step = inf"), {"step = inf is not a finite number"});
+  expect_refused("from_nan", range("from = nan, to = 4, step = 1"), {"from = nan is not a number"});
+  expect_refused("to_inf", range("from = 1, to = -inf, step = 1"), {"to = -inf is not a finite number"});
+  expect_refused("factor_nan", range("from = 1, to = 4, factor = nan"), {"factor = nan is not a number"});
+  expect_refused("factor_inf", range("from = 1, to = 4, factor = inf"), {"factor = inf is not a finite number"});
+  expect_refused("factor_one", range("from = 1, to = 4, factor = 1"), {"factor = 1 never leaves 1"});
+  expect_refused("factor_zero", range("from = 1, to = 4, factor = 0"), {"factor = 0 must be above 0"});
+  expect_refused("factor_negative", range("from = 1, to = 4, factor = -2"), {"factor = -2 must be above 0"});
+  // Three axes of a million values each: refused by their product, before any is made.
+  const std::string cube = kBase + "[[axes]]\nkey = \"pipelines.count\"\nrange = { from = 1, to = 1000000, step = 1 }\n"
+                                   "[[axes]]\nkey = \"pipelines.cpu_time\"\nrange = { from = 1, to = 1000000, step = 1 }\n"
+                                   "[[axes]]\nkey = \"hosts.0.page_cache.dirty_ratio\"\nrange = { from = 0.000001, to = 1.0, step = 0.000001 }\n";
+  expect_refused("cube", cube, {"more than pcsim can number"});
+}
+
 TEST_CASE("a results file drops a partial last line and knows the runs it holds", "[sweep]") {
   const fs::path file = scratch("sweep_results") / "results-0-of-1.jsonl";
-  std::ofstream(file) << "{\"id\": \"a\", \"status\": \"ok\"}\n{\"id\": \"b\", \"status\": \"ok\"}\n{\"id\": \"c\", \"sta";
+  const std::string base = "0123456789abcdef";
+  const auto line = [&](const char* count) {
+    pagecache::sweep::Run run;
+    run.overrides = {{"pipelines.count", count, count}};
+    run.id = pagecache::sweep::run_id(run.overrides);
+    return pagecache::sweep::result_line(base, run, nullptr, 2, "refused", 0.5);
+  };
+  const std::string a = line("1"), b = line("2"), c = line("3");
+  std::ofstream(file) << a << "\n" << b << "\n" << c.substr(0, 40);
   {
-    pagecache::sweep::ResultsFile results(file.string());
-    CHECK(results.done() == std::set<std::string>{"a", "b"});
-    results.append("{\"id\": \"c\", \"status\": \"ok\"}");
+    pagecache::sweep::ResultsFile results(file.string(), base);
+    CHECK(results.done().size() == 2);
+    results.append(c);
     // A second writer of the same shard is refused while the first holds it.
-    CHECK_THROWS_AS(pagecache::sweep::ResultsFile(file.string()), ConfigError);
+    CHECK_THROWS_AS(pagecache::sweep::ResultsFile(file.string(), base), ConfigError);
   }
-  CHECK(slurp(file) == "{\"id\": \"a\", \"status\": \"ok\"}\n{\"id\": \"b\", \"status\": \"ok\"}\n{\"id\": \"c\", \"status\": \"ok\"}\n");
+  CHECK(slurp(file) == a + "\n" + b + "\n" + c + "\n");
   std::ofstream(file, std::ios::app) << "not json\n";
-  CHECK_THROWS_WITH(pagecache::sweep::ResultsFile(file.string()), Catch::Contains("results-0-of-1.jsonl:4: not a result"));
+  CHECK_THROWS_WITH(pagecache::sweep::ResultsFile(file.string(), base), Catch::Contains("results-0-of-1.jsonl:4: not a result"));
 }
 
 TEST_CASE("overrides of hosts keys reach the TOML platform file a scenario takes them from, and only for that run", "[sweep][scenario]") {

@@ -147,10 +147,11 @@ TEST_CASE("validate --here measurements are read back as written, and a bad file
   CHECK(load_here(dir).runs[0].others_busy_cores == -1.0);
 
   std::ofstream(dir / "phases.csv", std::ios::app) << "c,1,1,1,read,zero,1.0\n";
-  CHECK_THROWS_WITH(load_here(dir), Catch::Contains("phases.csv:5: 'zero' is not a number"));
-  std::ofstream(dir / "phases.csv") << "header\nd,1,1,1,read,0,1\n";
+  CHECK_THROWS_WITH(load_here(dir), Catch::Contains("phases.csv:5: column 'start_s': 'zero' is not a number"));
+  std::ofstream(dir / "phases.csv") << "case,repetition,pipeline,task,phase,start_s,end_s\nd,1,1,1,read,0,1\n";
   CHECK_THROWS_WITH(load_here(dir), Catch::Contains("phases.csv:2: case d repetition 1 is not in runs.csv"));
-  std::ofstream(dir / "runs.csv") << "header\nc,1\n";
+  const std::string runs_csv = here_files(m)[1].second;
+  std::ofstream(dir / "runs.csv") << runs_csv.substr(0, runs_csv.find('\n') + 1) << "c,1\n";  // its header, and a short row
   CHECK_THROWS_WITH(load_here(dir), Catch::Contains("runs.csv:2: 2 fields, expected 15"));
   std::filesystem::remove(dir / "platform.toml");
   CHECK_THROWS_AS(load_here(dir), ConfigError);

@@ -388,5 +388,166 @@ TEST_CASE("a run stops with a SimulationError once its clock passes the limit", 
   CHECK_THROWS_WITH(run_scenario(remote_pipeline("1e6 s", "0.25 s"), options), Catch::Contains("passed 100000 s"));
 }
 
+
+// A host and two files, `in` and `x`, for a workload reading a deleted file.
+std::string with_files(const std::string& workload) {
+  return R"(
+[[hosts]]
+name = "h"
+cores = 4
+memory = "8 GB"
+memory_read_bw = "5 GB/s"
+memory_write_bw = "5 GB/s"
+[[hosts.disks]]
+name = "d"
+read_bw = "500 MB/s"
+write_bw = "500 MB/s"
+[[files]]
+name = "in"
+size = "100 MB"
+[[files]]
+name = "x"
+size = "100 MB"
+)" + workload;
+}
+
+std::string load_error(const std::string& text) {
+  try {
+    parse_scenario(text, "s.toml");
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "(loaded)";
+}
+
+std::string run_error(const Scenario& s) {
+  try {
+    run_scenario(s);
+  } catch (const SimulationError& e) {
+    return e.what();
+  }
+  return "(ran)";
+}
+
+TEST_CASE("a read of a deleted file is refused at load when the scenario orders it after the deletion", "[run][errors][delete]") {
+  // An application's tasks run one after the other: its third task reads what its second
+  // deleted.
+  const std::string app = with_files(R"(
+[[apps]]
+name = "a"
+[[apps.tasks]]
+name = "make"
+read = "in"
+write = "x"
+[[apps.tasks]]
+name = "use"
+read = "x"
+delete = "x"
+[[apps.tasks]]
+name = "again"
+read = "x"
+)");
+  CHECK(load_error(app) == "s.toml:31:8: key 'apps[0].tasks[2].read': task 'again' of application 'a' reads file 'x', which its task 'use' "
+                           "deleted before (an application's tasks run one after the other)");
+  // Written again in between, it is there to read.
+  std::string rewritten = app;
+  rewritten.insert(rewritten.rfind("[[apps.tasks]]"), "[[apps.tasks]]\nname = \"remake\"\nwrite = \"x\"\n");
+  CHECK(run_scenario(parse_scenario(rewritten, "s.toml")).timeline.size() == 12);
+
+  // A workflow task after the deleter (`after`, or through the files it reads), the file's
+  // writer before it.
+  const std::string workflow = with_files(R"(
+[workflow]
+name = "wf"
+[[workflow.tasks]]
+name = "make"
+read = "in"
+write = "x"
+[[workflow.tasks]]
+name = "use"
+read = "x"
+delete = "x"
+[[workflow.tasks]]
+name = "again"
+read = "x"
+after = ["use"]
+)");
+  CHECK_THAT(load_error(workflow), Catch::StartsWith("s.toml:31:8: key 'workflow.tasks[2].read': task 'again' of workflow 'wf' reads file 'x', "
+                                                     "which task 'use' deletes before it") &&
+                                       Catch::Contains("its writer, 'make', runs before 'use'"));
+  // The writer deleting its own output before its reader starts.
+  const std::string own = with_files(R"(
+[workflow]
+name = "wf"
+[[workflow.tasks]]
+name = "make"
+read = "in"
+write = "x"
+delete = "x"
+[[workflow.tasks]]
+name = "use"
+read = "x"
+)");
+  CHECK_THAT(load_error(own), Catch::StartsWith("s.toml:28:8: key 'workflow.tasks[1].read': task 'use' of workflow 'wf' reads file 'x', "
+                                                "which task 'make' deletes before it"));
+}
+
+TEST_CASE("a read of a deleted file that the run's order decides fails the run at its simulated time", "[run][errors][delete]") {
+  // Two applications: the second reads x at 5 s, which the first deleted at 0.2 s (read in
+  // 0.2 s at the disk's 500 MB/s).
+  const Scenario apps = parse_scenario(with_files(R"(
+[[apps]]
+name = "deleter"
+[[apps.tasks]]
+name = "drop"
+read = "x"
+delete = "x"
+[[apps]]
+name = "late"
+[[apps.tasks]]
+name = "wait"
+compute = "5 s"
+[[apps.tasks]]
+name = "read"
+read = "x"
+)"),
+                                       "s.toml");
+  CHECK(run_error(apps) == "t = 5.000000 s: task 'read' of application 'late' reads file 'x', which task 'drop' of application 'deleter' "
+                           "deleted at t = 0.200000 s");
+  // A workflow task in no order with the deleter: here it comes after (its own predecessor
+  // computes 5 s), so the run fails; the other way round it reads the file before.
+  const std::string workflow = with_files(R"(
+[workflow]
+name = "wf"
+[[workflow.tasks]]
+name = "make"
+read = "in"
+write = "x"
+[[workflow.tasks]]
+name = "use"
+read = "x"
+delete = "x"
+[[workflow.tasks]]
+name = "slow"
+compute = "5 s"
+[[workflow.tasks]]
+name = "late"
+read = "x"
+after = ["slow"]
+)");
+  CHECK_THAT(run_error(parse_scenario(workflow, "s.toml")),
+             Catch::StartsWith("t = 5.000000 s: task 'late' of workflow 'wf' reads file 'x', which task 'use' of workflow 'wf' deleted at t = "));
+  std::string early = workflow;
+  early.replace(early.find("compute = \"5 s\""), 15, "compute = \"0 s\"");
+  CHECK(run_error(parse_scenario(early, "s.toml")) == "(ran)");
+  // A file deleted by one application and written again by another is there to read.
+  Scenario rewritten = apps;
+  TaskSpec& remake = rewritten.apps[1].tasks.insert(rewritten.apps[1].tasks.begin() + 1, TaskSpec{})[0];
+  remake.name = "remake";
+  remake.writes = {"x"};
+  remake.chunk_size = 100'000'000;
+  CHECK(run_error(rewritten) == "(ran)");
+}
+
 }  // namespace
 }  // namespace pagecache

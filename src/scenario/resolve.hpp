@@ -1,0 +1,24 @@
+#pragma once
+// Resolving a scenario document already read (loader.cpp), for those that make one rather
+// than read it from a file: load_workflow (workflow_options.cpp), whose values are pcsim's
+// options.
+
+#include <pagecache/scenario.hpp>
+#include <pagecache/scenario_file.hpp>
+
+#include "scenario/toml_reader.hpp"
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace pagecache::scenario {
+
+/// As parse_scenario, from the document `root`. A value whose source is one of pcsim's options
+/// (a node parsed with the option as its source path, "--files-host x") is named by it in
+/// messages (location(), toml_reader.hpp).
+Scenario resolve_document(toml::table root, const std::string& source_name,
+                          const std::vector<std::pair<std::string, std::string>>& overrides, const std::string& profile_override,
+                          const ScenarioLimits& limits);
+
+}  // namespace pagecache::scenario

@@ -1,0 +1,187 @@
+// Every output path pcsim is given, tried as a hostile user would (issue 33): devices, FIFOs,
+// links and folders given to --json, --report and calibrate --out; --out names at the file
+// system's limit; pcsim killed while it writes.
+#include "support/files.hpp"
+#include "support/pcsim_cli.hpp"
+
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+
+#include <array>
+#include <chrono>
+#include <csignal>
+#include <fcntl.h>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <string>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+using pagecache::testing::names;
+using pagecache::testing::pcsim;
+using pagecache::testing::scratch;
+using pagecache::testing::slurp;
+
+namespace {
+
+fs::file_type type_of(const fs::path& p) { return fs::symlink_status(p).type(); }
+
+// A FIFO's bytes, read with system calls only: a thread blocked in the C library's fopen() would
+// hold its stream list lock, which the child of a concurrent popen() waits for.
+std::string read_fifo(const fs::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  std::string out;
+  char buffer[4096];
+  for (ssize_t n; fd >= 0 && (n = ::read(fd, buffer, sizeof buffer)) > 0;) out.append(buffer, static_cast<std::size_t>(n));
+  if (fd >= 0) ::close(fd);
+  return out;
+}
+
+const std::string kTwoReaders = (fs::path(PCSIM_TEST_DIR) / "golden" / "two_readers.toml").string();
+
+// Names in `dir` that a staging folder or temporary file of pcsim's would have.
+std::vector<std::string> leftovers(const fs::path& dir) {
+  std::vector<std::string> out;
+  for (const auto& name : names(dir)) {
+    if (std::regex_search(name, std::regex(R"(\.tmp-|\.old-)"))) out.push_back(name);
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("validate --json and --report write through a character device and a FIFO, and leave them as they were",
+          "[cli][outputs][validate]") {
+  const fs::path dir = scratch("paths-devices");
+  if (::geteuid() == 0) {
+    REQUIRE(::mknod((dir / "mynull").c_str(), S_IFCHR | 0666, makedev(1, 3)) == 0);
+  } else {
+    fs::create_symlink("/dev/null", dir / "mynull");
+  }
+  const fs::file_type before = type_of(dir / "mynull");
+  REQUIRE(::mkfifo((dir / "fifo").c_str(), 0666) == 0);
+  std::string received;
+  std::thread reader([&] { received = read_fifo(dir / "fifo"); });
+  const auto o = pcsim("validate --json mynull --report fifo", dir);
+  reader.join();
+  INFO(o.output);
+  CHECK(o.status == 0);
+  CHECK(type_of(dir / "mynull") == before);
+  CHECK(type_of(dir / "fifo") == fs::file_type::fifo);
+  CHECK_THAT(received, Catch::StartsWith("<!DOCTYPE html>"));
+  CHECK(names(dir) == std::set<std::string>{"fifo", "mynull"});
+}
+
+TEST_CASE("validate --json /dev/stdout prints the JSON among pcsim's output and replaces nothing", "[cli][outputs][validate]") {
+  const fs::path dir = scratch("paths-stdout");
+  const auto o = pcsim(fmt::format("validate --json /dev/stdout --report '{}'", (dir / "r.html").string()));
+  INFO(o.output.substr(0, 2000));
+  CHECK(o.status == 0);
+  CHECK_THAT(o.output, Catch::Contains("\"case\": \"exp1_20gb\""));
+  CHECK(type_of("/dev/stdout") == fs::file_type::symlink);
+}
+
+TEST_CASE("an output option given a folder, a link to nothing or a missing folder is refused by its own name, before any work",
+          "[cli][outputs]") {
+  const fs::path dir = scratch("paths-refused");
+  fs::create_directories(dir / "adir");
+  fs::create_symlink(dir / "nothing", dir / "dangling");
+  struct Case {
+    std::string args;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {"validate --report adir", "pcsim: --report adir: is a folder; name a file"},
+      {"validate --json adir", "pcsim: --json adir: is a folder; name a file"},
+      {"validate --json dangling", "pcsim: --json dangling: is a link to nothing"},
+      {"validate --json no/v.json", "pcsim: --json no/v.json: the folder no does not exist"},
+      {"calibrate --dir . --out adir", "pcsim: --out adir: is a folder; name a file"},
+  };
+  for (const Case& c : cases) {
+    const auto o = pcsim(c.args, dir);
+    INFO(c.args << ": " << o.output);
+    CHECK(o.status == 2);
+    CHECK_THAT(o.output, Catch::Contains(c.message));
+  }
+  CHECK(names(dir) == std::set<std::string>{"adir", "dangling"});
+  CHECK(names(dir / "adir").empty());
+}
+
+TEST_CASE("run --out takes a name at the file system's limit, and a refused one leaves no folder behind", "[cli][outputs]") {
+  const fs::path dir = scratch("paths-long");
+  const std::string longest(255, 'a');
+  const auto ok = pcsim(fmt::format("run '{}' --out 'deep/er/{}' --quiet", kTwoReaders, longest), dir);
+  INFO(ok.output);
+  CHECK(ok.status == 0);
+  CHECK(fs::exists(dir / "deep" / "er" / longest / "timeline.csv"));
+  CHECK(leftovers(dir / "deep" / "er").empty());
+  const auto refused = pcsim(fmt::format("run '{}' --out 'other/x/{}' --quiet", kTwoReaders, std::string(256, 'b')), dir);
+  INFO(refused.output);
+  CHECK(refused.status == 2);
+  CHECK_THAT(refused.output, Catch::Contains("is a name longer than the file system allows"));
+  CHECK_FALSE(fs::exists(dir / "other"));
+}
+
+TEST_CASE("pcsim killed by SIGTERM, SIGINT or SIGHUP at any moment leaves no staging folder, and its --out folder whole or absent",
+          "[cli][outputs][signals]") {
+  const fs::path dir = scratch("paths-signals");
+  const std::string scenario = (fs::path(PCSIM_SOURCE_DIR) / "scenarios" / "paper" / "exp2.toml").string();
+  int finished = 0, interrupted = 0;
+  for (int i = 0; i < 40; ++i) {
+    const int signal = std::array{SIGTERM, SIGINT, SIGHUP}[static_cast<std::size_t>(i % 3)];
+    const fs::path out = dir / "out";
+    // Signals blocked across fork, set to their defaults in the child before it takes them:
+    // one arriving before exec must not run this test program's own (Catch2's) handlers.
+    sigset_t block, previous;
+    sigemptyset(&block);
+    for (int s : {SIGTERM, SIGINT, SIGHUP}) sigaddset(&block, s);
+    ::sigprocmask(SIG_BLOCK, &block, &previous);
+    const pid_t child = ::fork();
+    if (child == 0) {
+      for (int s : {SIGTERM, SIGINT, SIGHUP}) ::signal(s, SIG_DFL);
+      ::sigprocmask(SIG_SETMASK, &previous, nullptr);
+      ::execl(PCSIM_BINARY, PCSIM_BINARY, "run", scenario.c_str(), "--set", "pipelines.count=32", "--set", "memory_sample_interval=0",
+              "--trace", "--quiet", "--out", out.c_str(), static_cast<char*>(nullptr));
+      ::_exit(127);
+    }
+    ::sigprocmask(SIG_SETMASK, &previous, nullptr);
+    // Spread over the run, its writing included (about 0.1 s in a release build).
+    std::this_thread::sleep_for(std::chrono::milliseconds(3 * i));
+    ::kill(child, signal);
+    int status = 0;
+    REQUIRE(::waitpid(child, &status, 0) == child);
+    INFO("signal " << signal << " after " << 3 * i << " ms");
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
+      ++finished;
+    } else if (WIFEXITED(status)) {
+      CHECK(WEXITSTATUS(status) == 128 + signal);
+      ++interrupted;
+    } else {
+      CHECK(WIFSIGNALED(status));  // before pcsim's handler was installed: the default action
+      ++interrupted;
+    }
+    const auto left = leftovers(dir);
+    for (const auto& name : left) {
+      std::string inside;
+      if (fs::is_directory(dir / name)) {
+        for (const auto& inner : names(dir / name)) inside += " " + inner;
+      }
+      INFO(name << " left behind, holding:" << inside);
+      CHECK(name.empty());
+    }
+    for (const auto& name : left) fs::remove_all(dir / name);  // one leftover is reported once
+    if (fs::exists(out)) {
+      for (const char* file : {"timeline.csv", "memory.csv", "cache.csv", "summary.json", "timing.json", "report.html", "trace.json"}) {
+        INFO(file);
+        CHECK(fs::exists(out / file));
+      }
+      fs::remove_all(out);
+    }
+  }
+  CHECK(finished + interrupted == 40);
+}

@@ -220,8 +220,11 @@ std::string not_pcsim(const Shape& shape, std::string_view fallback) {
 }  // namespace
 
 LineCheck check_result_line(std::string_view line, std::string_view fingerprint) {
-  // pcsim writes no space around a line's object, which JSON would allow.
-  if (line.empty() || line.front() != '{' || line.back() != '}') return {{}, "not a result pcsim wrote (not one JSON object)"};
+  // pcsim writes no space around a line's object, which JSON would allow, and no NUL byte,
+  // which nlohmann's parser takes for the end of the input (found by the fuzzer).
+  if (line.empty() || line.front() != '{' || line.back() != '}' || line.find('\0') != std::string_view::npos) {
+    return {{}, "not a result pcsim wrote (not one JSON object)"};
+  }
   Shape shape(fingerprint);
   const bool parsed = nlohmann::json::sax_parse(line.begin(), line.end(), &shape);
   if (!parsed || !shape.problem.empty() || !shape.whole) return {{}, not_pcsim(shape, "not one JSON object")};
@@ -232,7 +235,9 @@ LineCheck check_result_line(std::string_view line, std::string_view fingerprint)
 }
 
 LineCheck check_cut_result_line(std::string_view partial, std::string_view fingerprint) {
-  if (partial.empty() || partial.front() != '{') return {{}, "not a result pcsim wrote (not the beginning of a JSON object)"};
+  if (partial.empty() || partial.front() != '{' || partial.find('\0') != std::string_view::npos) {
+    return {{}, "not a result pcsim wrote (not the beginning of a JSON object)"};
+  }
   Shape shape(fingerprint);
   if (nlohmann::json::sax_parse(partial.begin(), partial.end(), &shape)) return check_result_line(partial, fingerprint);
   // Cut short, the parser stops at the end of the bytes, 1 past them, not before.

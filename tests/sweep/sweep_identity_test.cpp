@@ -333,6 +333,18 @@ TEST_CASE("the sweep fuzzer's seeds keep the sweep readers' contracts", "[sweep]
     CHECK(pagecache::fuzz::check_results_bytes(bytes) == "");
     CHECK_NOTHROW(pagecache::sweep::read_results_text(bytes, pagecache::fuzz::kFuzzResultsBase, file.string()));
   }
+  // Inputs the fuzzer found (tests/fuzz/regressions/sweep-*): each keeps the contract now, and
+  // is refused as results pcsim did not write.
+  std::size_t found = 0;
+  for (const auto& entry : fs::directory_iterator(PAGECACHE_FUZZ_REGRESSIONS_DIR)) {
+    if (entry.path().filename().string().rfind("sweep-results-", 0) != 0) continue;
+    ++found;
+    INFO(entry.path());
+    const std::string bytes = slurp(entry.path());
+    CHECK(pagecache::fuzz::check_results_bytes(bytes) == "");
+    CHECK_THROWS_AS(pagecache::sweep::read_results_text(bytes, pagecache::fuzz::kFuzzResultsBase, "r.jsonl"), pagecache::ConfigError);
+  }
+  CHECK(found >= 1);
   // The fuzzer's limits hold: an axis beyond them is refused, not made.
   const std::string long_axis = slurp(std::string(PCSIM_SOURCE_DIR) + "/scenarios/sweeps/exp2.toml") +
                                 "[[axes]]\nkey = \"pipelines.cpu_time\"\nrange = { from = 1, to = 100000, step = 1 }\n";

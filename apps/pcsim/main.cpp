@@ -299,12 +299,13 @@ int main(int argc, char** argv) {
                                                  "--scenarios FOLDER (validation/paper and scenarios/paper of pcsim's sources)",
                                                  pcsim::data_dir_looked_at().string()));
       }
-      if (!json_path.empty()) pagecache::report::check_output_file(json_path, "--json");
+      const bool write_json = validate->count("--json") > 0;  // `--json ''` is refused, not ignored
+      if (write_json) pagecache::report::check_output_file(json_path, "--json");
       pagecache::report::check_output_file(report_path, "--report");
       const auto forced = pagecache::validate::parse_switches(switches);
       const auto report = pagecache::validate::run({data_dir, scenarios_dir, validate_profile, parse_sets(sets), forced});
       fmt::print("{}", report.text());
-      if (!json_path.empty()) pagecache::report::write_output_file(json_path, report.json(), "--json");
+      if (write_json) pagecache::report::write_output_file(json_path, report.json(), "--json");
       pagecache::report::write_output_file(report_path, report.html(), "--report");
       fmt::print("report: {}\n", report_path);
       return 0;

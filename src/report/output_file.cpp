@@ -65,6 +65,15 @@ const char* kind_of(mode_t mode) {
   return "is not a regular file, a character device or a FIFO";
 }
 
+// A file replaced whole is written beside it first: its folder must take a new file.
+Destination writable_folder(Destination d, const std::string& path, std::string_view option) {
+  const fs::path folder = fs::path(d.target).parent_path().empty() ? fs::path(".") : fs::path(d.target).parent_path();
+  if (::access(folder.c_str(), W_OK | X_OK) != 0) {
+    refuse(path, option, fmt::format("pcsim cannot write in the folder {} ({})", folder.string(), std::generic_category().message(errno)));
+  }
+  return d;
+}
+
 Destination destination(const std::string& path, std::string_view option) {
   if (path.empty()) refuse(path, option, "no file named");
   if (const auto fd = own_descriptor(path)) {
@@ -80,19 +89,23 @@ Destination destination(const std::string& path, std::string_view option) {
     if (::stat(folder.c_str(), &dir) != 0 || !S_ISDIR(dir.st_mode)) {
       refuse(path, option, fmt::format("the folder {} does not exist", folder.string()));
     }
-    return {Destination::Way::Replace, -1, path};
+    return writable_folder({Destination::Way::Replace, -1, path}, path, option);
   }
   struct stat st = link;
   if (S_ISLNK(link.st_mode) && ::stat(path.c_str(), &st) != 0) {
+    if (errno == ELOOP) refuse(path, option, "is a link that leads back to itself");
     refuse(path, option, "is a link to nothing: pcsim does not make the file a link points to");
   }
-  if (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode)) return {Destination::Way::Through, -1, {}};
+  if (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode)) {
+    if (::access(path.c_str(), W_OK) != 0) refuse(path, option, std::generic_category().message(errno));
+    return {Destination::Way::Through, -1, {}};
+  }
   if (!S_ISREG(st.st_mode)) refuse(path, option, kind_of(st.st_mode));
-  if (!S_ISLNK(link.st_mode)) return {Destination::Way::Replace, -1, path};
+  if (!S_ISLNK(link.st_mode)) return writable_folder({Destination::Way::Replace, -1, path}, path, option);
   // A link to a regular file: that file is replaced, the link stays.
   std::unique_ptr<char, decltype(&std::free)> real(::realpath(path.c_str(), nullptr), &std::free);
   if (!real) refuse(path, option, std::generic_category().message(errno));
-  return {Destination::Way::Replace, -1, real.get()};
+  return writable_folder({Destination::Way::Replace, -1, real.get()}, path, option);
 }
 
 [[noreturn]] void cannot_write(const std::string& path, int error) {

@@ -91,6 +91,7 @@ TEST_CASE("an output option given a folder, a link to nothing or a missing folde
   const fs::path dir = scratch("paths-refused");
   fs::create_directories(dir / "adir");
   fs::create_symlink(dir / "nothing", dir / "dangling");
+  fs::create_symlink("loop", dir / "loop");
   struct Case {
     std::string args;
     std::string message;
@@ -101,6 +102,9 @@ TEST_CASE("an output option given a folder, a link to nothing or a missing folde
       {"validate --json dangling", "pcsim: --json dangling: is a link to nothing"},
       {"validate --json no/v.json", "pcsim: --json no/v.json: the folder no does not exist"},
       {"calibrate --dir . --out adir", "pcsim: --out adir: is a folder; name a file"},
+      {"validate --json loop", "pcsim: --json loop: is a link that leads back to itself"},
+      {"validate --json ''", "pcsim: --json : no file named"},
+      {"validate --report ''", "pcsim: --report : no file named"},
   };
   for (const Case& c : cases) {
     const auto o = pcsim(c.args, dir);
@@ -108,8 +112,38 @@ TEST_CASE("an output option given a folder, a link to nothing or a missing folde
     CHECK(o.status == 2);
     CHECK_THAT(o.output, Catch::Contains(c.message));
   }
-  CHECK(names(dir) == std::set<std::string>{"adir", "dangling"});
+  CHECK(names(dir) == std::set<std::string>{"adir", "dangling", "loop"});
   CHECK(names(dir / "adir").empty());
+}
+
+TEST_CASE("an output file in a folder pcsim may not write in is refused before any work", "[cli][outputs]") {
+  if (::geteuid() == 0) {
+    // root may write anywhere: the same refusal as a user without write permission, run as nobody.
+    const fs::path dir = scratch("paths-readonly-root");
+    fs::permissions(dir, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec | fs::perms::others_read |
+                             fs::perms::others_exec);
+    const std::string command = fmt::format("su nobody -s /bin/sh -c \"'{}' validate --json '{}' --report '{}'\" 2>&1", PCSIM_BINARY,
+                                            (dir / "v.json").string(), (dir / "r.html").string());
+    FILE* pipe = ::popen(command.c_str(), "r");
+    REQUIRE(pipe != nullptr);
+    std::string output;
+    char buffer[4096];
+    while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) output.append(buffer, n);
+    const int raw = ::pclose(pipe);
+    INFO(output);
+    CHECK(WEXITSTATUS(raw) == 2);
+    CHECK_THAT(output, Catch::Contains(fmt::format("--json {}: pcsim cannot write in the folder {}", (dir / "v.json").string(), dir.string())));
+    CHECK_THAT(output, !Catch::Contains("exp1_20gb"));  // refused before validating
+    CHECK(names(dir).empty());
+  } else {
+    const fs::path dir = scratch("paths-readonly");
+    fs::permissions(dir, fs::perms::owner_read | fs::perms::owner_exec);
+    const auto o = pcsim(fmt::format("validate --json '{}'", (dir / "v.json").string()));
+    fs::permissions(dir, fs::perms::owner_all);
+    INFO(o.output);
+    CHECK(o.status == 2);
+    CHECK_THAT(o.output, Catch::Contains("pcsim cannot write in the folder"));
+  }
 }
 
 TEST_CASE("run --out takes a name at the file system's limit, and a refused one leaves no folder behind", "[cli][outputs]") {

@@ -74,16 +74,14 @@ void install_interrupt_cleanup() {
   (void)installed;
 }
 
-static_assert(sizeof(sigset_t) <= sizeof(unsigned long[16]));
-
 SignalsHeld::SignalsHeld() {
   sigset_t held;
   sigemptyset(&held);
   for (int s : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&held, s);
-  ::pthread_sigmask(SIG_BLOCK, &held, reinterpret_cast<sigset_t*>(previous_));
+  ::pthread_sigmask(SIG_BLOCK, &held, &previous_);
 }
 
-SignalsHeld::~SignalsHeld() { ::pthread_sigmask(SIG_SETMASK, reinterpret_cast<const sigset_t*>(previous_), nullptr); }
+SignalsHeld::~SignalsHeld() { ::pthread_sigmask(SIG_SETMASK, &previous_, nullptr); }
 
 RemovedOnInterrupt::RemovedOnInterrupt(const std::string& path, Kind kind) {
   if (path.size() > PATH_MAX) return;

@@ -6,6 +6,7 @@
 // Registration is cheap and needs no handler: a program embedding the library registers
 // nothing unless it installs the handler (pcsim does, in main).
 
+#include <csignal>
 #include <string>
 
 namespace pagecache::report {
@@ -24,7 +25,7 @@ class SignalsHeld {
   SignalsHeld& operator=(const SignalsHeld&) = delete;
 
  private:
-  unsigned long previous_[16] = {};  // a sigset_t, kept opaque here
+  sigset_t previous_{};
 };
 
 /// A path removed if the process is interrupted while this object lives: a temporary file, or

@@ -34,6 +34,12 @@ struct Destination {
   std::string target;   // Replace: the regular file to put in place
 };
 
+// The folder a file is in ("." for a bare name).
+fs::path folder_of(const std::string& path) {
+  const fs::path folder = fs::path(path).parent_path();
+  return folder.empty() ? fs::path(".") : folder;
+}
+
 std::string named(const std::string& path, std::string_view option) {
   return option.empty() ? path : fmt::format("{} {}", option, path);
 }
@@ -67,7 +73,7 @@ const char* kind_of(mode_t mode) {
 
 // A file replaced whole is written beside it first: its folder must take a new file.
 Destination writable_folder(Destination d, const std::string& path, std::string_view option) {
-  const fs::path folder = fs::path(d.target).parent_path().empty() ? fs::path(".") : fs::path(d.target).parent_path();
+  const fs::path folder = folder_of(d.target);
   if (::access(folder.c_str(), W_OK | X_OK) != 0) {
     refuse(path, option, fmt::format("pcsim cannot write in the folder {} ({})", folder.string(), std::generic_category().message(errno)));
   }
@@ -84,7 +90,7 @@ Destination destination(const std::string& path, std::string_view option) {
   if (::lstat(path.c_str(), &link) != 0) {
     if (errno != ENOENT) refuse(path, option, std::generic_category().message(errno));
     // A new file: its folder must exist (pcsim makes no folders for a file).
-    const fs::path folder = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
+    const fs::path folder = folder_of(path);
     struct stat dir{};
     if (::stat(folder.c_str(), &dir) != 0 || !S_ISDIR(dir.st_mode)) {
       refuse(path, option, fmt::format("the folder {} does not exist", folder.string()));
@@ -131,7 +137,7 @@ OutputFile::OutputFile(const std::string& path, std::string_view option) : path_
       break;
   }
   target_ = d.target;
-  const fs::path folder = fs::path(target_).parent_path().empty() ? fs::path(".") : fs::path(target_).parent_path();
+  const fs::path folder = folder_of(target_);
   // A short name, so that a target name at the file system's limit still has a temporary one;
   // made and registered with signals held, so that no interruption falls between the two.
   const SignalsHeld held;

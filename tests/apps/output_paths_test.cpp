@@ -23,6 +23,7 @@
 
 namespace fs = std::filesystem;
 using pagecache::testing::names;
+using pagecache::testing::read_fifo;
 using pagecache::testing::pcsim;
 using pagecache::testing::scratch;
 using pagecache::testing::slurp;
@@ -31,16 +32,6 @@ namespace {
 
 fs::file_type type_of(const fs::path& p) { return fs::symlink_status(p).type(); }
 
-// A FIFO's bytes, read with system calls only: a thread blocked in the C library's fopen() would
-// hold its stream list lock, which the child of a concurrent popen() waits for.
-std::string read_fifo(const fs::path& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  std::string out;
-  char buffer[4096];
-  for (ssize_t n; fd >= 0 && (n = ::read(fd, buffer, sizeof buffer)) > 0;) out.append(buffer, static_cast<std::size_t>(n));
-  if (fd >= 0) ::close(fd);
-  return out;
-}
 
 const std::string kTwoReaders = (fs::path(PCSIM_TEST_DIR) / "golden" / "two_readers.toml").string();
 

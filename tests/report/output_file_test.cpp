@@ -33,6 +33,7 @@ using pagecache::ConfigError;
 using pagecache::report::OutputFile;
 using pagecache::report::write_output_file;
 using pagecache::testing::names;
+using pagecache::testing::read_fifo;
 using pagecache::testing::scratch;
 using pagecache::testing::slurp;
 
@@ -49,16 +50,6 @@ std::string message_of(const std::string& path, const std::string& option) {
 
 fs::file_type type_of(const fs::path& p) { return fs::symlink_status(p).type(); }
 
-// A FIFO's bytes, read with system calls only: a thread blocked in the C library's fopen() would
-// hold its stream list lock, which the child of a concurrent popen() waits for.
-std::string read_fifo(const fs::path& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  std::string out;
-  char buffer[4096];
-  for (ssize_t n; fd >= 0 && (n = ::read(fd, buffer, sizeof buffer)) > 0;) out.append(buffer, static_cast<std::size_t>(n));
-  if (fd >= 0) ::close(fd);
-  return out;
-}
 
 // A pid that no process has: a child that has exited and been reaped.
 pid_t gone_pid() {

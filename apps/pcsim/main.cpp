@@ -294,14 +294,15 @@ int main(int argc, char** argv) {
     if (calibrate.app->parsed()) return pcsim::run_calibrate_command(calibrate);
     if (validate->parsed() && (here.here || !here.from.empty())) return pcsim::run_validate_here(here);
     if (validate->parsed()) {
+      // The command line's own mistakes first: they need no data to be seen.
+      const bool write_json = validate->count("--json") > 0;  // `--json ''` is refused, not ignored
+      if (write_json) pagecache::report::check_output_file(json_path, "--json");
+      pagecache::report::check_output_file(report_path, "--report");
       if (data_dir.empty() || scenarios_dir.empty()) {
         throw pagecache::ConfigError(fmt::format("validate: no validation data beside this pcsim (looked in {}): give --data FOLDER and "
                                                  "--scenarios FOLDER (validation/paper and scenarios/paper of pcsim's sources)",
                                                  pcsim::data_dir_looked_at().string()));
       }
-      const bool write_json = validate->count("--json") > 0;  // `--json ''` is refused, not ignored
-      if (write_json) pagecache::report::check_output_file(json_path, "--json");
-      pagecache::report::check_output_file(report_path, "--report");
       const auto forced = pagecache::validate::parse_switches(switches);
       const auto report = pagecache::validate::run({data_dir, scenarios_dir, validate_profile, parse_sets(sets), forced});
       fmt::print("{}", report.text());

@@ -5,7 +5,9 @@
 //   Disk    one time-shared resource with separate read and write bandwidths: a read at rate r
 //           uses r / aggregate_read of the disk, a write r / aggregate_write; one stream (one
 //           transfer) goes at most at read / write (many devices serve several streams faster
-//           than one; by default the two are equal).
+//           than one; by default the two are equal). Optionally a request latency, which a
+//           stream issuing one request at a time waits for, and a write cache in front of a
+//           slower medium (DiskBandwidth).
 //   Memory  an aggregate resource (what all cores together can move, read and write
 //           bandwidths) plus a per-flow bound (what one thread can copy).
 //   Link    a network link: bandwidth, plus a latency paid once per transfer; shared by its
@@ -31,6 +33,18 @@ struct DiskBandwidth {
   double write = 0.0;            ///< one stream, writing
   double aggregate_read = 0.0;   ///< all streams together, reading; 0: as one stream
   double aggregate_write = 0.0;  ///< all streams together, writing; 0: as one stream
+  /// What shapes a stream besides its rate (each 0: not modelled, the disk as without it).
+  /// Seconds before a request's data flow: a request of s bytes takes request_latency +
+  /// s / bandwidth. The disk serves other requests meanwhile: only the stream waits.
+  double request_latency = 0.0;
+  std::int64_t read_ahead = 0;   ///< the largest readahead window (read_ahead_kb), bytes; 0 or >= 4 KiB
+  std::int64_t max_request = 0;  ///< the largest request (max_sectors_kb), bytes; 0 (unlimited) or >= 4 KiB
+  /// Bytes of a write cache in front of the medium (an SSD's SLC cache): a write fills it at
+  /// `write` (all together up to `aggregate_write`), the medium drains it at `sustained_write`.
+  std::int64_t write_cache = 0;
+  /// The medium's write rate behind the write cache, for one stream and for all together:
+  /// given with write_cache and only then; at most `write`.
+  double sustained_write = 0.0;
 };
 
 class Disk {
@@ -40,13 +54,31 @@ class Disk {
   /// A disk whose streams together may go faster than one (aggregates >= the stream rates).
   Disk(FairShare& share, std::string name, DiskBandwidth bandwidth, std::int64_t capacity = 0);
 
-  /// `bound`: the most the reader can take (e.g. Memory::fresh_copy_rate()).
-  FlowAwaiter read(std::int64_t bytes, double bound = kUnbounded) const;
-  FlowAwaiter write(std::int64_t bytes) const;
+  /// `bound`: the most the reader can take (e.g. Memory::fresh_copy_rate()). `request`: the
+  /// reader issues requests of that many bytes one at a time (O_DIRECT at I/O depth 1), which
+  /// bounds it at read_request_rate(request); 0: it keeps the disk's queue full.
+  FlowAwaiter read(std::int64_t bytes, double bound = kUnbounded, std::int64_t request = 0) const;
+  /// `request` as read()'s (writeback keeps the queue full: 0). The write takes its room in
+  /// the write cache as it starts (see writing()).
+  FlowAwaiter write(std::int64_t bytes, std::int64_t request = 0) const;
   /// Adds a read (a write) of the disk to a flow through other resources too: its share of
-  /// the disk and, if a stream is slower than the disk, the stream's bound.
-  FlowSpec& reading(FlowSpec& spec) const;
-  FlowSpec& writing(FlowSpec& spec) const;
+  /// the disk and, if a stream is slower than the disk, the stream's bound; `request` as
+  /// read()'s.
+  FlowSpec& reading(FlowSpec& spec, std::int64_t request = 0) const;
+  /// With a write cache, call it once per write, as it starts: the write's `spec.work` bytes
+  /// take the room the cache has then (a write under way holds all of its bytes in it, so
+  /// that writes at once share the room first come, first served). The part that fits, with
+  /// the medium draining the cache meanwhile, goes at `write`, the rest after it at
+  /// `sustained_write`: the bound is the write's bytes over the time of both, and its share
+  /// of the disk is theirs (the sustained part takes the medium alone). The plan is made as
+  /// if the write went at its bound. Reads do not go through the cache (data still in it is
+  /// read from the medium: not measured).
+  FlowSpec& writing(FlowSpec& spec, std::int64_t request = 0) const;
+  /// One stream issuing requests of `request` bytes one at a time:
+  /// request / (request_latency + request / read (write)); the stream's rate for request 0
+  /// (unbounded) or a disk without latency.
+  double read_request_rate(std::int64_t request) const noexcept;
+  double write_request_rate(std::int64_t request) const noexcept;
   Usage read_usage() const noexcept { return {resource_, 1.0 / aggregate_read_bw_}; }
   Usage write_usage() const noexcept { return {resource_, 1.0 / aggregate_write_bw_}; }
 
@@ -58,8 +90,20 @@ class Disk {
   double aggregate_read_bandwidth() const noexcept { return aggregate_read_bw_; }
   double aggregate_write_bandwidth() const noexcept { return aggregate_write_bw_; }
   std::int64_t capacity() const noexcept { return capacity_; }
+  double request_latency() const noexcept { return request_latency_; }
+  std::int64_t read_ahead() const noexcept { return read_ahead_; }
+  std::int64_t max_request() const noexcept { return max_request_; }
+  std::int64_t write_cache() const noexcept { return write_cache_; }
+  double sustained_write_bandwidth() const noexcept { return sustained_write_bw_; }
+  /// Bytes in the write cache now: those of the writes started, less what the medium drained
+  /// since (those of a write under way included). May exceed write_cache() while writes run.
+  double write_cache_fill() const;
 
  private:
+  /// Takes `bytes` of a write starting now into the write cache; returns how many go at the
+  /// burst rate.
+  double fill_write_cache(double bytes) const;
+
   FairShare* share_;
   ResourceId resource_;
   double read_bw_;
@@ -67,6 +111,15 @@ class Disk {
   double aggregate_read_bw_;
   double aggregate_write_bw_;
   std::int64_t capacity_;
+  double request_latency_;
+  std::int64_t read_ahead_;
+  std::int64_t max_request_;
+  std::int64_t write_cache_;
+  double sustained_write_bw_;
+  // The write cache's level as of cache_time_: the device's state, which const users of the
+  // disk (the files, the flusher) change by writing to it, as they load its FairShare.
+  mutable double cache_fill_ = 0.0;
+  mutable double cache_time_ = 0.0;
 };
 
 /// Memory bandwidths: per flow (one thread's copy) and aggregate (the whole memory system).
@@ -84,6 +137,10 @@ struct MemoryBandwidth {
   /// per second of one thread; 0: as fast as into free pages (`write`, which is what a
   /// write into a cache with free memory measures).
   double reclaimed_write = 0.0;
+  /// Memory a virtual machine's host took back (free page reporting, docs/model.md §6.16):
+  /// the first write into such a page waits for the host to give it again, this many bytes
+  /// per second of one thread on top of the write itself; 0: no memory is taken back.
+  double cold_fault = 0.0;
 
   /// One channel shared by everything, as in the paper: the per-flow bounds equal the aggregate.
   static MemoryBandwidth shared_channel(double bandwidth) { return {bandwidth, bandwidth, bandwidth, bandwidth, 0.0, 0.0}; }
@@ -105,19 +162,24 @@ class Memory {
 
   FlowAwaiter read(std::int64_t bytes) const;
   /// A write of `bytes` into the page cache, `reclaimed` of them into pages the writer
-  /// reclaimed for it: one after the other, at `write` and `reclaimed_write`.
-  FlowAwaiter write(std::int64_t bytes, std::int64_t reclaimed = 0) const;
+  /// reclaimed for it and `cold` into pages the host took back: one after the other, at
+  /// `write` and `reclaimed_write`, plus `cold` bytes at `cold_fault`.
+  FlowAwaiter write(std::int64_t bytes, std::int64_t reclaimed = 0, std::int64_t cold = 0) const;
   /// Flow specs for use in a multi-resource flow (bound included).
   FlowSpec read_spec(std::int64_t bytes) const;
-  FlowSpec write_spec(std::int64_t bytes, std::int64_t reclaimed = 0) const;
+  FlowSpec write_spec(std::int64_t bytes, std::int64_t reclaimed = 0, std::int64_t cold = 0) const;
   /// A cached read into fresh application memory: the copy and the first touch of every
   /// destination page, done one after the other by the reading thread (its rate is
   /// 1 / (1 / read + 1 / first_touch)); the zeroing also loads the aggregate as a write.
-  FlowSpec read_into_fresh_spec(std::int64_t bytes) const;
-  FlowAwaiter read_into_fresh(std::int64_t bytes) const;
+  /// `cold_share`: the fraction of the destination pages the host took back.
+  FlowSpec read_into_fresh_spec(std::int64_t bytes, double cold_share = 0.0) const;
+  FlowAwaiter read_into_fresh(std::int64_t bytes, double cold_share = 0.0) const;
   /// The fastest a thread can take data into fresh application memory (copy and first
-  /// touch): the bound of a device read into a new buffer. Unbounded if first touch is free.
-  double fresh_copy_rate() const noexcept;
+  /// touch): the bound of a device read into a new buffer. Unbounded if first touch is free
+  /// and no page is cold.
+  double fresh_copy_rate(double cold_share = 0.0) const noexcept;
+  /// `rate` slowed by the host's faults on `cold_share` of the bytes (rate itself if none).
+  double with_cold(double rate, double cold_share) const noexcept;
 
   ResourceId resource() const noexcept { return resource_; }
   const MemoryBandwidth& bandwidth() const noexcept { return bandwidth_; }

@@ -36,6 +36,11 @@ struct HostSpec {
   CacheSettings cache;
   /// Memory held from the start and never released (e.g. tmpfs), counted as anonymous.
   std::int64_t memory_in_use = 0;
+  /// With memory_bandwidth.cold_fault: seconds from a free to the host taking the memory back
+  /// (the kernel's PAGE_REPORTING_DELAY), and the bytes of the free memory at the start that
+  /// were freed just before it (a dropped cache); the rest of it is cold.
+  double page_reporting_delay = 2.0;
+  std::int64_t memory_freed_at_start = 0;
 };
 
 /// A disk of a host (index in the order of add_disk).

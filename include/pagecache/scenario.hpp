@@ -31,6 +31,14 @@ struct DiskSpec {
   double aggregate_read_bw = 0.0;   ///< all streams together; 0: as one stream
   double aggregate_write_bw = 0.0;  ///< all streams together; 0: as one stream
   std::int64_t capacity = 0;  ///< bytes; 0: unlimited
+  /// DiskBandwidth's fields of these names (0: not modelled): seconds per request, the largest
+  /// readahead window and request in bytes, the write cache in bytes and the medium's rate
+  /// behind it (given together).
+  double request_latency = 0.0;
+  std::int64_t read_ahead = 0;
+  std::int64_t max_request = 0;
+  std::int64_t write_cache = 0;
+  double sustained_write_bw = 0.0;
 };
 
 struct HostConfig {
@@ -41,6 +49,9 @@ struct HostConfig {
   /// application memory for the whole run.
   std::int64_t memory_in_use = 0;
   MemoryBandwidth memory_bandwidth;
+  /// Free page reporting (with memory_bandwidth.cold_fault): HostSpec's fields of these names.
+  double page_reporting_delay = 2.0;
+  std::int64_t memory_freed_at_start = 0;
   CacheSettings cache;
   std::vector<DiskSpec> disks;
 };

@@ -49,6 +49,7 @@ struct Host::Impl {
 Host::Host(Simulator& sim, FairShare& share, HostSpec spec) : impl_(std::make_unique<Impl>(sim, share, std::move(spec))) {
   impl_->cache.allocate_anonymous(impl_->spec.memory_in_use);
   impl_->io.machine_at_rest();
+  if (impl_->spec.memory_bandwidth.cold_fault > 0.0) impl_->io.report_free_pages(impl_->spec.page_reporting_delay, impl_->spec.memory_freed_at_start);
   impl_->flusher.start();
 }
 
@@ -78,7 +79,10 @@ FileRef Host::add_file(std::string name, std::int64_t size, DiskRef disk_ref, bo
   }
   const cache::FileId id = impl_->files.add(std::move(name), size, d);
   impl_->cache.add_file(id);
-  if (cached_at_start) impl_->cache.add_clean(id, size, impl_->sim.now());
+  if (cached_at_start) {
+    impl_->cache.add_clean(id, size, impl_->sim.now());
+    impl_->io.cached_at_start();
+  }
   return FileRef{id};
 }
 

@@ -1,6 +1,7 @@
 #include "cache/io_controller.hpp"
 
 #include "engine/check.hpp"
+#include "storage/readahead.hpp"
 
 #include <fmt/format.h>
 
@@ -49,6 +50,15 @@ IoController::IoController(Simulator& sim, PageCache& cache, const Memory& memor
 bool IoController::throttles_writers() const noexcept { return cache_->policy().throttles_writers(); }
 
 void IoController::machine_at_rest() { throttle_.at_rest(); }
+
+void IoController::report_free_pages(double delay, std::int64_t warm) {
+  reporting_.emplace(cache_->free(), warm, delay);
+  cache_->set_free_memory_hook([this](std::int64_t free) { reporting_->observe(free, sim_->now()); });
+}
+
+void IoController::cached_at_start() {
+  if (reporting_) reporting_->rebase(cache_->free());
+}
 
 Task<void> IoController::wait_for_progress() {
   if (!progress_ || progress_->triggered()) progress_.emplace(*sim_);
@@ -187,8 +197,9 @@ Task<std::int64_t> IoController::write_to_cache(FileId file, std::int64_t bytes,
     bytes = std::min(bytes, cache_->free());  // others may have taken memory meanwhile
     if (bytes == 0) co_return 0;
   }
+  const std::int64_t cold = cold_taken();
   cache_->reserve(bytes);
-  co_await memory_->write(bytes, std::min(reclaimed, bytes));
+  co_await memory_->write(bytes, std::min(reclaimed, bytes), cold_taken() - cold);
   cache_->commit_dirty(file, bytes, sim_->now());
   flusher_->notify_dirty(cache_->group_of(file));
   co_return bytes;
@@ -209,6 +220,7 @@ Task<IoResult> IoController::write_file_throttled(FileId file, std::int64_t byte
     while (remaining > 0) {
       // What is evicted from here to the copy frees the pages the copy fills.
       std::int64_t evicted = cache_->evicted_bytes();
+      const std::int64_t cold = cold_taken();
       const DirtyThrottle::Step step = writer.next(remaining);
       if (step.kind == DirtyThrottle::Step::Pause) {
         co_await sim_->sleep(step.pause);
@@ -224,7 +236,7 @@ Task<IoResult> IoController::write_file_throttled(FileId file, std::int64_t byte
       } else {
         if (group != kRootGroup) co_await make_group_room(group, step.to_cache, file, "writing");
         evicted = cache_->evicted_bytes() - evicted;
-        co_await memory_->write(step.to_cache, std::min(evicted, step.to_cache));
+        co_await memory_->write(step.to_cache, std::min(evicted, step.to_cache), cold_taken() - cold);
         cache_->commit_dirty(file, step.to_cache, sim_->now());
         flusher_->notify_dirty(group);
         remaining -= step.to_cache;
@@ -270,6 +282,13 @@ Task<IoTally> IoController::write_chunk_writethrough(FileId file, std::int64_t c
   co_return IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
 }
 
+namespace {
+// `part` of `whole` as a fraction (0 for nothing).
+double share(std::int64_t part, std::int64_t whole) {
+  return whole > 0 ? static_cast<double>(part) / static_cast<double>(whole) : 0.0;
+}
+}  // namespace
+
 // read_file and write_file check their request when called, not when their task is awaited.
 void IoController::check_request(std::int64_t chunk_size) const {
   if (chunk_size <= 0) throw ConfigError(fmt::format("chunk size must be > 0, got {}", chunk_size));
@@ -290,13 +309,17 @@ Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_siz
   const Disk* const disk = info.disk;
   IoTally total;
   ReadCursor cursor;  // where the next chunk's re-access starts: each page once
+  // A device whose requests wait: what it reads comes in the kernel's readahead windows.
+  std::optional<storage::Readahead> readahead;
+  if (!direct && disk->read_ahead() > 0 && disk->request_latency() > 0.0) readahead.emplace(disk->read_ahead(), disk->max_request(), chunk_size);
   for (std::int64_t offset = 0; offset < size; offset += chunk_size) {
     const std::int64_t chunk = std::min(chunk_size, size - offset);
     ++chunks_;
     if (direct) {
       // O_DIRECT: only the application's buffer takes memory; the data comes from the disk.
+      const std::int64_t cold = cold_taken();
       co_await take_buffer(chunk, group, file, "reading");
-      co_await disk->read(chunk, memory_->fresh_copy_rate());
+      co_await disk->read(chunk, memory_->fresh_copy_rate(share(cold_taken() - cold, chunk)), chunk);  // requests of the chunk
       total += IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
       continue;
     }
@@ -314,9 +337,21 @@ Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_siz
       if (disk_read < 0) disk_read = co_await room_for_read(file, size, chunk, chunk, "reading");
     }
     const std::int64_t cache_read = chunk - disk_read;
+    const std::int64_t cold = cold_taken();
     cursor = take_chunk(file, chunk, disk_read, cursor, group);
-    if (disk_read > 0) co_await disk->read(disk_read, memory_->fresh_copy_rate());
-    if (cache_read > 0) co_await memory_->read_into_fresh(cache_read);
+    // Taken back by the host: a share of the new cache pages (the device's transfer fills
+    // them) and of the buffer (the reader's first touch).
+    const double cold_share = share(cold_taken() - cold, disk_read + chunk);
+    if (disk_read > 0) {
+      double bound = memory_->fresh_copy_rate(cold_share);
+      if (cold_share > 0.0) bound = std::min(bound, memory_->with_cold(disk->read_bandwidth(), cold_share));
+      if (readahead) {
+        const double rate = static_cast<double>(disk_read) / readahead->seconds(disk_read, disk->request_latency(), disk->read_bandwidth());
+        bound = std::min(bound, rate);
+      }
+      co_await disk->read(disk_read, bound);
+    }
+    if (cache_read > 0) co_await memory_->read_into_fresh(cache_read, cold_share);
     total += IoTally{.bytes = chunk, .cache_bytes = cache_read, .disk_bytes = disk_read};
   }
   co_return file_result(start, sim_->now(), total);
@@ -347,7 +382,7 @@ Task<IoResult> IoController::write_file_in_chunks(FileId file, std::int64_t byte
       total += co_await write_chunk(file, chunk);
       continue;
     }
-    co_await direct_to->write(chunk);  // O_DIRECT: straight to the disk
+    co_await direct_to->write(chunk, chunk);  // O_DIRECT: straight to the disk, in requests of the chunk
     total += IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
   }
   cache_->set_being_written(file, false);

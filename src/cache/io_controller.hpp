@@ -11,6 +11,7 @@
 #include "cache/dirty_throttle.hpp"
 #include "cache/file_table.hpp"
 #include "cache/flusher.hpp"
+#include "cache/free_page_reporting.hpp"
 #include "cache/page_cache.hpp"
 #include "cache/plan.hpp"
 
@@ -89,6 +90,12 @@ class IoController {
   /// The machine as it starts, before any run (memory in use set, files cached): the dirty
   /// throttling limit is the dirty threshold of that state (DirtyLimit::reset).
   void machine_at_rest();
+  /// From now on, free memory the host took back (FreePageReporting) makes writes and first
+  /// touches into it slower (Memory's cold_fault): `warm` bytes of the free memory were freed
+  /// just before, the rest is cold. Call once the machine is at rest (files cached).
+  void report_free_pages(double delay, std::int64_t warm);
+  /// A file was cached before the run started: its memory was never free during the run.
+  void cached_at_start();
 
   /// Bytes written to devices to make room or to respect the dirty ratio (not counting the
   /// periodic flusher's).
@@ -166,6 +173,9 @@ class IoController {
   std::uint64_t chunks_ = 0;
   DirtyThrottle throttle_;
   std::optional<Event> progress_;
+  std::optional<FreePageReporting> reporting_;  // none: no memory is ever cold
+  /// Bytes taken from cold memory so far (FreePageReporting::cold_taken).
+  std::int64_t cold_taken() const noexcept { return reporting_ ? reporting_->cold_taken() : 0; }
 };
 
 }  // namespace pagecache::cache

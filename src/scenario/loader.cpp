@@ -13,6 +13,7 @@
 #include "scenario/resolve.hpp"
 #include "scenario/text_file.hpp"
 #include "scenario/toml_reader.hpp"
+#include "storage/readahead.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -182,6 +183,46 @@ CacheSettings read_page_cache(const toml::table* table, const TomlReader& parent
   return s;
 }
 
+// Free page reporting (docs/model.md §6.16): absent or "0 MB/s", no memory is taken back.
+void read_free_page_reporting(TomlReader& r, HostConfig& h) {
+  MemoryBandwidth& bw = h.memory_bandwidth;
+  bw.cold_fault = r.optional_bandwidth("memory_cold_fault_bw").value_or(bw.cold_fault);
+  if (bw.cold_fault > 0.0 && bw.cold_fault < units::kMinBandwidth) {
+    r.fail("memory_cold_fault_bw", fmt::format("must be 0 (no memory taken back) or at least 1 B/s, got {} B/s", bw.cold_fault));
+  }
+  h.page_reporting_delay = r.optional_duration("page_reporting_delay").value_or(h.page_reporting_delay);
+  if (!(h.page_reporting_delay >= 0.0)) r.fail("page_reporting_delay", "must be >= 0 s");
+  h.memory_freed_at_start = r.optional_size("memory_freed_at_start").value_or(h.memory_freed_at_start);
+  if (h.memory_freed_at_start < 0) r.fail("memory_freed_at_start", "must be >= 0");
+}
+
+// A disk's requests and write cache (DiskBandwidth): each absent or 0, not modelled. A table
+// amending a disk keeps what it does not give, and the checks hold for the disk as amended.
+void read_disk_requests(TomlReader& d, DiskSpec& disk) {
+  disk.request_latency = d.optional_duration("request_latency").value_or(disk.request_latency);
+  for (auto [key, bytes] : {std::pair{"read_ahead", &disk.read_ahead}, std::pair{"max_request", &disk.max_request}}) {
+    *bytes = d.optional_size(key).value_or(*bytes);
+    if (*bytes != 0 && *bytes < storage::kReadaheadPage) {
+      d.fail(key, fmt::format("must be 0 (not modelled) or at least a page (4 KiB), got {} B", *bytes));
+    }
+  }
+  disk.write_cache = d.optional_size("write_cache").value_or(disk.write_cache);
+  disk.sustained_write_bw = d.optional_bandwidth("sustained_write_bw").value_or(disk.sustained_write_bw);
+  const char* sustained = d.has("sustained_write_bw") ? "sustained_write_bw" : nullptr;
+  if (disk.write_cache > 0 && disk.sustained_write_bw < units::kMinBandwidth) {
+    d.fail(sustained != nullptr ? sustained : "write_cache",
+           "a write cache needs sustained_write_bw, the rate at which the medium behind it takes the writes (at least 1 B/s)");
+  }
+  if (disk.write_cache == 0 && disk.sustained_write_bw > 0.0) {
+    d.fail(sustained != nullptr ? sustained : "write_cache", "sustained_write_bw is the medium's rate behind a write cache: give write_cache too");
+  }
+  if (disk.sustained_write_bw > disk.write_bw) {
+    d.fail(sustained != nullptr ? sustained : "write_bw",
+           fmt::format("sustained_write_bw ({} B/s) must not be above write_bw ({} B/s): the cache takes writes faster than the medium",
+                       disk.sustained_write_bw, disk.write_bw));
+  }
+}
+
 // The keys of a [[hosts]] table. `base`: what is already known of the host, from a platform
 // file (the table amends it: every key optional, its disks added or amended by name); without,
 // memory and its bandwidths are required and the host needs a disk.
@@ -222,6 +263,7 @@ HostConfig read_host(const toml::table& table, std::string path, std::size_t ind
   if (bw.reclaimed_write > 0.0 && bw.reclaimed_write < units::kMinBandwidth) {
     r.fail("memory_reclaimed_write_bw", fmt::format("must be 0 (as into free pages) or at least 1 B/s, got {} B/s", bw.reclaimed_write));
   }
+  read_free_page_reporting(r, h);
   const toml::table* page_cache = r.optional_table("page_cache");
   h.cache = read_page_cache(page_cache, r, h.cache, file);
   if (page_cache != nullptr || fresh) cache_origin = page_cache != nullptr ? Origin{page_cache, r.child_path("page_cache"), &file} : host_origin;
@@ -247,6 +289,7 @@ HostConfig read_host(const toml::table& table, std::string path, std::size_t ind
       }
     }
     disk.capacity = d.optional_size("capacity").value_or(disk.capacity);
+    read_disk_requests(d, disk);
     d.finish();
     const Origin origin{disks[i], d.path(), &file};
     if (amend) {

@@ -75,6 +75,11 @@ std::string to_toml(const Scenario& s) {
     if (h.memory_bandwidth.reclaimed_write > 0.0) {
       out += fmt::format("memory_reclaimed_write_bw = {}\n", quoted(units::format_bandwidth(h.memory_bandwidth.reclaimed_write)));
     }
+    if (h.memory_bandwidth.cold_fault > 0.0) {
+      out += fmt::format("memory_cold_fault_bw = {}\npage_reporting_delay = {}\nmemory_freed_at_start = {}\n",
+                         quoted(units::format_bandwidth(h.memory_bandwidth.cold_fault)), quoted(units::format_duration(h.page_reporting_delay)),
+                         quoted(units::format_size(h.memory_freed_at_start)));
+    }
     out += fmt::format(
         "\n[hosts.page_cache]\nmode = {}\ndirty_ratio = {}\ndirty_background_ratio = {}\ndirty_expire = {}\nwriteback_interval = {}\n",
         quoted(h.cache.write_mode == WriteMode::Writeback ? "writeback" : "writethrough"), h.cache.dirty_ratio,
@@ -92,6 +97,14 @@ std::string to_toml(const Scenario& s) {
       if (d.aggregate_write_bw > 0.0) out += fmt::format("aggregate_write_bw = {}\n", quoted(units::format_bandwidth(d.aggregate_write_bw)));
       out += fmt::format("capacity = {}\n",
                          quoted(units::format_size(d.capacity)));
+      // Only when set, as the scenarios that predate them never give them.
+      if (d.request_latency > 0.0) out += fmt::format("request_latency = {}\n", quoted(units::format_duration(d.request_latency)));
+      if (d.read_ahead > 0) out += fmt::format("read_ahead = {}\n", quoted(units::format_size(d.read_ahead)));
+      if (d.max_request > 0) out += fmt::format("max_request = {}\n", quoted(units::format_size(d.max_request)));
+      if (d.write_cache > 0) {
+        out += fmt::format("write_cache = {}\nsustained_write_bw = {}\n", quoted(units::format_size(d.write_cache)),
+                           quoted(units::format_bandwidth(d.sustained_write_bw)));
+      }
     }
   }
   for (const LinkSpec& l : s.links) {

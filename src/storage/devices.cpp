@@ -1,9 +1,12 @@
 #include <pagecache/devices.hpp>
 
+#include "storage/readahead.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace pagecache {
 
@@ -30,7 +33,13 @@ Disk::Disk(FairShare& share, std::string name, DiskBandwidth bw, std::int64_t ca
       write_bw_(bw.write),
       aggregate_read_bw_(bw.aggregate_read > 0.0 ? bw.aggregate_read : bw.read),
       aggregate_write_bw_(bw.aggregate_write > 0.0 ? bw.aggregate_write : bw.write),
-      capacity_(capacity) {
+      capacity_(capacity),
+      request_latency_(bw.request_latency),
+      read_ahead_(bw.read_ahead),
+      max_request_(bw.max_request),
+      write_cache_(bw.write_cache),
+      sustained_write_bw_(bw.sustained_write),
+      cache_time_(share.simulator().now()) {
   require_positive(read_bw_, name, "read bandwidth");
   require_positive(write_bw_, name, "write bandwidth");
   require_positive(aggregate_read_bw_, name, "aggregate read bandwidth");
@@ -40,30 +49,93 @@ Disk::Disk(FairShare& share, std::string name, DiskBandwidth bw, std::int64_t ca
                                   aggregate_read_bw_, read_bw_, aggregate_write_bw_, write_bw_));
   }
   if (capacity < 0) throw ConfigError(fmt::format("{}: negative capacity {} bytes", name, capacity));
+  if (!(request_latency_ >= 0.0) || !std::isfinite(request_latency_)) {
+    throw ConfigError(fmt::format("{}: request latency must be >= 0 (0: none), got {} s", name, request_latency_));
+  }
+  for (const auto& [what, bytes] : {std::pair{"read_ahead", read_ahead_}, std::pair{"max_request", max_request_}}) {
+    if (bytes != 0 && bytes < storage::kReadaheadPage) {
+      throw ConfigError(fmt::format("{}: {} must be 0 or at least a page ({} bytes), got {}", name, what, storage::kReadaheadPage, bytes));
+    }
+  }
+  if (write_cache_ < 0) throw ConfigError(fmt::format("{}: negative write cache {} bytes", name, write_cache_));
+  if (write_cache_ > 0 || sustained_write_bw_ != 0.0) {
+    if (write_cache_ == 0) throw ConfigError(fmt::format("{}: a sustained write bandwidth is the medium's behind a write cache: give one", name));
+    require_positive(sustained_write_bw_, name, "sustained write bandwidth (behind the write cache)");
+    if (sustained_write_bw_ > write_bw_) {
+      throw ConfigError(fmt::format("{}: the sustained write bandwidth ({} B/s) is above the write bandwidth ({} B/s)", name,
+                                    sustained_write_bw_, write_bw_));
+    }
+  }
   resource_ = share.add_resource(std::move(name));
 }
 
 // A stream as fast as the whole disk needs no bound of its own: its share of the disk is one.
-FlowSpec& Disk::reading(FlowSpec& spec) const {
-  if (read_bw_ < aggregate_read_bw_) spec.bound = std::min(spec.bound, read_bw_);
+FlowSpec& Disk::reading(FlowSpec& spec, std::int64_t request) const {
+  double bound = read_bw_ < aggregate_read_bw_ ? read_bw_ : kUnbounded;
+  if (request > 0 && request_latency_ > 0.0) bound = read_request_rate(request);
+  spec.bound = std::min(spec.bound, bound);
   return spec.through(read_usage());
 }
 
-FlowSpec& Disk::writing(FlowSpec& spec) const {
-  if (write_bw_ < aggregate_write_bw_) spec.bound = std::min(spec.bound, write_bw_);
-  return spec.through(write_usage());
+FlowSpec& Disk::writing(FlowSpec& spec, std::int64_t request) const {
+  const bool paced = request > 0 && request_latency_ > 0.0;
+  double bound = paced ? write_request_rate(request) : write_bw_ < aggregate_write_bw_ ? write_bw_ : kUnbounded;
+  Usage usage = write_usage();
+  if (write_cache_ > 0 && spec.work > 0.0) {
+    const double burst = fill_write_cache(spec.work);
+    if (burst < spec.work) {
+      // The burst then the rest at the medium's rate, one after the other: the time of both.
+      const double slow = spec.work - burst;
+      double seconds = burst / write_bw_ + slow / sustained_write_bw_;
+      if (paced) seconds += spec.work / static_cast<double>(request) * request_latency_;
+      bound = spec.work / seconds;
+      usage.cost = (burst / aggregate_write_bw_ + slow / sustained_write_bw_) / spec.work;
+    }
+  }
+  spec.bound = std::min(spec.bound, bound);
+  return spec.through(usage);
 }
 
-FlowAwaiter Disk::read(std::int64_t bytes, double bound) const {
+double Disk::read_request_rate(std::int64_t request) const noexcept {
+  if (request <= 0 || request_latency_ <= 0.0) return read_bw_;
+  const double r = static_cast<double>(request);
+  return r / (request_latency_ + r / read_bw_);
+}
+
+double Disk::write_request_rate(std::int64_t request) const noexcept {
+  if (request <= 0 || request_latency_ <= 0.0) return write_bw_;
+  const double r = static_cast<double>(request);
+  return r / (request_latency_ + r / write_bw_);
+}
+
+double Disk::write_cache_fill() const {
+  if (write_cache_ == 0) return 0.0;
+  return std::max(0.0, cache_fill_ - sustained_write_bw_ * (share_->simulator().now() - cache_time_));
+}
+
+double Disk::fill_write_cache(double bytes) const {
+  const double fill = write_cache_fill();
+  cache_fill_ = fill + bytes;
+  cache_time_ = share_->simulator().now();
+  const double room = static_cast<double>(write_cache_) - fill;
+  if (room <= 0.0) return 0.0;
+  if (sustained_write_bw_ >= write_bw_) return bytes;
+  // The medium drains the cache while the write fills it: it fills at write - sustained.
+  return std::min(bytes, room * write_bw_ / (write_bw_ - sustained_write_bw_));
+}
+
+FlowAwaiter Disk::read(std::int64_t bytes, double bound, std::int64_t request) const {
   require_bytes(bytes, "disk read");
+  require_bytes(request, "disk read request");
   FlowSpec spec{.work = static_cast<double>(bytes), .bound = bound};
-  return share_->transfer(reading(spec));
+  return share_->transfer(reading(spec, request));
 }
 
-FlowAwaiter Disk::write(std::int64_t bytes) const {
+FlowAwaiter Disk::write(std::int64_t bytes, std::int64_t request) const {
   require_bytes(bytes, "disk write");
+  require_bytes(request, "disk write request");
   FlowSpec spec{.work = static_cast<double>(bytes)};
-  return share_->transfer(writing(spec));
+  return share_->transfer(writing(spec, request));
 }
 
 Memory::Memory(FairShare& share, std::string name, MemoryBandwidth bandwidth)
@@ -79,6 +151,10 @@ Memory::Memory(FairShare& share, std::string name, MemoryBandwidth bandwidth)
     throw ConfigError(fmt::format("{}: write bandwidth into reclaimed pages must be >= 0 (0: as into free pages), got {}", name,
                                   bandwidth.reclaimed_write));
   }
+  if (!(bandwidth.cold_fault >= 0.0) || !std::isfinite(bandwidth.cold_fault)) {
+    throw ConfigError(fmt::format("{}: the rate of faults into memory the host took back must be >= 0 (0: none taken back), got {}", name,
+                                  bandwidth.cold_fault));
+  }
   resource_ = share.add_resource(std::move(name));
 }
 
@@ -88,7 +164,7 @@ FlowSpec Memory::read_spec(std::int64_t bytes) const {
       {resource_, 1.0 / bandwidth_.aggregate_read});
 }
 
-FlowSpec Memory::write_spec(std::int64_t bytes, std::int64_t reclaimed) const {
+FlowSpec Memory::write_spec(std::int64_t bytes, std::int64_t reclaimed, std::int64_t cold) const {
   require_bytes(bytes, "memory write");
   double bound = bandwidth_.write;
   if (reclaimed > 0 && bandwidth_.reclaimed_write > 0.0 && bytes > 0) {
@@ -97,20 +173,26 @@ FlowSpec Memory::write_spec(std::int64_t bytes, std::int64_t reclaimed) const {
     const double seconds = (static_cast<double>(bytes) - from_reclaim) / bandwidth_.write + from_reclaim / bandwidth_.reclaimed_write;
     bound = static_cast<double>(bytes) / seconds;
   }
+  if (cold > 0 && bytes > 0) bound = with_cold(bound, static_cast<double>(std::min(cold, bytes)) / static_cast<double>(bytes));
   return FlowSpec{.work = static_cast<double>(bytes), .bound = bound}.through({resource_, 1.0 / bandwidth_.aggregate_write});
 }
 
-FlowSpec Memory::read_into_fresh_spec(std::int64_t bytes) const {
+FlowSpec Memory::read_into_fresh_spec(std::int64_t bytes, double cold_share) const {
   FlowSpec spec = read_spec(bytes);
-  if (bandwidth_.first_touch <= 0.0) return spec;
-  spec.bound = fresh_copy_rate();
-  spec.usages[0].cost += 1.0 / bandwidth_.aggregate_write;
+  if (bandwidth_.first_touch <= 0.0 && !(cold_share > 0.0 && bandwidth_.cold_fault > 0.0)) return spec;
+  spec.bound = fresh_copy_rate(cold_share);
+  if (bandwidth_.first_touch > 0.0) spec.usages[0].cost += 1.0 / bandwidth_.aggregate_write;
   return spec;
 }
 
-double Memory::fresh_copy_rate() const noexcept {
-  if (bandwidth_.first_touch <= 0.0) return kUnbounded;
-  return 1.0 / (1.0 / bandwidth_.read + 1.0 / bandwidth_.first_touch);
+double Memory::fresh_copy_rate(double cold_share) const noexcept {
+  if (bandwidth_.first_touch <= 0.0) return with_cold(kUnbounded, cold_share);
+  return with_cold(1.0 / (1.0 / bandwidth_.read + 1.0 / bandwidth_.first_touch), cold_share);
+}
+
+double Memory::with_cold(double rate, double cold_share) const noexcept {
+  if (!(cold_share > 0.0) || bandwidth_.cold_fault <= 0.0) return rate;
+  return 1.0 / (1.0 / rate + cold_share / bandwidth_.cold_fault);  // 1 / kUnbounded is 0
 }
 
 FlowSpec Memory::on_core(FlowSpec spec) const {
@@ -122,9 +204,11 @@ FlowSpec Memory::on_core(FlowSpec spec) const {
 }
 
 FlowAwaiter Memory::read(std::int64_t bytes) const { return share_->transfer(on_core(read_spec(bytes))); }
-FlowAwaiter Memory::read_into_fresh(std::int64_t bytes) const { return share_->transfer(on_core(read_into_fresh_spec(bytes))); }
-FlowAwaiter Memory::write(std::int64_t bytes, std::int64_t reclaimed) const {
-  return share_->transfer(on_core(write_spec(bytes, reclaimed)));
+FlowAwaiter Memory::read_into_fresh(std::int64_t bytes, double cold_share) const {
+  return share_->transfer(on_core(read_into_fresh_spec(bytes, cold_share)));
+}
+FlowAwaiter Memory::write(std::int64_t bytes, std::int64_t reclaimed, std::int64_t cold) const {
+  return share_->transfer(on_core(write_spec(bytes, reclaimed, cold)));
 }
 
 Link::Link(FairShare& share, std::string name, double bandwidth, double latency, LinkSharing sharing)

@@ -72,6 +72,8 @@ Simulated simulate(const std::string& platform, const RealCase& spec, std::int64
   Scenario s = parse_scenario(text, "platform.toml + " + spec.name);
   if (s.hosts.empty()) throw ConfigError("platform.toml: no host");
   s.hosts[0].memory_in_use = std::clamp<std::int64_t>(in_use, 0, s.hosts[0].memory - 1);
+  // The run's inputs were written, then dropped from the cache just before it started.
+  s.hosts[0].memory_freed_at_start = spec.file_size * spec.pipelines;
   RunOptions options;
   options.cache_contents = false;
   return Simulated{run_scenario(s, options), s.hosts[0].name};

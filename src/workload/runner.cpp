@@ -67,13 +67,19 @@ class Runner {
       : scenario_(scenario), options_(options), share_(sim_) {
     for (const HostConfig& config : scenario.hosts) {
       auto host = std::make_unique<Host>(
-          sim_, share_, HostSpec{config.name, config.cores, config.memory, config.memory_bandwidth, config.cache, config.memory_in_use});
+          sim_, share_, HostSpec{config.name, config.cores, config.memory, config.memory_bandwidth, config.cache, config.memory_in_use,
+                                   config.page_reporting_delay, config.memory_freed_at_start});
       std::map<std::string, DiskRef> disks;
       for (const DiskSpec& d : config.disks) disks[d.name] = host->add_disk(config.name + ":" + d.name,
                                                                   DiskBandwidth{.read = d.read_bw,
                                                                                 .write = d.write_bw,
                                                                                 .aggregate_read = d.aggregate_read_bw,
-                                                                                .aggregate_write = d.aggregate_write_bw},
+                                                                                .aggregate_write = d.aggregate_write_bw,
+                                                                                .request_latency = d.request_latency,
+                                                                                .read_ahead = d.read_ahead,
+                                                                                .max_request = d.max_request,
+                                                                                .write_cache = d.write_cache,
+                                                                                .sustained_write = d.sustained_write_bw},
                                                                   d.capacity);  // named as the host's cpu and memory are
       disks_[config.name] = std::move(disks);
       // A profile of every change is recorded as the changes happen; sampled profiles are

@@ -173,6 +173,72 @@ TEST_CASE("a disk's aggregate bandwidth is not below one stream's, and pcsim sho
   CHECK_THAT(shown.output, Catch::Contains("aggregate_write_bw = \"5 GB/s\"") && !Catch::Contains(" aggregate_read_bw"));
 }
 
+TEST_CASE("a disk's request latency, readahead, largest request and write cache are read, checked, shown and read back",
+          "[cli][hostile][disk_requests]") {
+  const std::string at = "capacity = \"10 GB\"";
+  const auto with = [&](const std::string& keys) { return at + "\n" + keys; };
+  // Bad values, each refused naming its key; a write cache and its medium's rate go together.
+  refused(run_edited("latency", at, with("request_latency = \"-1 ms\"")), {"key 'hosts[0].disks[0].request_latency'", "negative"});
+  refused(run_edited("read_ahead", at, with("read_ahead = \"1 KiB\"")), {"key 'hosts[0].disks[0].read_ahead'", "at least a page (4 KiB)"});
+  refused(run_edited("max_request", at, with("max_request = \"-128 KiB\"")), {"key 'hosts[0].disks[0].max_request'", "negative"});
+  refused(run_edited("cache_alone", at, with("write_cache = \"8 MiB\"")), {"key 'hosts[0].disks[0].write_cache'", "needs sustained_write_bw"});
+  refused(run_edited("sustained_zero", at, with("write_cache = \"8 MiB\"\nsustained_write_bw = 0")),
+          {"key 'hosts[0].disks[0].sustained_write_bw'", "needs sustained_write_bw"});
+  refused(run_edited("sustained_alone", at, with("sustained_write_bw = \"50 MB/s\"")),
+          {"key 'hosts[0].disks[0].sustained_write_bw'", "give write_cache too"});
+  refused(run_edited("sustained_fast", at, with("write_cache = \"8 MiB\"\nsustained_write_bw = \"200 MB/s\"")),
+          {"key 'hosts[0].disks[0].sustained_write_bw'", "must not be above write_bw"});
+  // Good values: run, shown as given, and what show prints shows the same again.
+  const std::string keys =
+      "request_latency = \"0.1 ms\"\nread_ahead = \"128 KiB\"\nmax_request = \"1280 KiB\"\nwrite_cache = \"4 GB\"\nsustained_write_bw = \"50 MB/s\"";
+  CHECK(run_edited("disk_keys_run", at, with(keys)).status == 0);
+  const fs::path dir = scratch("disk_keys_shown");
+  std::string text = kBase;
+  text.replace(text.find(at), at.size(), with(keys));
+  std::ofstream(dir / "s.toml") << text;
+  const ChildResult shown = pcsim({"show", (dir / "s.toml").string()});
+  REQUIRE(shown.status == 0);
+  CHECK_THAT(shown.output, Catch::Contains(at + "\nrequest_latency = \"0.0001 s\"\nread_ahead = \"128 KiB\"\nmax_request = \"1280 KiB\"\n"
+                                                "write_cache = \"4 GB\"\nsustained_write_bw = \"50 MB/s\"\n"));
+  std::ofstream(dir / "shown.toml") << shown.output;
+  const ChildResult again = pcsim({"show", (dir / "shown.toml").string()});
+  REQUIRE(again.status == 0);
+  CHECK(again.output.substr(again.output.find('\n')) == shown.output.substr(shown.output.find('\n')));  // but the source line
+  // Unset, none is shown.
+  std::ofstream(dir / "plain.toml") << kBase;
+  const ChildResult plain = pcsim({"show", (dir / "plain.toml").string()});
+  REQUIRE(plain.status == 0);
+  for (const char* key : {"request_latency", "read_ahead", "max_request", "write_cache", "sustained_write_bw"}) {
+    CHECK_THAT(plain.output, !Catch::Contains(key));
+  }
+  // A table amending a platform's disk keeps what it does not give, and the checks hold for the
+  // disk as amended: a write_bw below the medium's rate is refused.
+  std::ofstream(dir / "p.xml") << R"(<?xml version="1.0"?>
+<platform version="4.1"><zone id="z" routing="Full"><host id="h" speed="1Gf"><prop id="ram" value="8GB"/>
+<disk id="memory" read_bw="1000MBps" write_bw="1000MBps"><prop id="mount" value="/memory"/></disk>
+<disk id="d" read_bw="100MBps" write_bw="100MBps"/></host></zone></platform>
+)";
+  const std::string amending = R"(profile = "paper"
+platform = "p.xml"
+[[hosts]]
+name = "h"
+[[hosts.disks]]
+name = "d"
+write_cache = "8 MiB"
+sustained_write_bw = "50 MB/s"
+[pipelines]
+file_size = "1 GB"
+)";
+  std::ofstream(dir / "amend.toml") << amending;
+  const ChildResult amended = pcsim({"show", (dir / "amend.toml").string()});
+  REQUIRE(amended.status == 0);
+  CHECK_THAT(amended.output, Catch::Contains("write_bw = \"100 MB/s\"\ncapacity = \"0 B\"\nwrite_cache = \"8 MiB\"\nsustained_write_bw = \"50 MB/s\"\n"));
+  std::string slower = amending;
+  slower.replace(slower.find("write_cache"), 0, "write_bw = \"10 MB/s\"\n");
+  std::ofstream(dir / "slower.toml") << slower;
+  refused(pcsim({"show", (dir / "slower.toml").string()}), {"key 'hosts[0].disks[0].sustained_write_bw'", "must not be above write_bw"});
+}
+
 TEST_CASE("a page-cache policy is one of those registered, and the switches are the kernel policy's", "[cli][hostile]") {
   refused(run_edited("policy", "[pipelines]", "[hosts.page_cache]\npolicy = \"clock\"\n[pipelines]"),
           {"key 'hosts[0].page_cache.policy'", "unknown policy 'clock'", "kernel, wrench_cache, lru"});

@@ -4,6 +4,7 @@
 #include "calibrate/reclaim.hpp"
 #include "calibrate/scratch.hpp"
 #include "calibrate/text.hpp"
+#include "calibrate/write_cache.hpp"
 
 #include <pagecache/error.hpp>
 
@@ -34,34 +35,6 @@ std::string utc_now() {
   return text;
 }
 
-
-Figure figure(const Rate& r, std::string how) {
-  if (r.bytes <= 0 || r.seconds <= 0.0) return Figure{0.0, how + ": nothing measured (interrupted?)", false};
-  return Figure{r.per_second(), fmt::format("{} ({} in {:.2f} s)", how, size_text(r.bytes), r.seconds), true};
-}
-
-// `once` run `repeat` times (told which, from 0): the median of their rates, and how far
-// they were apart.
-Figure repeated(int repeat, const std::function<Rate(int)>& once, const std::string& how) {
-  std::vector<Rate> rates;
-  for (int i = 0; i < repeat; ++i) {
-    if (stop_requested()) break;
-    rates.push_back(once(i));
-  }
-  if (rates.size() == 1) return figure(rates.front(), how);
-  std::vector<double> values;
-  for (const Rate& r : rates) {
-    if (r.bytes <= 0 || r.seconds <= 0.0) return Figure{0.0, how + ": nothing measured (interrupted?)", false};
-    values.push_back(r.per_second());
-  }
-  std::vector<double> sorted = values;
-  std::sort(sorted.begin(), sorted.end());
-  const double median = sorted[sorted.size() / 2];
-  std::string each;
-  for (const double v : values) each += fmt::format("{}{:.0f}", each.empty() ? "" : ", ", v / 1e6);
-  const double spread = (sorted.back() - sorted.front()) / median * 100.0;
-  return Figure{median, fmt::format("{}: median of {} ({} MB/s; spread {:.0f} %)", how, values.size(), each, spread), true, spread};
-}
 
 void check_stopped() {
   if (stop_requested()) throw std::runtime_error("interrupted: the files made so far are removed");
@@ -100,8 +73,9 @@ std::vector<std::string> activity_notes(const Calibration& c) {
     std::string cold;
     if (c.memory_write_cold.measured && c.memory_write.measured) {
       cold = fmt::format(": a write into memory the host took back went at {}, into memory just freed at {} (memory_write_bw, what a task "
-                         "reusing freed memory gets); pcsim has one rate for both",
-                         rate_text(c.memory_write_cold.value), rate_text(c.memory_write.value));
+                         "reusing freed memory gets){}",
+                         rate_text(c.memory_write_cold.value), rate_text(c.memory_write.value),
+                         c.cold_fault.known ? "; memory_cold_fault_bw gives pcsim the difference" : "; pcsim has one rate for both");
     }
     notes.push_back(fmt::format("free page reporting is on (a virtio balloon): memory this machine frees goes back to the host{} a few seconds "
                                 "later, and its next first touch waits for the host to give it again{}",
@@ -137,6 +111,7 @@ void settle(const SystemInfo& s) {
 
 Calibration calibrate(const Options& options) {
   const auto started = std::chrono::steady_clock::now();
+  const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(); };
   std::error_code ec;
   if (!std::filesystem::is_directory(options.dir, ec)) throw ConfigError(fmt::format("--dir '{}': not a folder", options.dir.string()));
   if (::access(options.dir.c_str(), W_OK) != 0) throw ConfigError(fmt::format("--dir '{}': not writable by this user", options.dir.string()));
@@ -154,8 +129,12 @@ Calibration calibrate(const Options& options) {
   const double disk_seconds = options.quick ? 0.6 : 1.5;  // per repetition
   const double memory_seconds = options.quick ? 0.3 : 0.6;
   const SystemInfo& sys = c.system;
+  // Memory a VM's host took back: measured after a wait of seconds for the kernel to report it.
+  const bool cold = sys.free_page_reporting && !options.quick;
+  const bool reclaim = !options.quick && !sys.memory_limited;
 
-  // Room: the single stream's file and the streams' files at once, plus the cache files.
+  // Room: the single stream's file and the streams' files at once, plus the cache files. (The
+  // write-cache measurement takes at most half of what is free when it begins, and says so.)
   const std::int64_t need = (1 + static_cast<std::int64_t>(c.streams)) * c.size + c.size;
   if (sys.file_system_free < need) {
     throw ConfigError(fmt::format("--dir '{}': its file system has {} free for this user; calibrate writes up to {} there (--size {} per file, "
@@ -177,14 +156,15 @@ Calibration calibrate(const Options& options) {
   const ActivityMark measuring;
 
   const Scratch scratch(options.dir, "pcsim-calibrate");
-  const int steps = options.quick ? 12 : (sys.free_page_reporting ? 14 : 13);
+  const int steps = 13 + (cold ? 1 : 0) + (reclaim ? 1 : 0);
   int step = 0;
   const auto next = [&](const std::string& name) {
     check_stopped();
     if (options.progress) options.progress(name, ++step, steps);
   };
 
-  // --- The device: O_DIRECT, large requests; one stream, then several at once.
+  // --- The device: O_DIRECT, large requests; one stream, then several at once. The single
+  // stream's file stays until the buffered reads into memory the host took back.
   const std::filesystem::path one = scratch.file("stream-0");
   std::vector<std::filesystem::path> many;
   for (int i = 1; i <= c.streams; ++i) many.push_back(scratch.file(fmt::format("stream-{}", i)));
@@ -196,6 +176,13 @@ Calibration calibrate(const Options& options) {
     next("device: read, one stream");
     c.disk_read = repeated(repeat, [&](int) { return direct_read(one, c.request, Deadline(disk_seconds)); },
                            fmt::format("O_DIRECT sequential read, one stream, {} requests", size_text(c.request)));
+    next("device: read, one stream, by request size");
+    for (const std::int64_t size : {MiB / 16, MiB / 4, MiB, 4 * MiB, 16 * MiB}) {
+      if (size >= c.request) break;
+      c.request_rates.push_back(RequestRate{size, repeated(repeat, [&](int) { return direct_read(one, size, Deadline(disk_seconds)); }, "")});
+    }
+    c.request_rates.push_back(RequestRate{c.request, c.disk_read});
+    c.request_fit = fit_request_latency(c.request_rates);
     next(fmt::format("device: write, {} streams", c.streams));
     c.disk_aggregate_write = repeated(
         once,
@@ -215,24 +202,18 @@ Calibration calibrate(const Options& options) {
   } catch (const DirectIoUnsupported& e) {
     direct = false;
     c.notes.push_back(fmt::format("{}: the device is measured through the page cache instead (buffered, synced or dropped)", e.what()));
-    step = 4;
+    c.request_rates.clear();
+    c.request_fit = RequestFit{};
+    c.request_fit.why = "the file system refuses O_DIRECT";
+    step = 5;
   }
   for (const auto& f : many) scratch.remove(f);
   check_stopped();
-  next("device: buffered read, for comparison");
-  if (!direct) buffered_write_synced(one, c.size, c.request, Deadline(disk_seconds));
-  c.buffered_read = figure(buffered_read_cold(one, c.request, Deadline(disk_seconds)),
-                           "buffered read of a file dropped from the cache (POSIX_FADV_DONTNEED), kernel readahead");
-  scratch.remove(one);
-  if (!direct) {
-    c.disk_read = c.buffered_read;
-    c.disk_aggregate_read = c.disk_read;
-  }
-
   // --- Writeback: dirty data written, then synced. Under half the background threshold (no
   // writeback before the clock starts) and about what the O_DIRECT write did in a second (a
   // slow disk is not given minutes of work).
   next(fmt::format("device: writeback, one file and {} at once", c.streams));
+  const std::filesystem::path synced = scratch.file("writeback");
   std::int64_t dirty = std::min(c.size, background_limit(sys) / 2);
   if (c.disk_write.measured) dirty = std::min(dirty, static_cast<std::int64_t>(c.disk_write.value));  // about a second's
   dirty = std::max(c.request, dirty / c.request * c.request);
@@ -240,8 +221,8 @@ Calibration calibrate(const Options& options) {
   c.writeback = repeated(
       repeat,
       [&](int) {
-        const Rate r = writeback({one}, dirty, c.request);
-        scratch.remove(one);
+        const Rate r = writeback({synced}, dirty, c.request);
+        scratch.remove(synced);
         return r;
       },
       fmt::format("writeback: fsync of {} just written through the page cache (the write not timed), one file", size_text(dirty)));
@@ -254,13 +235,33 @@ Calibration calibrate(const Options& options) {
       },
       fmt::format("writeback: {} files of {} just written, fsync of each at once", c.streams, size_text(dirty_each)));
 
+  // Buffered reads: each page of the cache the read fills is memory just freed (as much freed
+  // right before, after the writeback files' pages), as a task reading after others' work freed
+  // memory gets.
+  next("device: buffered read, for comparison");
+  if (!direct) buffered_write_synced(one, c.size, c.request, Deadline(disk_seconds));
+  const std::int64_t buffered_request = std::min(MiB, c.request);
+  const std::string buffered_how = fmt::format("buffered read (read(), {} requests, kernel readahead) of a file dropped from the cache "
+                                               "(POSIX_FADV_DONTNEED)",
+                                               size_text(buffered_request));
+  {
+    MemoryHold freed(sys.page_size);
+    freed.add(c.size);
+  }
+  c.buffered_read = figure(buffered_read_cold(one, buffered_request, Deadline(disk_seconds)), buffered_how + ", into memory just freed");
+  sync_and_drop(one);
+  if (!cold) scratch.remove(one);
+  if (!direct) {
+    c.disk_read = c.buffered_read;
+    c.disk_aggregate_read = c.disk_read;
+  }
+
   // --- Memory and the page cache. The cache file is under half the background dirty
   // threshold, so that writing it is a copy into free pages, not throttled.
   // Writes into free memory and first touches take memory just freed, as a task reusing what
   // its own or others' work freed does (here's real runs: 1.9 GB into the cache at 2.6 GB/s),
   // so each repetition is preceded by the free of the same amount (the first by an untimed
-  // warm-up). On a virtual machine with free page reporting, memory free for longer has gone
-  // back to the host and must be faulted in again: measured once, for comparison.
+  // warm-up).
   const std::filesystem::path cached = scratch.file("cached");
   const std::int64_t chunk = std::min<std::int64_t>(64 * MiB, cache_file);
   next("page cache: write into free memory");
@@ -272,9 +273,9 @@ Calibration calibrate(const Options& options) {
     return r;
   };
   write_dropped("warm-up", Deadline(memory_seconds * 8));
-  c.memory_write = repeated(
-      repeat, [&](int i) { return write_dropped(fmt::format("write-{}", i), Deadline(memory_seconds * 4)); },
-      fmt::format("write() into the page cache with memory just freed, one thread, {} requests, not synced", size_text(chunk)));
+  const std::string write_how = fmt::format("write() into the page cache, one thread, {} requests, not synced", size_text(chunk));
+  c.memory_write = repeated(repeat, [&](int i) { return write_dropped(fmt::format("write-{}", i), Deadline(memory_seconds * 4)); },
+                            write_how + ", into memory just freed");
   cache_write(cached, cache_file, chunk, Deadline(memory_seconds * 8));
   sync_file(cached);  // clean, and still cached: the reads below read it
   next("page cache: cached reads");
@@ -313,12 +314,35 @@ Calibration calibrate(const Options& options) {
                                       fmt::format("write() into the page cache with memory just freed, {} threads at once", sys.cores));
   sync_and_drop(cached);
   scratch.remove(cached);
-  if (sys.free_page_reporting && !options.quick) {
-    next("page cache: write into memory the host took back");
+
+  // --- With free page reporting, memory free for longer has gone back to the host and must be
+  // faulted in again. One wait for the kernel to report what was freed, then the buffered read
+  // and the writes, none freeing memory before the last (each write synced, kept cached), so
+  // that every one takes memory the host took back.
+  if (cold) {
+    next("page cache: read and write into memory the host took back");
     settle(sys);
-    c.memory_write_cold = repeated(once, [&](int) { return write_dropped("cold", Deadline(memory_seconds * 8)); },
-                                   "write() into the page cache with memory free long enough for the host to take it back (free page reporting)");
+    c.buffered_read_cold =
+        figure(buffered_read_cold(one, buffered_request, Deadline(disk_seconds)), buffered_how + ", into memory the host took back");
+    std::vector<std::filesystem::path> kept;
+    c.memory_write_cold = repeated(
+        repeat,
+        [&](int i) {
+          kept.push_back(scratch.file(fmt::format("cold-{}", i)));
+          const Rate r = cache_write(kept.back(), cache_file, chunk, Deadline(memory_seconds * 4));
+          sync_file(kept.back());
+          return r;
+        },
+        write_how + ", into memory free long enough for the host to take it back (free page reporting; one wait, then each)");
+    for (const auto& f : kept) {
+      sync_and_drop(f);
+      scratch.remove(f);
+    }
+    sync_and_drop(one);
+    scratch.remove(one);
   }
+  c.cold_fault = cold_fault_rate(sys.free_page_reporting, c.memory_write, c.memory_write_cold);
+  if (sys.free_page_reporting && options.quick) c.cold_fault.why = "not measured with --quick";
 
   // --- Writing into pages reclaimed from clean cache (reclaim.hpp). Not with --quick, nor in
   // a memory cgroup with a limit (holding memory there could end in the group's OOM killer).
@@ -329,10 +353,34 @@ Calibration calibrate(const Options& options) {
     c.notes.push_back("in a memory cgroup with a limit: the write into reclaimed pages was not measured");
   } else {
     next("page cache: write while reclaiming clean cache");
-    // Whatever is left of 105 s: calibrate stays under two minutes.
-    const double left = 105.0 - std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    // Whatever is left of 165 s: with the write-cache measurement's minute after it, calibrate
+    // stays under four minutes.
+    const double left = 165.0 - elapsed();
     c.memory_reclaimed_write = reclaimed_write(c, scratch, ReclaimSetting{std::min<std::int64_t>(c.size, 512 * MiB), chunk, need, std::max(0.0, left)});
   }
+
+  // --- The device's own write cache: last, as what it writes may keep a host's or a
+  // controller's cache busy for a while after.
+  next("device: write until a write cache fills");
+  if (!direct) {
+    c.write_cache.why = "the file system refuses O_DIRECT";
+  } else {
+    WriteCacheSetting w;
+    w.request = c.request;
+    w.quick = options.quick;
+    if (options.quick) {
+      // A check that the measurement works, not a measurement.
+      w.piece = std::max(c.request, c.size / 4 / c.request * c.request);
+      w.most = 16 * w.piece;
+      w.seconds = 2.0;
+    } else {
+      w.piece = std::max(c.request, 256 * MiB / c.request * c.request);
+      w.most = 64 * GiB;
+      w.seconds = std::clamp(225.0 - elapsed(), 15.0, 60.0);  // about a minute, within the four
+    }
+    c.write_cache = measure_write_cache(options.dir, scratch, w);
+  }
+  check_stopped();
 
   c.during = measuring.since();
 
@@ -363,7 +411,22 @@ Calibration calibrate(const Options& options) {
                                   "through the page cache get while that cache has room",
                                   rate_text(c.writeback.value), rate_text(c.disk_write.value)));
   }
-  c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  if (c.write_cache.measured && !c.write_cache.setting.quick && c.writeback.measured) {
+    const WriteCacheFinding& f = c.write_cache.finding;
+    const bool above = c.writeback.value > f.sustained;
+    if (f.fell) {
+      c.notes.push_back(fmt::format("write_bw (writeback, {}) is {} sustained_write_bw ({}), the device's rate once its write cache is full "
+                                    "(after {} of O_DIRECT writes){}",
+                                    rate_text(c.writeback.value), above ? "above" : "not above", rate_text(f.sustained),
+                                    size_text(f.cache_bytes), above ? ": writing back more than that cache holds goes slower than write_bw" : ""));
+    } else {
+      std::int64_t bytes = 0;
+      for (const Rate& r : c.write_cache.pieces) bytes += r.bytes;
+      c.notes.push_back(fmt::format("write_bw (writeback, {}) is {} the rate O_DIRECT writes sustained over {} ({}, no write cache found)",
+                                    rate_text(c.writeback.value), above ? "above" : "not above", size_text(bytes), rate_text(f.sustained)));
+    }
+  }
+  c.seconds = elapsed();
   return c;
 }
 
@@ -394,6 +457,7 @@ std::string platform_toml(const Calibration& c) {
   out += rate("memory_aggregate_write_bw", c.memory_aggregate_write);
   out += rate("memory_first_touch_bw", c.first_touch);
   out += rate("memory_reclaimed_write_bw", c.memory_reclaimed_write);
+  out += cold_fault_toml(c.cold_fault, c.memory_write, c.memory_write_cold);
   if (c.memory_write_cold.measured) out += fmt::format("# for comparison: {}: {}\n", c.memory_write_cold.how, rate_text(c.memory_write_cold.value));
   if (c.memory_read_fresh.measured) out += fmt::format("# for comparison: {}: {}\n", c.memory_read_fresh.how, rate_text(c.memory_read_fresh.value));
   if (c.copy_one.measured) out += fmt::format("# for comparison: {}: {}\n", c.copy_one.how, rate_text(c.copy_one.value));
@@ -426,7 +490,23 @@ std::string platform_toml(const Calibration& c) {
   };
   out += aggregate("aggregate_read_bw", c.disk_aggregate_read, c.disk_read);
   out += aggregate("aggregate_write_bw", c.aggregate_writeback, c.writeback);
-  for (const Figure* f : {&c.buffered_read, &c.disk_write, &c.disk_aggregate_write}) {
+  out += request_latency_toml(c.request_rates, c.request_fit, c.size);
+  const DeviceLimits& d = s.device;
+  const std::string device = d.device.empty() ? "" : fmt::format(" ({})", d.device);
+  if (d.read_ahead < 0) {
+    out += fmt::format("# read_ahead not set: {}\n", d.read_ahead_from);
+  } else {
+    out += fmt::format("# the kernel's readahead window for this file system, read, not measured: {}{}\nread_ahead = \"{} KiB\"\n", d.read_ahead_from,
+                       device, d.read_ahead / 1024);
+  }
+  if (d.max_request < 0) {
+    out += fmt::format("# max_request not set: {}\n", d.max_request_from);
+  } else {
+    out += fmt::format("# the largest request the block layer sends the device, read, not measured: {}{}\nmax_request = \"{} KiB\"\n",
+                       d.max_request_from, device, d.max_request / 1024);
+  }
+  out += write_cache_toml(c.write_cache, c.writeback.measured ? c.writeback.value : 0.0);
+  for (const Figure* f : {&c.buffered_read, &c.buffered_read_cold, &c.disk_write, &c.disk_aggregate_write}) {
     if (f->measured) out += fmt::format("# for comparison: {}: {}\n", f->how, rate_text(f->value));
   }
   return out;

@@ -5,7 +5,11 @@
 // disk space (refused up front if the folder's file system has too little room); removes
 // every file it made, also when interrupted.
 
+#include "calibrate/cold_memory.hpp"
+#include "calibrate/figure.hpp"
+#include "calibrate/request_latency.hpp"
 #include "calibrate/system_info.hpp"
+#include "calibrate/write_cache.hpp"
 
 #include <cstdint>
 #include <filesystem>
@@ -17,7 +21,8 @@ namespace pagecache::calibrate {
 
 struct Options {
   std::filesystem::path dir;
-  /// Small files and short measurements (under 20 s), no measurement of reclaim.
+  /// Small files and short measurements (under 20 s), no measurement of reclaim nor of memory a
+  /// VM's host took back, a short write-cache run whose figures are a comment only.
   bool quick = false;
   /// Bytes per measuring file (one per stream); 0: 1 GiB, or 64 MiB with `quick`.
   std::int64_t size = 0;
@@ -27,14 +32,6 @@ struct Options {
   int repeat = 0;
   /// Told before each step: its name, its number (from 1) and how many there are.
   std::function<void(const std::string& step, int number, int steps)> progress;
-};
-
-/// A value of the platform and how it was found; not `measured`: `how` says why not.
-struct Figure {
-  double value = 0.0;  ///< bytes per second: the median of its repetitions
-  std::string how;
-  bool measured = false;
-  double spread_pct = 0.0;  ///< (max - min) / median of the repetitions
 };
 
 struct Calibration {
@@ -49,12 +46,18 @@ struct Calibration {
   Figure disk_read, disk_aggregate_read;
   Figure writeback, aggregate_writeback;
   Figure disk_write, disk_aggregate_write;  ///< O_DIRECT, for comparison
-  Figure buffered_read;                     ///< for comparison, not in the platform
+  std::vector<RequestRate> request_rates;   ///< O_DIRECT reads by request size, the largest read_bw's
+  RequestFit request_fit;
+  WriteCache write_cache;                   ///< O_DIRECT writes until a write cache fills
+  // Buffered reads of a file dropped from the cache, into memory just freed and into memory a
+  // VM's host took back: for comparison, not in the platform.
+  Figure buffered_read, buffered_read_cold;
   // Memory and the page cache.
   Figure memory_read;          ///< cached data into a reused buffer, one thread
   Figure memory_read_fresh;    ///< cached data into new memory, one thread
   Figure memory_write;         ///< into the page cache, memory just freed, one thread
-  Figure memory_write_cold;    ///< the same, memory a VM's host took back (comparison)
+  Figure memory_write_cold;    ///< the same, memory a VM's host took back
+  ColdFault cold_fault;        ///< what touching memory the host took back costs beyond memory_write
   Figure memory_reclaimed_write;  ///< into the page cache, reclaiming clean cache, one thread
   Figure memory_aggregate_read, memory_aggregate_write;  ///< every core at once
   Figure first_touch;          ///< new anonymous memory, one thread

@@ -33,14 +33,17 @@ double since(Clock::time_point start) { return std::chrono::duration<double>(Clo
   throw std::system_error(errno, std::generic_category(), fmt::format("{} '{}'", what, file.string()));
 }
 
+int open_file(const std::filesystem::path& file, int flags) {
+  const int fd = ::open(file.c_str(), flags | O_CLOEXEC, 0600);
+  if (fd >= 0) return fd;
+  if (errno == EINVAL && (flags & O_DIRECT) != 0) throw DirectIoUnsupported(fmt::format("'{}': the file system refuses O_DIRECT", file.string()));
+  fail("cannot open", file);
+}
+
 // A file descriptor closed when it goes.
 class Fd {
  public:
-  Fd(const std::filesystem::path& file, int flags) : fd_(::open(file.c_str(), flags | O_CLOEXEC, 0600)) {
-    if (fd_ >= 0) return;
-    if (errno == EINVAL && (flags & O_DIRECT) != 0) throw DirectIoUnsupported(fmt::format("'{}': the file system refuses O_DIRECT", file.string()));
-    fail("cannot open", file);
-  }
+  Fd(const std::filesystem::path& file, int flags) : fd_(open_file(file, flags)) {}
   ~Fd() { ::close(fd_); }
   Fd(const Fd&) = delete;
   Fd& operator=(const Fd&) = delete;
@@ -170,6 +173,56 @@ Rate buffered_read_cold(const std::filesystem::path& file, std::int64_t request,
   ::posix_fadvise(fd.get(), 0, 0, POSIX_FADV_DONTNEED);
   const auto start = Clock::now();
   const std::int64_t done = read_loop(fd.get(), buffer.data.get(), request, size_of(file), false, deadline, file, false);
+  return {done, since(start)};
+}
+
+DirectAppender::DirectAppender(const std::filesystem::path& file, std::int64_t request)
+    : file_(file), fd_(open_file(file, O_WRONLY | O_CREAT | O_TRUNC | O_DIRECT)), request_(request) {
+  void* p = nullptr;
+  if (::posix_memalign(&p, 4096, static_cast<std::size_t>(request)) != 0) {
+    ::close(fd_);
+    throw std::bad_alloc();
+  }
+  buffer_ = static_cast<char*>(p);
+  // splitmix64: random bytes, fast enough not to be what is timed.
+  std::uint64_t x = 0x9e3779b97f4a7c15ULL ^ static_cast<std::uint64_t>(::getpid());
+  for (std::int64_t at = 0; at + 8 <= request; at += 8) {
+    std::uint64_t z = (x += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    z ^= z >> 31;
+    std::memcpy(buffer_ + at, &z, 8);
+  }
+}
+
+DirectAppender::~DirectAppender() {
+  ::close(fd_);
+  std::free(buffer_);
+}
+
+Rate DirectAppender::append(std::int64_t bytes, const Deadline& deadline) {
+  std::int64_t done = 0;
+  const auto start = Clock::now();
+  while (done < bytes && !full_ && go_on(done, deadline)) {
+    // Each 4 KiB block's first 8 bytes: a number no other block has (no deduplication).
+    for (std::int64_t at = 0; at + 8 <= request_; at += 4096) {
+      ++stamp_;
+      std::memcpy(buffer_ + at, &stamp_, 8);
+    }
+    const auto n = ::pwrite(fd_, buffer_, static_cast<std::size_t>(request_), size_);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      if (errno == ENOSPC || errno == EDQUOT) {
+        full_ = true;
+        break;
+      }
+      if (errno == EINVAL) throw DirectIoUnsupported(fmt::format("'{}': the file system refuses O_DIRECT writes", file_.string()));
+      fail("cannot write", file_);
+    }
+    done += n;
+    size_ += n;
+    if (n < request_) full_ = true;  // a short write: the file system is (nearly) full
+  }
   return {done, since(start)};
 }
 

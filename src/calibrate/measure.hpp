@@ -58,6 +58,31 @@ Rate writeback(const std::vector<std::filesystem::path>& files, std::int64_t siz
 /// Drops `file`'s clean pages (POSIX_FADV_DONTNEED, no root needed) and reads it through the
 /// page cache: the device with the kernel's readahead.
 Rate buffered_read_cold(const std::filesystem::path& file, std::int64_t request, const Deadline& deadline);
+/// A file grown with O_DIRECT writes of data no device can compress or deduplicate (random,
+/// every 4 KiB block stamped with its own number): what a device with a cache of its own takes
+/// in before that cache fills, and after.
+class DirectAppender {
+ public:
+  DirectAppender(const std::filesystem::path& file, std::int64_t request);
+  ~DirectAppender();
+  DirectAppender(const DirectAppender&) = delete;
+  DirectAppender& operator=(const DirectAppender&) = delete;
+  /// Appends `bytes` (whole requests), or less at the deadline or when the file system has no
+  /// more room; timed alone.
+  Rate append(std::int64_t bytes, const Deadline& deadline);
+  /// The file system refused a write for want of room (ENOSPC, EDQUOT).
+  bool full() const noexcept { return full_; }
+  std::int64_t size() const noexcept { return size_; }
+
+ private:
+  std::filesystem::path file_;
+  int fd_;
+  std::int64_t request_;
+  char* buffer_ = nullptr;
+  std::int64_t size_ = 0;
+  std::uint64_t stamp_ = 0;
+  bool full_ = false;
+};
 /// Runs `one` on each file, all at once, one thread each: their bytes over the time from the
 /// common start to the last end.
 Rate concurrently(const std::vector<std::filesystem::path>& files, const std::function<Rate(const std::filesystem::path&)>& one);

@@ -226,6 +226,7 @@ SystemInfo read_system_info(const std::filesystem::path& dir) {
   if (::statfs(dir.c_str(), &fs) == 0) s.file_system = file_system_name(fs.f_type);
   struct statvfs vfs{};
   if (::statvfs(dir.c_str(), &vfs) == 0) s.file_system_free = static_cast<std::int64_t>(vfs.f_bavail) * static_cast<std::int64_t>(vfs.f_frsize);
+  s.device = device_limits_of(dir);
   s.memory_limited = in_limited_memory_cgroup();
   std::tie(s.balloon_device, s.free_page_reporting) = find_balloon();
   return s;

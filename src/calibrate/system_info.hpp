@@ -5,6 +5,8 @@
 // machine may change the measurements: other load on the CPUs, a hypervisor taking CPU time or
 // memory back (steal time, a balloon, free page reporting).
 
+#include "calibrate/device_limits.hpp"
+
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -34,6 +36,7 @@ struct SystemInfo {
   double writeback_interval = 5.0;   ///< seconds (dirty_writeback_centisecs)
   std::string file_system;           ///< of the folder measured in (statfs type, e.g. ext4)
   std::int64_t file_system_free = 0; ///< bytes an ordinary user may still write there
+  DeviceLimits device;               ///< the kernel's readahead and largest request for that file system
   bool memory_limited = false;       ///< this process is in a memory cgroup with a limit
   /// A virtio balloon with VIRTIO_BALLOON_F_REPORTING: pages the guest frees go back to the
   /// host, which must fault them in again when they are next touched.

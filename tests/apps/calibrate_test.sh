@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # pcsim calibrate, run as a user runs it, at a tiny scale (--quick, 16 MiB files): (a) it
-# writes a platform file pcsim loads, with every value of the host and its disk, and leaves
-# the folder as it found it; (b) a folder that does not exist, a file given as the folder, and
+# writes a platform file pcsim loads, with every value of the host and its disk, the device's
+# request latency, readahead and largest request where this machine has them (O_DIRECT, a
+# block device or a bdi under the folder), each said how it was found, and leaves the folder as
+# it found it; (b) a folder that does not exist, a file given as the folder, and
 # a size the file system has no room for are refused with exit 2, naming them, and nothing is
 # written; (c) when run by root, the same as the ordinary user nobody, which says what it
 # could not do as root. No figure is judged: they measure this machine.
@@ -24,6 +26,39 @@ for key in 'cores = ' 'memory = ' 'memory_read_bw = ' 'memory_write_bw = ' 'memo
   grep -q "^$key" "$work/platform.toml" || fail "(a): the platform file has no '$key'"
 done
 grep -q "memory_reclaimed_write_bw not set: not measured with --quick" "$work/platform.toml" || fail "(a): reclaim not said to be skipped"
+# The device's requests: what sysfs says of the folder's device (the disk's, for a partition),
+# read as the kernel gives it; the latency and the write cache where O_DIRECT works there.
+dev=$(stat -c '%Hd:%Ld' "$work/dir")
+block=/sys/dev/block/$dev bdi=$dev
+if [ -e "$block/partition" ]; then
+  bdi=$(cat "$block/../dev")
+  block=$block/..
+fi
+read_ahead=$(cat "/sys/class/bdi/$bdi/read_ahead_kb" 2>/dev/null || cat "$block/queue/read_ahead_kb" 2>/dev/null || true)
+if [ -n "$read_ahead" ]; then
+  grep -q "^read_ahead = \"$read_ahead KiB\"$" "$work/platform.toml" || fail "(a): no 'read_ahead = \"$read_ahead KiB\"' (sysfs's for $dev)"
+  grep -q "^# the kernel's readahead window for this file system, read, not measured: /sys/" "$work/platform.toml" ||
+    fail "(a): read_ahead's comment does not say where it was read"
+else
+  grep -q "^# read_ahead not set: " "$work/platform.toml" || fail "(a): no read_ahead and no word why ($dev has no bdi nor queue)"
+fi
+if [ -e "$block/queue/max_sectors_kb" ]; then
+  grep -q "^max_request = \"$(cat "$block/queue/max_sectors_kb") KiB\"$" "$work/platform.toml" || fail "(a): no max_request as sysfs's for $dev"
+else
+  grep -q "^# max_request not set: " "$work/platform.toml" || fail "(a): no max_request and no word why ($dev is no block device)"
+fi
+if grep -q "refuses O_DIRECT" "$work/platform.toml"; then
+  grep -q "^# request_latency not set: " "$work/platform.toml" || fail "(a): no O_DIRECT, and no word of request_latency"
+else
+  grep -q "^request_latency = \"[0-9.]* ms\"$" "$work/platform.toml" || fail "(a): no request_latency in ms"
+  grep -q "^# O_DIRECT sequential reads of one .*, by request size" "$work/platform.toml" || fail "(a): no table of rates by request size"
+  grep -q "^#     64 KiB " "$work/platform.toml" || fail "(a): the table has no 64 KiB row"
+  grep -q "^# fitted as time per request = request_latency + size / bandwidth" "$work/platform.toml" || fail "(a): the fit is not said"
+  grep -q "^# O_DIRECT sequential writes of random data, .* in pieces of .* rates in MB/s, in order:$" "$work/platform.toml" ||
+    fail "(a): no write-cache pieces"
+  grep -q "^# write_cache, sustained_write_bw not set: --quick" "$work/platform.toml" || fail "(a): --quick does not say it sets no write cache"
+fi
+grep -q "^# memory_cold_fault_bw, page_reporting_delay not set: " "$work/platform.toml" || fail "(a): --quick does not say why no cold fault rate"
 grep -q "disk read, one stream" "$work/summary.txt" || fail "(a): no summary"
 [ "$(ls -A "$work/dir")" = keep.txt ] || fail "(a): the folder was left with: $(ls -A "$work/dir" | tr '\n' ' ')"
 [ "$(cat "$work/dir/keep.txt")" = mine ] || fail "(a): a file of the user's changed"

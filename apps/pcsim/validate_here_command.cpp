@@ -90,7 +90,7 @@ int run_validate_here(const ValidateHereOptions& o) {
     for (int rep = 1; rep <= repeat; ++rep) {
       ++done;
       if (status.due(true)) status.show(fmt::format("validate --here: run {}/{}: {} (repetition {})", done, total, c.name, rep));
-      m.runs.push_back(cal::run_real(c, o.dir, rep, o.quick ? 0.05 : 0.25));
+      m.runs.push_back(cal::run_real(c, o.dir, rep, o.quick ? 0.05 : 0.25, o.quick ? 6.0 : 40.0));
     }
   }
   status.clear();

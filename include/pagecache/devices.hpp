@@ -141,6 +141,9 @@ struct MemoryBandwidth {
   /// the first write into such a page waits for the host to give it again, this many bytes
   /// per second of one thread on top of the write itself; 0: no memory is taken back.
   double cold_fault = 0.0;
+  /// The host's faults of all threads together (its vCPUs fault in parallel); 0: cold_fault
+  /// times the host's cores.
+  double aggregate_cold_fault = 0.0;
 
   /// One channel shared by everything, as in the paper: the per-flow bounds equal the aggregate.
   static MemoryBandwidth shared_channel(double bandwidth) { return {bandwidth, bandwidth, bandwidth, bandwidth, 0.0, 0.0}; }
@@ -180,6 +183,9 @@ class Memory {
   double fresh_copy_rate(double cold_share = 0.0) const noexcept;
   /// `rate` slowed by the host's faults on `cold_share` of the bytes (rate itself if none).
   double with_cold(double rate, double cold_share) const noexcept;
+  /// A device read of `bytes` into new cache pages and a new buffer, `cold_share` bytes of
+  /// them per byte read cold: bounded by `bound`, and its faults share the host's.
+  FlowAwaiter device_read(const Disk& disk, std::int64_t bytes, double bound, double cold_share) const;
 
   ResourceId resource() const noexcept { return resource_; }
   const MemoryBandwidth& bandwidth() const noexcept { return bandwidth_; }
@@ -188,8 +194,12 @@ class Memory {
   /// `spec` as a copy by a thread on cpu_ (copy_on), if any.
   FlowSpec on_core(FlowSpec spec) const;
 
+  /// `spec` also through the host's faults for `cold_share` of its bytes.
+  FlowSpec& faulting(FlowSpec& spec, double cold_share) const;
+
   FairShare* share_;
   ResourceId resource_;
+  ResourceId faults_{};  // the host's faults into cold memory, with cold_fault only
   MemoryBandwidth bandwidth_;
   const Cpu* cpu_ = nullptr;
 };

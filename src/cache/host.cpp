@@ -7,15 +7,26 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <deque>
 
 namespace pagecache {
+
+namespace {
+// The host's vCPUs fault memory the host took back in parallel: by default each core at one
+// thread's rate.
+HostSpec with_defaults(HostSpec spec) {
+  MemoryBandwidth& bw = spec.memory_bandwidth;
+  if (bw.cold_fault > 0.0 && bw.aggregate_cold_fault <= 0.0) bw.aggregate_cold_fault = bw.cold_fault * std::max(spec.cores, 1);
+  return spec;
+}
+}  // namespace
 
 struct Host::Impl {
   Impl(Simulator& s, FairShare& fs, HostSpec sp)
       : sim(s),
         share(fs),
-        spec(std::move(sp)),
+        spec(with_defaults(std::move(sp))),
         cpu(fs, spec.name + ":cpu", spec.cores),
         memory(fs, spec.name + ":memory", spec.memory_bandwidth),
         cache(spec.memory, spec.cache),

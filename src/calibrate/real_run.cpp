@@ -161,9 +161,25 @@ std::vector<RealPhase> pipeline(const RealCase& spec, const Scratch& scratch, in
   return phases;
 }
 
+// Waits until the kernel's count of reported free memory has not grown over a whole reporting
+// pass (2 s apart, mm/page_reporting.c), at most `limit` seconds: true if it stopped growing.
+bool wait_for_reporting(double limit) {
+  std::int64_t before = reported_free_bytes();
+  if (before < 0) return false;
+  const auto started = Clock::now();
+  for (;;) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(2500));
+    check_stopped();
+    const std::int64_t now = reported_free_bytes();
+    if (now == before) return true;
+    before = now;
+    if (std::chrono::duration<double>(Clock::now() - started).count() >= limit) return false;
+  }
+}
+
 }  // namespace
 
-RealRun run_real(const RealCase& spec, const std::filesystem::path& dir, int repetition, double sample_interval) {
+RealRun run_real(const RealCase& spec, const std::filesystem::path& dir, int repetition, double sample_interval, double settle_limit) {
   RealRun run;
   run.spec = spec;
   run.repetition = repetition;
@@ -177,6 +193,7 @@ RealRun run_real(const RealCase& spec, const std::filesystem::path& dir, int rep
     ::sync();
     for (int p = 1; p <= spec.pipelines; ++p) drop_file(scratch.file(fmt::format("p{}_file_1", p)));
   }
+  if (reported_free_bytes() >= 0) run.warm_at_start = wait_for_reporting(settle_limit) ? 0 : -1;
   const std::string meminfo = read_meminfo();
   run.memory_total = meminfo_bytes(meminfo, "MemTotal");
   run.in_use_at_start = run.memory_total - meminfo_bytes(meminfo, "MemAvailable");

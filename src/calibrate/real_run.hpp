@@ -51,11 +51,18 @@ struct RealRun {
   double others_busy_cores = -1.0;  ///< CPUs busy outside this process (other load, kernel threads)
   double steal_pct = -1.0;          ///< of the CPUs' time, taken by the hypervisor
   std::int64_t reported = -1;       ///< bytes of free memory reported to a VM's host
+  /// Bytes of the free memory at the start not yet reported to a VM's host (free page
+  /// reporting): 0 once the run waited for the kernel to report what was freed before it; -1:
+  /// not known (an older folder: its inputs, dropped just before, are taken).
+  std::int64_t warm_at_start = -1;
 };
 
 /// Runs `spec` in `dir` (its files made there first and removed after): as root, after
 /// dropping the whole page cache (sync; drop_caches); otherwise after dropping its own input
-/// files' pages. `sample_interval`: seconds between memory samples.
-RealRun run_real(const RealCase& spec, const std::filesystem::path& dir, int repetition, double sample_interval);
+/// files' pages. Where the machine reports free pages to its host, it then waits (at most
+/// `settle_limit` seconds) until the kernel has reported what was freed, so that the run
+/// starts with all free memory cold, as pcsim then starts it. `sample_interval`: seconds
+/// between memory samples.
+RealRun run_real(const RealCase& spec, const std::filesystem::path& dir, int repetition, double sample_interval, double settle_limit = 40.0);
 
 }  // namespace pagecache::calibrate

@@ -190,6 +190,10 @@ void read_free_page_reporting(TomlReader& r, HostConfig& h) {
   if (bw.cold_fault > 0.0 && bw.cold_fault < units::kMinBandwidth) {
     r.fail("memory_cold_fault_bw", fmt::format("must be 0 (no memory taken back) or at least 1 B/s, got {} B/s", bw.cold_fault));
   }
+  bw.aggregate_cold_fault = r.optional_bandwidth("memory_aggregate_cold_fault_bw").value_or(bw.aggregate_cold_fault);
+  if (bw.aggregate_cold_fault > 0.0 && bw.aggregate_cold_fault < units::kMinBandwidth) {
+    r.fail("memory_aggregate_cold_fault_bw", fmt::format("must be 0 (memory_cold_fault_bw x cores) or at least 1 B/s, got {} B/s", bw.aggregate_cold_fault));
+  }
   h.page_reporting_delay = r.optional_duration("page_reporting_delay").value_or(h.page_reporting_delay);
   if (!(h.page_reporting_delay >= 0.0)) r.fail("page_reporting_delay", "must be >= 0 s");
   h.memory_freed_at_start = r.optional_size("memory_freed_at_start").value_or(h.memory_freed_at_start);

@@ -79,6 +79,9 @@ std::string to_toml(const Scenario& s) {
       out += fmt::format("memory_cold_fault_bw = {}\npage_reporting_delay = {}\nmemory_freed_at_start = {}\n",
                          quoted(units::format_bandwidth(h.memory_bandwidth.cold_fault)), quoted(units::format_duration(h.page_reporting_delay)),
                          quoted(units::format_size(h.memory_freed_at_start)));
+      if (h.memory_bandwidth.aggregate_cold_fault > 0.0) {
+        out += fmt::format("memory_aggregate_cold_fault_bw = {}\n", quoted(units::format_bandwidth(h.memory_bandwidth.aggregate_cold_fault)));
+      }
     }
     out += fmt::format(
         "\n[hosts.page_cache]\nmode = {}\ndirty_ratio = {}\ndirty_background_ratio = {}\ndirty_expire = {}\nwriteback_interval = {}\n",

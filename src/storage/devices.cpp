@@ -155,7 +155,22 @@ Memory::Memory(FairShare& share, std::string name, MemoryBandwidth bandwidth)
     throw ConfigError(fmt::format("{}: the rate of faults into memory the host took back must be >= 0 (0: none taken back), got {}", name,
                                   bandwidth.cold_fault));
   }
+  if (bandwidth.cold_fault > 0.0) {
+    if (bandwidth_.aggregate_cold_fault <= 0.0) bandwidth_.aggregate_cold_fault = bandwidth.cold_fault;
+    require_positive(bandwidth_.aggregate_cold_fault, name, "aggregate rate of faults into memory the host took back");
+    faults_ = share.add_resource(name + ":faults");
+  }
   resource_ = share.add_resource(std::move(name));
+}
+
+FlowSpec& Memory::faulting(FlowSpec& spec, double cold_share) const {
+  if (!(cold_share > 0.0) || bandwidth_.cold_fault <= 0.0) return spec;
+  return spec.through({faults_, cold_share / bandwidth_.aggregate_cold_fault});
+}
+
+FlowAwaiter Memory::device_read(const Disk& disk, std::int64_t bytes, double bound, double cold_share) const {
+  FlowSpec spec{.work = static_cast<double>(bytes), .bound = bound};
+  return share_->transfer(disk.reading(faulting(spec, cold_share)));
 }
 
 FlowSpec Memory::read_spec(std::int64_t bytes) const {
@@ -173,16 +188,20 @@ FlowSpec Memory::write_spec(std::int64_t bytes, std::int64_t reclaimed, std::int
     const double seconds = (static_cast<double>(bytes) - from_reclaim) / bandwidth_.write + from_reclaim / bandwidth_.reclaimed_write;
     bound = static_cast<double>(bytes) / seconds;
   }
-  if (cold > 0 && bytes > 0) bound = with_cold(bound, static_cast<double>(std::min(cold, bytes)) / static_cast<double>(bytes));
-  return FlowSpec{.work = static_cast<double>(bytes), .bound = bound}.through({resource_, 1.0 / bandwidth_.aggregate_write});
+  const double cold_share = cold > 0 && bytes > 0 ? static_cast<double>(std::min(cold, bytes)) / static_cast<double>(bytes) : 0.0;
+  FlowSpec spec = FlowSpec{.work = static_cast<double>(bytes), .bound = with_cold(bound, cold_share)}.through(
+      {resource_, 1.0 / bandwidth_.aggregate_write});
+  return faulting(spec, cold_share);
 }
 
 FlowSpec Memory::read_into_fresh_spec(std::int64_t bytes, double cold_share) const {
   FlowSpec spec = read_spec(bytes);
-  if (bandwidth_.first_touch <= 0.0 && !(cold_share > 0.0 && bandwidth_.cold_fault > 0.0)) return spec;
-  spec.bound = fresh_copy_rate(cold_share);
-  if (bandwidth_.first_touch > 0.0) spec.usages[0].cost += 1.0 / bandwidth_.aggregate_write;
-  return spec;
+  if (bandwidth_.first_touch > 0.0) {
+    spec.bound = fresh_copy_rate();
+    spec.usages[0].cost += 1.0 / bandwidth_.aggregate_write;
+  }
+  spec.bound = with_cold(spec.bound, cold_share);  // the copy's own rate when first touch is free
+  return faulting(spec, cold_share);
 }
 
 double Memory::fresh_copy_rate(double cold_share) const noexcept {

@@ -64,7 +64,7 @@ struct Simulated {
   std::string host;
 };
 
-Simulated simulate(const std::string& platform, const RealCase& spec, std::int64_t in_use) {
+Simulated simulate(const std::string& platform, const RealCase& spec, std::int64_t in_use, std::int64_t warm) {
   const std::string text = fmt::format(
       "profile = \"linux\"\nmemory_sample_interval = \"0 s\"\n{}\n[pipelines]\ncount = {}\nfile_size = \"{} B\"\ntasks = {}\ncpu_time = \"{} s\"\n"
       "chunk_size = \"{} B\"\n",
@@ -72,8 +72,7 @@ Simulated simulate(const std::string& platform, const RealCase& spec, std::int64
   Scenario s = parse_scenario(text, "platform.toml + " + spec.name);
   if (s.hosts.empty()) throw ConfigError("platform.toml: no host");
   s.hosts[0].memory_in_use = std::clamp<std::int64_t>(in_use, 0, s.hosts[0].memory - 1);
-  // The run's inputs were written, then dropped from the cache just before it started.
-  s.hosts[0].memory_freed_at_start = spec.file_size * spec.pipelines;
+  s.hosts[0].memory_freed_at_start = warm;
   RunOptions options;
   options.cache_contents = false;
   return Simulated{run_scenario(s, options), s.hosts[0].name};
@@ -151,14 +150,14 @@ std::vector<RealCase> here_cases(std::int64_t available, bool quick) {
 std::vector<std::pair<std::string, std::string>> here_files(const HereMeasurements& m) {
   std::string runs =
       "case,pipelines,tasks,file_size,compute_s,chunk,repetition,makespan_s,memory_total,in_use_at_start,free_at_start,dropped_all_caches,"
-      "others_busy_cores,steal_pct,reported_bytes\n";
+      "others_busy_cores,steal_pct,reported_bytes,warm_at_start\n";
   std::string phases = "case,repetition,pipeline,task,phase,start_s,end_s\n";
   std::string memory = "case,repetition,time_s,free,cached,dirty,writeback\n";
   for (const RealRun& r : m.runs) {
     const RealCase& c = r.spec;
-    runs += fmt::format("{},{},{},{},{:.6f},{},{},{:.6f},{},{},{},{},{:.3f},{:.2f},{}\n", c.name, c.pipelines, c.tasks, c.file_size, c.compute, c.chunk,
-                        r.repetition, r.makespan, r.memory_total, r.in_use_at_start, r.free_at_start, r.dropped_all_caches ? 1 : 0,
-                        r.others_busy_cores, r.steal_pct, r.reported);
+    runs += fmt::format("{},{},{},{},{:.6f},{},{},{:.6f},{},{},{},{},{:.3f},{:.2f},{},{}\n", c.name, c.pipelines, c.tasks, c.file_size, c.compute,
+                        c.chunk, r.repetition, r.makespan, r.memory_total, r.in_use_at_start, r.free_at_start, r.dropped_all_caches ? 1 : 0,
+                        r.others_busy_cores, r.steal_pct, r.reported, r.warm_at_start);
     for (const RealPhase& p : r.phases) {
       phases += fmt::format("{},{},{},{},{},{:.6f},{:.6f}\n", c.name, r.repetition, p.pipeline, p.task, p.phase, p.start, p.end);
     }
@@ -182,12 +181,14 @@ std::string score_here(const HereMeasurements& m) {
   for (const std::string& name : order) {
     const std::vector<const RealRun*>& runs = by_case[name];
     const RealCase& spec = runs.front()->spec;
-    std::vector<double> in_use;
+    std::vector<double> in_use, warm;
     for (const RealRun* r : runs) {
       in_use.push_back(static_cast<double>(r->in_use_at_start));
+      // Not known: its inputs, written and then dropped from the cache just before it started.
+      warm.push_back(static_cast<double>(r->warm_at_start >= 0 ? r->warm_at_start : spec.file_size * spec.pipelines));
       not_dropped = not_dropped || !r->dropped_all_caches;
     }
-    const Simulated sim = simulate(m.platform_toml, spec, static_cast<std::int64_t>(mean(in_use)));
+    const Simulated sim = simulate(m.platform_toml, spec, static_cast<std::int64_t>(mean(in_use)), static_cast<std::int64_t>(mean(warm)));
     std::vector<double> makespans;
     for (const RealRun* r : runs) makespans.push_back(r->makespan);
     const double makespan_error = finite_error(sim.result.summary.makespan, mean(makespans), fmt::format("runs.csv: case {}: the real makespan", name));

@@ -46,11 +46,11 @@ std::string name_of(const std::string& file) { return std::filesystem::path(file
 }  // namespace
 
 std::vector<KeptRun> read_kept_runs(std::string_view text, const std::string& file) {
-  // The last three columns came later: an older folder lacks them.
+  // The last four columns came later: an older folder lacks them.
   const CsvTable t(text, file,
                    {"case", "pipelines", "tasks", "file_size", "compute_s", "chunk", "repetition", "makespan_s", "memory_total", "in_use_at_start",
                     "free_at_start", "dropped_all_caches"},
-                   {"others_busy_cores", "steal_pct", "reported_bytes"});
+                   {"others_busy_cores", "steal_pct", "reported_bytes", "warm_at_start"});
   const std::int64_t max_tasks = ScenarioLimits{}.max_tasks;
   std::vector<KeptRun> out;
   for (std::size_t i = 0; i < t.size(); ++i) {
@@ -72,6 +72,7 @@ std::vector<KeptRun> read_kept_runs(std::string_view text, const std::string& fi
     if (t.has("others_busy_cores")) r.others_busy_cores = activity(f, "others_busy_cores", 1e6);
     if (t.has("steal_pct")) r.steal_pct = activity(f, "steal_pct", 100.0);
     if (t.has("reported_bytes")) r.reported = f.whole("reported_bytes", -1, units::kMaxBytes);
+    if (t.has("warm_at_start")) r.warm_at_start = f.whole("warm_at_start", -1, units::kMaxBytes);
     out.push_back(std::move(k));
   }
   return out;

@@ -170,3 +170,19 @@ TEST_CASE("memory freed just before the start is warm; without a cold fault rate
     CHECK(end == Catch::Detail::Approx(expected).epsilon(1e-9));
   }
 }
+
+TEST_CASE("a cached read into a new buffer of cold memory pays the host's faults on top of the copy", "[cache][cold][host]") {
+  // 100 MB cached at the start, read into a new buffer: the copy at 1000 MB/s, the buffer's
+  // pages all cold at 500 MB/s: 1 / (1/1000 + 1/500) = 333.3 MB/s, 0.3 s (first touch free).
+  Simulator sim;
+  FairShare share(sim);
+  Host host(sim, share, cold_host(500e6));
+  const FileRef file = host.add_file("in", 100 * MB, host.add_disk("d", 100e6, 100e6), true);
+  double end = 0;
+  sim.spawn([](Simulator& s, Host& h, FileRef f, double& done) -> Task<void> {
+    co_await h.read_file(f, 100 * MB);
+    done = s.now();
+  }(sim, host, file, end));
+  sim.run_until(10.0);
+  CHECK(end == Catch::Detail::Approx(0.3).epsilon(1e-9));
+}

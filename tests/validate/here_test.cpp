@@ -121,6 +121,7 @@ TEST_CASE("validate --here measurements are read back as written, and a bad file
   m.runs[0].others_busy_cores = 0.75;
   m.runs[0].steal_pct = 6.5;
   m.runs[0].reported = 3'000'000'000;
+  m.runs[0].warm_at_start = 0;  // waited until the kernel had reported what was freed
   m.platform_toml = std::string("# Note: a virtual machine\n") + kPlatform;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
@@ -134,16 +135,23 @@ TEST_CASE("validate --here measurements are read back as written, and a bad file
   CHECK_THAT(said, Catch::Contains("other work kept up to 0.75 cores busy during a run (c repetition 1)") &&
                        Catch::Contains("took up to 6.5 % of the CPUs' time") && Catch::Contains("3.0 GB of free memory went back") &&
                        Catch::Contains("calibration note: a virtual machine"));
-  // A folder from before the activity was recorded (12 fields) is still read.
-  std::string runs;
-  {
+  // A folder from before the warm memory at the start was recorded (15 fields), and one from
+  // before the activity was (12 fields), are still read.
+  const auto cut_columns = [&](int columns) {
+    std::string runs;
     std::ifstream in(dir / "runs.csv");
     for (std::string line; std::getline(in, line);) {
-      for (int cut = 0; cut < 3; ++cut) line = line.substr(0, line.rfind(','));
+      for (int cut = 0; cut < columns; ++cut) line = line.substr(0, line.rfind(','));
       runs += line + "\n";
     }
-  }
-  std::ofstream(dir / "runs.csv") << runs;
+    in.close();
+    std::ofstream(dir / "runs.csv") << runs;
+  };
+  CHECK(load_here(dir).runs[0].warm_at_start == m.runs[0].warm_at_start);
+  cut_columns(1);
+  CHECK(load_here(dir).runs[0].warm_at_start == -1);
+  CHECK(load_here(dir).runs[0].others_busy_cores != -1.0);
+  cut_columns(3);
   CHECK(load_here(dir).runs[0].others_busy_cores == -1.0);
 
   std::ofstream(dir / "phases.csv", std::ios::app) << "c,1,1,1,read,zero,1.0\n";
@@ -152,7 +160,7 @@ TEST_CASE("validate --here measurements are read back as written, and a bad file
   CHECK_THROWS_WITH(load_here(dir), Catch::Contains("phases.csv:2: case d repetition 1 is not in runs.csv"));
   const std::string runs_csv = here_files(m)[1].second;
   std::ofstream(dir / "runs.csv") << runs_csv.substr(0, runs_csv.find('\n') + 1) << "c,1\n";  // its header, and a short row
-  CHECK_THROWS_WITH(load_here(dir), Catch::Contains("runs.csv:2: 2 fields, expected 15"));
+  CHECK_THROWS_WITH(load_here(dir), Catch::Contains("runs.csv:2: 2 fields, expected 16"));
   std::filesystem::remove(dir / "platform.toml");
   CHECK_THROWS_AS(load_here(dir), ConfigError);
   std::filesystem::remove_all(dir);

@@ -183,17 +183,16 @@ CacheSettings read_page_cache(const toml::table* table, const TomlReader& parent
   return s;
 }
 
+// A rate whose 0 means "not modelled" (`zero`, said in the message): absent keeps `rate`.
+void read_rate_or_zero(TomlReader& r, const char* key, double& rate, const char* zero) {
+  rate = r.optional_bandwidth(key).value_or(rate);
+  if (rate > 0.0 && rate < units::kMinBandwidth) r.fail(key, fmt::format("must be 0 ({}) or at least 1 B/s, got {} B/s", zero, rate));
+}
+
 // Free page reporting (docs/model.md §6.16): absent or "0 MB/s", no memory is taken back.
 void read_free_page_reporting(TomlReader& r, HostConfig& h) {
-  MemoryBandwidth& bw = h.memory_bandwidth;
-  bw.cold_fault = r.optional_bandwidth("memory_cold_fault_bw").value_or(bw.cold_fault);
-  if (bw.cold_fault > 0.0 && bw.cold_fault < units::kMinBandwidth) {
-    r.fail("memory_cold_fault_bw", fmt::format("must be 0 (no memory taken back) or at least 1 B/s, got {} B/s", bw.cold_fault));
-  }
-  bw.aggregate_cold_fault = r.optional_bandwidth("memory_aggregate_cold_fault_bw").value_or(bw.aggregate_cold_fault);
-  if (bw.aggregate_cold_fault > 0.0 && bw.aggregate_cold_fault < units::kMinBandwidth) {
-    r.fail("memory_aggregate_cold_fault_bw", fmt::format("must be 0 (memory_cold_fault_bw x cores) or at least 1 B/s, got {} B/s", bw.aggregate_cold_fault));
-  }
+  read_rate_or_zero(r, "memory_cold_fault_bw", h.memory_bandwidth.cold_fault, "no memory taken back");
+  read_rate_or_zero(r, "memory_aggregate_cold_fault_bw", h.memory_bandwidth.aggregate_cold_fault, "memory_cold_fault_bw x cores");
   h.page_reporting_delay = r.optional_duration("page_reporting_delay").value_or(h.page_reporting_delay);
   if (!(h.page_reporting_delay >= 0.0)) r.fail("page_reporting_delay", "must be >= 0 s");
   h.memory_freed_at_start = r.optional_size("memory_freed_at_start").value_or(h.memory_freed_at_start);
@@ -257,16 +256,8 @@ HostConfig read_host(const toml::table& table, std::string path, std::size_t ind
   for (const auto& [key, value] : {std::pair{"memory_aggregate_read_bw", bw.aggregate_read}, std::pair{"memory_aggregate_write_bw", bw.aggregate_write}}) {
     if (r.has(key) && value < units::kMinBandwidth) r.fail(key, fmt::format("must be at least 1 B/s, got {} B/s", value));
   }
-  // Absent or "0 MB/s": first touch of fresh memory costs nothing.
-  bw.first_touch = r.optional_bandwidth("memory_first_touch_bw").value_or(bw.first_touch);
-  if (bw.first_touch > 0.0 && bw.first_touch < units::kMinBandwidth) {
-    r.fail("memory_first_touch_bw", fmt::format("must be 0 (free) or at least 1 B/s, got {} B/s", bw.first_touch));
-  }
-  // Absent or "0 MB/s": writes into reclaimed pages as fast as into free ones.
-  bw.reclaimed_write = r.optional_bandwidth("memory_reclaimed_write_bw").value_or(bw.reclaimed_write);
-  if (bw.reclaimed_write > 0.0 && bw.reclaimed_write < units::kMinBandwidth) {
-    r.fail("memory_reclaimed_write_bw", fmt::format("must be 0 (as into free pages) or at least 1 B/s, got {} B/s", bw.reclaimed_write));
-  }
+  read_rate_or_zero(r, "memory_first_touch_bw", bw.first_touch, "free");
+  read_rate_or_zero(r, "memory_reclaimed_write_bw", bw.reclaimed_write, "as into free pages");
   read_free_page_reporting(r, h);
   const toml::table* page_cache = r.optional_table("page_cache");
   h.cache = read_page_cache(page_cache, r, h.cache, file);

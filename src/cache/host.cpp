@@ -90,10 +90,7 @@ FileRef Host::add_file(std::string name, std::int64_t size, DiskRef disk_ref, bo
   }
   const cache::FileId id = impl_->files.add(std::move(name), size, d);
   impl_->cache.add_file(id);
-  if (cached_at_start) {
-    impl_->cache.add_clean(id, size, impl_->sim.now());
-    impl_->io.cached_at_start();
-  }
+  if (cached_at_start) impl_->io.cache_at_start(id, size);
   return FileRef{id};
 }
 

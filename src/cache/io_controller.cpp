@@ -56,8 +56,16 @@ void IoController::report_free_pages(double delay, std::int64_t warm) {
   cache_->set_free_memory_hook([this](std::int64_t free) { reporting_->observe(free, sim_->now()); });
 }
 
-void IoController::cached_at_start() {
-  if (reporting_) reporting_->rebase(cache_->free());
+void IoController::cache_at_start(FileId file, std::int64_t bytes) {
+  if (!reporting_) {
+    cache_->add_clean(file, bytes, sim_->now());
+    return;
+  }
+  // Cached before the run: its memory was neither freed nor taken by the run.
+  cache_->set_free_memory_hook({});
+  cache_->add_clean(file, bytes, sim_->now());
+  reporting_->rebase(cache_->free());
+  cache_->set_free_memory_hook([this](std::int64_t free) { reporting_->observe(free, sim_->now()); });
 }
 
 Task<void> IoController::wait_for_progress() {

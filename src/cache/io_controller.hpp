@@ -94,8 +94,9 @@ class IoController {
   /// touches into it slower (Memory's cold_fault): `warm` bytes of the free memory were freed
   /// just before, the rest is cold. Call once the machine is at rest (files cached).
   void report_free_pages(double delay, std::int64_t warm);
-  /// A file was cached before the run started: its memory was never free during the run.
-  void cached_at_start();
+  /// Caches `bytes` of `file` clean before the run starts: memory neither freed nor taken by
+  /// the run (free page reporting does not see it).
+  void cache_at_start(FileId file, std::int64_t bytes);
 
   /// Bytes written to devices to make room or to respect the dirty ratio (not counting the
   /// periodic flusher's).

@@ -186,3 +186,18 @@ TEST_CASE("a cached read into a new buffer of cold memory pays the host's faults
   sim.run_until(10.0);
   CHECK(end == Catch::Detail::Approx(0.3).epsilon(1e-9));
 }
+
+TEST_CASE("files cached before the start take no memory freed just before it", "[cache][cold][host]") {
+  // 100 MB freed just before the start and a 500 MB file cached at the start: the write at 0
+  // still finds the 100 MB warm, 0.1 s (had the cached file taken them: 0.3 s).
+  Simulator sim;
+  FairShare share(sim);
+  Host host(sim, share, cold_host(500e6, 100 * MB));
+  const DiskRef disk = host.add_disk("d", 100e6, 100e6);
+  host.add_file("cached", 500 * MB, disk, true);
+  const FileRef file = host.add_file("out", 100 * MB, disk);
+  double end = 0;
+  sim.spawn(write_at(sim, host, file, 0.0, end));
+  sim.run_until(10.0);
+  CHECK(end == Catch::Detail::Approx(0.1).epsilon(1e-9));
+}

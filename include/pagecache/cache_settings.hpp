@@ -82,6 +82,12 @@ struct CacheSettings {
   /// until 2026-12-03: copies take memory bandwidth only. Off in the linux profile too (see
   /// docs/linux-profile.md).
   bool copies_hold_cores = false;
+  /// The page cache allocates multi-page folios (mm/filemap.c, __filemap_get_folio with the
+  /// write's or readahead's order; ext4 and xfs on Linux 6.x), so single pages an
+  /// application's buffer freed serve other buffers, and the page cache only when no other
+  /// free memory is left. It matters only where freed memory goes cold (free page reporting,
+  /// docs/model.md §6.16). Off: any free memory serves any allocation.
+  bool large_folios = true;
 
   /// The paper's model as WRENCH-cache implements it: dirty ratio 0.4, 5 s interval, 30 s
   /// expiry, and WRENCH-cache's reading of the paper where the paper is ambiguous.
@@ -102,6 +108,7 @@ struct CacheSettings {
     s.reclaim_may_take_file_being_read = false;
     s.flush_splits_in_place = false;
     s.balance_after_every_change = false;
+    s.large_folios = false;
     return s;
   }
   /// The kernel's behaviour with its default knobs.

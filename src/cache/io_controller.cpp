@@ -52,8 +52,8 @@ bool IoController::throttles_writers() const noexcept { return cache_->policy().
 void IoController::machine_at_rest() { throttle_.at_rest(); }
 
 void IoController::report_free_pages(double delay, std::int64_t warm) {
-  reporting_.emplace(cache_->free(), warm, delay);
-  cache_->set_free_memory_hook([this](std::int64_t free) { reporting_->observe(free, sim_->now()); });
+  reporting_.emplace(cache_->free(), cache_->anonymous(), warm, delay, cache_->policy().large_folios());
+  cache_->set_free_memory_hook([this](std::int64_t free, std::int64_t anonymous) { reporting_->observe(free, anonymous, sim_->now()); });
 }
 
 void IoController::cache_at_start(FileId file, std::int64_t bytes) {
@@ -64,8 +64,8 @@ void IoController::cache_at_start(FileId file, std::int64_t bytes) {
   // Cached before the run: its memory was neither freed nor taken by the run.
   cache_->set_free_memory_hook({});
   cache_->add_clean(file, bytes, sim_->now());
-  reporting_->rebase(cache_->free());
-  cache_->set_free_memory_hook([this](std::int64_t free) { reporting_->observe(free, sim_->now()); });
+  reporting_->rebase(cache_->free(), cache_->anonymous());
+  cache_->set_free_memory_hook([this](std::int64_t free, std::int64_t anonymous) { reporting_->observe(free, anonymous, sim_->now()); });
 }
 
 Task<void> IoController::wait_for_progress() {

@@ -77,7 +77,7 @@ class PageCache {
   void set_observer(std::function<void()> observer) { observer_ = std::move(observer); }
   /// Calls `hook` with the free memory after every change of the memory state (free page
   /// reporting watches it).
-  void set_free_memory_hook(std::function<void(std::int64_t free)> hook) { free_memory_hook_ = std::move(hook); }
+  void set_free_memory_hook(std::function<void(std::int64_t free, std::int64_t anonymous)> hook) { free_memory_hook_ = std::move(hook); }
   /// Runs check_invariants() after every mutating operation; on by default in debug builds.
   void set_checking(bool on) noexcept { checking_ = on; }
 
@@ -376,7 +376,7 @@ class PageCache {
   std::uint64_t next_token_ = 1;
   std::int64_t evicted_total_ = 0;
   std::int64_t peak_dirty_ = 0;
-  std::function<void(std::int64_t)> free_memory_hook_;
+  std::function<void(std::int64_t, std::int64_t)> free_memory_hook_;
   std::function<void()> observer_;
   std::function<void()> progress_hook_;
   Tracer tracer_;

@@ -77,6 +77,9 @@ class Policy {
   // --- The host ---------------------------------------------------------------------------
   /// Whether copies into and out of the cache hold a core (Memory::copy_on). Not by default.
   virtual bool copies_hold_cores() const noexcept { return false; }
+  /// Whether the page cache allocates multi-page folios, which memory freed by applications'
+  /// buffers (single pages) cannot serve (FreePageReporting). Not by default.
+  virtual bool large_folios() const noexcept { return false; }
 
   // --- Dirty limits -----------------------------------------------------------------------
   /// Memory the dirty ratios are fractions of.

@@ -117,9 +117,18 @@ std::string activity_notes(const HereMeasurements& m) {
   }
   if (steal > 2.0) out += fmt::format("note: the hypervisor took up to {:.1f} % of the CPUs' time during a run (steal)\n", steal);
   if (reported > 0) {
+    // Set, not in a comment: a line whose first word is the key.
+    bool modelled = false;
+    std::istringstream lines(m.platform_toml);
+    for (std::string line; std::getline(lines, line);) {
+      const auto first = line.find_first_not_of(" \t");
+      if (first != std::string::npos && line.compare(first, 20, "memory_cold_fault_bw") == 0) modelled = true;
+    }
     out += fmt::format("note: {:.1f} GB of free memory went back to the virtual machine's host during the runs (free page reporting): a "
-                       "later first touch of it waits for the host, which pcsim does not model\n",
-                       reported / GB);
+                       "later first touch of it waits for the host, {}\n",
+                       reported / GB,
+                       modelled ? "which pcsim models with the platform's memory_cold_fault_bw (docs/model.md §6.16)"
+                                : "which pcsim does not model: the platform has no memory_cold_fault_bw");
   }
   // The calibration's notes, kept in the platform file.
   std::istringstream platform(m.platform_toml);

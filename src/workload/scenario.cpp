@@ -41,7 +41,8 @@ std::vector<std::pair<std::string, bool*>> cache_switches(CacheSettings& s) {
           {"reclaim_may_take_file_being_read", &s.reclaim_may_take_file_being_read},
           {"flush_splits_in_place", &s.flush_splits_in_place},
           {"balance_after_every_change", &s.balance_after_every_change},
-          {"copies_hold_cores", &s.copies_hold_cores}};
+          {"copies_hold_cores", &s.copies_hold_cores},
+          {"large_folios", &s.large_folios}};
 }
 
 }  // namespace pagecache

@@ -54,6 +54,7 @@ class KernelPolicy final : public Policy {
 
   // The copy is a memcpy by the application's thread (copy_page_to_iter, copy_page_from_iter).
   bool copies_hold_cores() const noexcept override { return s_.copies_hold_cores; }
+  bool large_folios() const noexcept override { return s_.large_folios; }
 
   // global_dirtyable_memory: free + file pages; copies into the cache in flight (reserved)
   // are file pages already, as the kernel dirties pages one by one while the copy runs.

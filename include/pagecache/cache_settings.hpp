@@ -78,9 +78,8 @@ struct CacheSettings {
   /// WRENCH-cache: after reads only.
   bool balance_after_every_change = true;
   /// Copies into and out of the page cache hold a core of their host while they run,
-  /// competing with computations for the cores (Memory::copy_on). Off, as the paper and
-  /// until 2026-12-03: copies take memory bandwidth only. Off in the linux profile too (see
-  /// docs/linux-profile.md).
+  /// competing with computations for the cores (Memory::copy_on). Off, as the paper: copies
+  /// take memory bandwidth only. Off in the linux profile too (see docs/linux-profile.md).
   bool copies_hold_cores = false;
   /// The page cache allocates multi-page folios (mm/filemap.c, __filemap_get_folio with the
   /// write's or readahead's order; ext4 and xfs on Linux 6.x), so single pages an

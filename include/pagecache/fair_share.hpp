@@ -16,18 +16,8 @@
 //   - a flow crossing a disk and a link runs at the rate of the more loaded of the two;
 //   - a memory copy is capped by its per-flow bound until the aggregate saturates.
 //
-// Rates change only when the set of flows on a resource changes. For a resource whose flows
-// all cross it alone, starting or finishing a flow costs O(log n) (virtual-time processor
-// sharing: the flows' progress is a shared virtual clock, and only the next completion is in
-// the event queue). Flows that cross several resources are solved by progressive filling over
-// their connected component, in classes of interchangeable flows (same resources, costs,
-// bound and weight: max-min gives them one rate): O(classes in it) per change, plus O(log n)
-// for the flow's place in its class. N applications on one NFS client make a few classes;
-// N clients of one server make N, but a change on one client leaves out the server while the
-// server stays below capacity (it is then no flow's bottleneck), and solves that client only;
-// once the server saturates and bottlenecks many classes it becomes a hub (storage/hub.hpp):
-// a change solves the client's part with the rest of the server folded into one flow, and the
-// flows it bottlenecks progress on one clock, O(client + log N).
+// Rates change only when the set of flows on a resource changes; how a change is solved and
+// what it costs (processor sharing, classes of flows, hubs) is in docs/model.md §5.
 
 #include <pagecache/simulator.hpp>
 

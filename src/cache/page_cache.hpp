@@ -243,6 +243,13 @@ class PageCache {
   const Block& block(BlockId id) const noexcept { return blocks_[id]; }
 
  private:
+  // check_invariants' parts (page_cache_check.cpp). `most`: the blocks in use, more steps
+  // than which is a cycle.
+  std::size_t check_file(std::size_t f, std::size_t most) const;  // returns the file's blocks
+  void check_groups() const;
+  void check_dirty_by_age(std::size_t most) const;
+  void check_expiry_scan() const;
+
   // A file's lists and counters, in one cache line: with many files an entry is out of cache
   // whenever it is touched.
   using FileOrder = BlockList<&Block::in_file, false>;  // its block count is the entry's

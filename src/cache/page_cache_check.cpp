@@ -23,74 +23,83 @@ void PageCache::check_invariants() const {
   // Every walk below meets each block at most once: more steps than blocks is a cycle.
   const std::size_t most = blocks_.in_use();
   std::size_t blocks_in_files = 0;
-  for (std::size_t f = 0; f < files_.size(); ++f) {
-    const FileEntry& entry = files_[f];
-    std::int64_t bytes[2] = {0, 0};
-    std::int64_t dirty_bytes = 0;
-    std::size_t blocks = 0;
-    for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
-      const FileOrder& flist = kind == ListKind::Inactive ? entry.inactive : entry.active;
-      // Its clean list holds its clean blocks in the list, in order; and its place in
-      // reclaimable_.
-      const FileCleanOrder& clean = kind == ListKind::Inactive ? entry.clean_inactive : entry.clean_active;
-      auto clean_it = clean.range(blocks_).begin();
-      const auto clean_end = clean.range(blocks_).end();
-      if (index_clean_) {
-        for (const Block& b : flist.range(blocks_)) {
-          if (b.state != BlockState::Clean) continue;
-          PC_ASSERT_MSG(clean_it != clean_end && &*clean_it == &b, fmt::format("file {}: clean list out of order", f));
-          ++clean_it;
-        }
-      }
-      PC_ASSERT_MSG(clean_it == clean_end, fmt::format("file {}: a block on its clean list in error", f));
-      if (!clean.empty() && entry.writers == 0) {
-        const FileHeap& files = reclaimable_[static_cast<std::size_t>(kind)];
-        const auto file = static_cast<FileId>(f);
-        PC_ASSERT_MSG(files.contains(file) && files.key(file) <= blocks_[clean.front()].order,
-                      fmt::format("file {} missing from the reclaimable files, or its key too high", f));
-      }
-      // The file's list follows the LRU list's order.
-      const auto lru = list(kind).blocks();
-      auto lru_it = lru.begin();
-      for (const Block& b : flist.range(blocks_)) {
-        PC_ASSERT_MSG(blocks < most, fmt::format("file {}: its lists hold more blocks than there are (a cycle?)", f));
-        PC_ASSERT_MSG(b.file == f && b.list == kind, "block on the wrong file or list");
-        while (lru_it != lru.end() && &*lru_it != &b) ++lru_it;
-        PC_ASSERT_MSG(lru_it != lru.end(), "file list out of LRU order");
-        bytes[static_cast<int>(kind)] += b.size;
-        if (b.state == BlockState::Dirty) dirty_bytes += b.size;
-        ++blocks;
-      }
-    }
-    PC_ASSERT_MSG(bytes[0] == entry.inactive_bytes && bytes[1] == entry.active_bytes,
-                  fmt::format("file {} byte counters disagree with its blocks", f));
-    PC_ASSERT(dirty_bytes == entry.dirty_bytes);
-    PC_ASSERT_MSG(entry.blocks == blocks, fmt::format("file {}: block count disagrees with its lists", f));
-    blocks_in_files += blocks;
-  }
+  for (std::size_t f = 0; f < files_.size(); ++f) blocks_in_files += check_file(f, most);
   PC_ASSERT_MSG(blocks_in_files == inactive_.size() + active_.size(), "a block is missing from its file's list");
-  if (!groups_.empty()) {
-    // Each group's charges are its files' cached bytes and its anonymous memory.
-    std::vector<std::int64_t> charged(groups_.size(), 0);
-    std::vector<std::int64_t> unclean(groups_.size(), 0);
-    std::int64_t anonymous = 0;
-    for (std::size_t f = 0; f < files_.size(); ++f) {
-      const auto file = static_cast<FileId>(f);
-      charged[group_of(file)] += cached(file);
-      unclean[group_of(file)] += dirty(file) + writeback(file);
-    }
-    for (std::size_t g = 0; g < groups_.size(); ++g) {
-      PC_ASSERT_MSG(groups_[g].cached == charged[g], fmt::format("group {}: {} bytes charged, its files hold {}", g, groups_[g].cached, charged[g]));
-      PC_ASSERT_MSG(groups_[g].dirty == unclean[g], fmt::format("group {}: {} bytes dirty or in writeback, its files hold {}", g, groups_[g].dirty, unclean[g]));
-      anonymous += groups_[g].anonymous;
-    }
-    PC_ASSERT_MSG(anonymous == anonymous_, "the groups' anonymous memory is not the host's");
-  }
+  if (!groups_.empty()) check_groups();
   PC_ASSERT(target_ == kAnyGroup);
   for (const FileHeap& files : reclaimable_) {
     files.check();
     PC_ASSERT(index_clean_ || files.empty());
   }
+  check_dirty_by_age(most);
+  if (expiry_scan_.after != kNoBlock) check_expiry_scan();
+}
+
+std::size_t PageCache::check_file(std::size_t f, std::size_t most) const {
+  const FileEntry& entry = files_[f];
+  std::int64_t bytes[2] = {0, 0};
+  std::int64_t dirty_bytes = 0;
+  std::size_t blocks = 0;
+  for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
+    const FileOrder& flist = kind == ListKind::Inactive ? entry.inactive : entry.active;
+    // Its clean list holds its clean blocks in the list, in order; and its place in
+    // reclaimable_.
+    const FileCleanOrder& clean = kind == ListKind::Inactive ? entry.clean_inactive : entry.clean_active;
+    auto clean_it = clean.range(blocks_).begin();
+    const auto clean_end = clean.range(blocks_).end();
+    if (index_clean_) {
+      for (const Block& b : flist.range(blocks_)) {
+        if (b.state != BlockState::Clean) continue;
+        PC_ASSERT_MSG(clean_it != clean_end && &*clean_it == &b, fmt::format("file {}: clean list out of order", f));
+        ++clean_it;
+      }
+    }
+    PC_ASSERT_MSG(clean_it == clean_end, fmt::format("file {}: a block on its clean list in error", f));
+    if (!clean.empty() && entry.writers == 0) {
+      const FileHeap& files = reclaimable_[static_cast<std::size_t>(kind)];
+      const auto file = static_cast<FileId>(f);
+      PC_ASSERT_MSG(files.contains(file) && files.key(file) <= blocks_[clean.front()].order,
+                    fmt::format("file {} missing from the reclaimable files, or its key too high", f));
+    }
+    // The file's list follows the LRU list's order.
+    const auto lru = list(kind).blocks();
+    auto lru_it = lru.begin();
+    for (const Block& b : flist.range(blocks_)) {
+      PC_ASSERT_MSG(blocks < most, fmt::format("file {}: its lists hold more blocks than there are (a cycle?)", f));
+      PC_ASSERT_MSG(b.file == f && b.list == kind, "block on the wrong file or list");
+      while (lru_it != lru.end() && &*lru_it != &b) ++lru_it;
+      PC_ASSERT_MSG(lru_it != lru.end(), "file list out of LRU order");
+      bytes[static_cast<int>(kind)] += b.size;
+      if (b.state == BlockState::Dirty) dirty_bytes += b.size;
+      ++blocks;
+    }
+  }
+  PC_ASSERT_MSG(bytes[0] == entry.inactive_bytes && bytes[1] == entry.active_bytes,
+                fmt::format("file {} byte counters disagree with its blocks", f));
+  PC_ASSERT(dirty_bytes == entry.dirty_bytes);
+  PC_ASSERT_MSG(entry.blocks == blocks, fmt::format("file {}: block count disagrees with its lists", f));
+  return blocks;
+}
+
+// Each group's charges are its files' cached bytes and its anonymous memory.
+void PageCache::check_groups() const {
+  std::vector<std::int64_t> charged(groups_.size(), 0);
+  std::vector<std::int64_t> unclean(groups_.size(), 0);
+  std::int64_t anonymous = 0;
+  for (std::size_t f = 0; f < files_.size(); ++f) {
+    const auto file = static_cast<FileId>(f);
+    charged[group_of(file)] += cached(file);
+    unclean[group_of(file)] += dirty(file) + writeback(file);
+  }
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    PC_ASSERT_MSG(groups_[g].cached == charged[g], fmt::format("group {}: {} bytes charged, its files hold {}", g, groups_[g].cached, charged[g]));
+    PC_ASSERT_MSG(groups_[g].dirty == unclean[g], fmt::format("group {}: {} bytes dirty or in writeback, its files hold {}", g, groups_[g].dirty, unclean[g]));
+    anonymous += groups_[g].anonymous;
+  }
+  PC_ASSERT_MSG(anonymous == anonymous_, "the groups' anonymous memory is not the host's");
+}
+
+void PageCache::check_dirty_by_age(std::size_t most) const {
   std::size_t dirty_blocks = 0;
   double previous = -std::numeric_limits<double>::infinity();
   for (const Block& b : dirty_by_age_.range(blocks_)) {
@@ -102,21 +111,23 @@ void PageCache::check_invariants() const {
   }
   PC_ASSERT_MSG(dirty_blocks == inactive_.blocks_in(BlockState::Dirty) + active_.blocks_in(BlockState::Dirty),
                 "a dirty block is missing from the list by age");
-  if (expiry_scan_.after != kNoBlock) {
-    const Block& after = blocks_[expiry_scan_.after];
-    PC_ASSERT_MSG(after.state == BlockState::Dirty, "the expiry search stopped at a block no longer dirty");
-    bool reached = false;
-    for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
-      for (const Block& b : list(kind).blocks()) {
-        if (&b == &after) reached = true;
-        if (reached) break;
-        PC_ASSERT_MSG(b.state != BlockState::Dirty || b.entry_time > expiry_scan_.cutoff,
-                      "an expired block lies before where the expiry search resumes");
-      }
+}
+
+// Where the expiry search resumes: a dirty block, with no expired block before it.
+void PageCache::check_expiry_scan() const {
+  const Block& after = blocks_[expiry_scan_.after];
+  PC_ASSERT_MSG(after.state == BlockState::Dirty, "the expiry search stopped at a block no longer dirty");
+  bool reached = false;
+  for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
+    for (const Block& b : list(kind).blocks()) {
+      if (&b == &after) reached = true;
       if (reached) break;
+      PC_ASSERT_MSG(b.state != BlockState::Dirty || b.entry_time > expiry_scan_.cutoff,
+                    "an expired block lies before where the expiry search resumes");
     }
-    PC_ASSERT_MSG(reached, "the expiry search stopped at a block not in the lists");
+    if (reached) break;
   }
+  PC_ASSERT_MSG(reached, "the expiry search stopped at a block not in the lists");
 }
 
 }  // namespace pagecache::cache

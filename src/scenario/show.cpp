@@ -48,68 +48,71 @@ void write_task(std::string& out, const std::string& table, const TaskSpec& t, b
   if (t.memory_limits.high > 0) out += fmt::format("memory_high = {}\n", quoted(units::format_size(t.memory_limits.high)));
 }
 
-}  // namespace
+// A platform file shown alone may not give what a run needs (load_platform): the key is left
+// for the user to fill in.
+std::string size_or_ask(const char* key, std::int64_t v) {
+  return v > 0 ? fmt::format("{} = {}\n", key, quoted(units::format_size(v))) : fmt::format("# {} = ?  (not in the platform file)\n", key);
+}
+std::string rate_or_ask(const char* key, double v) {
+  return v > 0.0 ? fmt::format("{} = {}\n", key, quoted(units::format_bandwidth(v))) : fmt::format("# {} = ?  (not in the platform file)\n", key);
+}
 
-std::string to_toml(const Scenario& s) {
-  // A comment ends at a line break and may hold no control character: the path is printable().
-  std::string out = fmt::format("# resolved from {}\n", text::printable(s.source));
-  if (!s.title.empty()) out += fmt::format("title = {}\n", quoted(s.title));
-  out += fmt::format("profile = {}\nmemory_sample_interval = {}\ntrace = {}\n", quoted(to_string(s.profile)),
-                     quoted(units::format_duration(s.memory_sample_interval)), s.trace);
-  for (const HostConfig& h : s.hosts) {
-    // A platform file shown alone may not give what a run needs (load_platform): the key is
-    // left for the user to fill in.
-    const auto size = [](const char* key, std::int64_t v) {
-      return v > 0 ? fmt::format("{} = {}\n", key, quoted(units::format_size(v))) : fmt::format("# {} = ?  (not in the platform file)\n", key);
-    };
-    const auto rate = [](const char* key, double v) {
-      return v > 0.0 ? fmt::format("{} = {}\n", key, quoted(units::format_bandwidth(v))) : fmt::format("# {} = ?  (not in the platform file)\n", key);
-    };
-    out += fmt::format("\n[[hosts]]\nname = {}\ncores = {}\n", quoted(h.name), h.cores);
-    out += size("memory", h.memory);
-    out += fmt::format("memory_in_use = {}\n", quoted(units::format_size(h.memory_in_use)));
-    out += rate("memory_read_bw", h.memory_bandwidth.read) + rate("memory_write_bw", h.memory_bandwidth.write) +
-           rate("memory_aggregate_read_bw", h.memory_bandwidth.aggregate_read) +
-           rate("memory_aggregate_write_bw", h.memory_bandwidth.aggregate_write);
-    out += fmt::format("memory_first_touch_bw = {}\n", quoted(units::format_bandwidth(h.memory_bandwidth.first_touch)));
-    if (h.memory_bandwidth.reclaimed_write > 0.0) {
-      out += fmt::format("memory_reclaimed_write_bw = {}\n", quoted(units::format_bandwidth(h.memory_bandwidth.reclaimed_write)));
-    }
-    if (h.memory_bandwidth.cold_fault > 0.0) {
-      out += fmt::format("memory_cold_fault_bw = {}\npage_reporting_delay = {}\nmemory_freed_at_start = {}\n",
-                         quoted(units::format_bandwidth(h.memory_bandwidth.cold_fault)), quoted(units::format_duration(h.page_reporting_delay)),
-                         quoted(units::format_size(h.memory_freed_at_start)));
-      if (h.memory_bandwidth.aggregate_cold_fault > 0.0) {
-        out += fmt::format("memory_aggregate_cold_fault_bw = {}\n", quoted(units::format_bandwidth(h.memory_bandwidth.aggregate_cold_fault)));
-      }
-    }
-    out += fmt::format(
-        "\n[hosts.page_cache]\nmode = {}\ndirty_ratio = {}\ndirty_background_ratio = {}\ndirty_expire = {}\nwriteback_interval = {}\n",
-        quoted(h.cache.write_mode == WriteMode::Writeback ? "writeback" : "writethrough"), h.cache.dirty_ratio,
-        h.cache.dirty_background_ratio, quoted(units::format_duration(h.cache.dirty_expire)),
-        quoted(units::format_duration(h.cache.writeback_interval)));
-    out += fmt::format("policy = {}\n", quoted(h.cache.policy));
-    CacheSettings settings = h.cache;
-    if (settings.policy == "kernel") {
-      for (const auto& [key, flag] : cache_switches(settings)) out += fmt::format("{} = {}\n", key, *flag);
-    }
-    for (const DiskSpec& d : h.disks) {
-      out += fmt::format("\n[[hosts.disks]]\nname = {}\nread_bw = {}\nwrite_bw = {}\n", quoted(d.name),
-                         quoted(units::format_bandwidth(d.read_bw)), quoted(units::format_bandwidth(d.write_bw)));
-      if (d.aggregate_read_bw > 0.0) out += fmt::format("aggregate_read_bw = {}\n", quoted(units::format_bandwidth(d.aggregate_read_bw)));
-      if (d.aggregate_write_bw > 0.0) out += fmt::format("aggregate_write_bw = {}\n", quoted(units::format_bandwidth(d.aggregate_write_bw)));
-      out += fmt::format("capacity = {}\n",
-                         quoted(units::format_size(d.capacity)));
-      // Only when set, as the scenarios that predate them never give them.
-      if (d.request_latency > 0.0) out += fmt::format("request_latency = {}\n", quoted(units::format_duration(d.request_latency)));
-      if (d.read_ahead > 0) out += fmt::format("read_ahead = {}\n", quoted(units::format_size(d.read_ahead)));
-      if (d.max_request > 0) out += fmt::format("max_request = {}\n", quoted(units::format_size(d.max_request)));
-      if (d.write_cache > 0) {
-        out += fmt::format("write_cache = {}\nsustained_write_bw = {}\n", quoted(units::format_size(d.write_cache)),
-                           quoted(units::format_bandwidth(d.sustained_write_bw)));
-      }
+void write_memory(std::string& out, const HostConfig& h) {
+  out += size_or_ask("memory", h.memory);
+  out += fmt::format("memory_in_use = {}\n", quoted(units::format_size(h.memory_in_use)));
+  out += rate_or_ask("memory_read_bw", h.memory_bandwidth.read) + rate_or_ask("memory_write_bw", h.memory_bandwidth.write) +
+         rate_or_ask("memory_aggregate_read_bw", h.memory_bandwidth.aggregate_read) +
+         rate_or_ask("memory_aggregate_write_bw", h.memory_bandwidth.aggregate_write);
+  out += fmt::format("memory_first_touch_bw = {}\n", quoted(units::format_bandwidth(h.memory_bandwidth.first_touch)));
+  if (h.memory_bandwidth.reclaimed_write > 0.0) {
+    out += fmt::format("memory_reclaimed_write_bw = {}\n", quoted(units::format_bandwidth(h.memory_bandwidth.reclaimed_write)));
+  }
+  if (h.memory_bandwidth.cold_fault > 0.0) {
+    out += fmt::format("memory_cold_fault_bw = {}\npage_reporting_delay = {}\nmemory_freed_at_start = {}\n",
+                       quoted(units::format_bandwidth(h.memory_bandwidth.cold_fault)), quoted(units::format_duration(h.page_reporting_delay)),
+                       quoted(units::format_size(h.memory_freed_at_start)));
+    if (h.memory_bandwidth.aggregate_cold_fault > 0.0) {
+      out += fmt::format("memory_aggregate_cold_fault_bw = {}\n", quoted(units::format_bandwidth(h.memory_bandwidth.aggregate_cold_fault)));
     }
   }
+}
+
+void write_page_cache(std::string& out, const CacheSettings& cache) {
+  out += fmt::format(
+      "\n[hosts.page_cache]\nmode = {}\ndirty_ratio = {}\ndirty_background_ratio = {}\ndirty_expire = {}\nwriteback_interval = {}\n",
+      quoted(cache.write_mode == WriteMode::Writeback ? "writeback" : "writethrough"), cache.dirty_ratio, cache.dirty_background_ratio,
+      quoted(units::format_duration(cache.dirty_expire)), quoted(units::format_duration(cache.writeback_interval)));
+  out += fmt::format("policy = {}\n", quoted(cache.policy));
+  CacheSettings settings = cache;
+  if (settings.policy == "kernel") {
+    for (const auto& [key, flag] : cache_switches(settings)) out += fmt::format("{} = {}\n", key, *flag);
+  }
+}
+
+void write_disk(std::string& out, const DiskSpec& d) {
+  out += fmt::format("\n[[hosts.disks]]\nname = {}\nread_bw = {}\nwrite_bw = {}\n", quoted(d.name), quoted(units::format_bandwidth(d.read_bw)),
+                     quoted(units::format_bandwidth(d.write_bw)));
+  if (d.aggregate_read_bw > 0.0) out += fmt::format("aggregate_read_bw = {}\n", quoted(units::format_bandwidth(d.aggregate_read_bw)));
+  if (d.aggregate_write_bw > 0.0) out += fmt::format("aggregate_write_bw = {}\n", quoted(units::format_bandwidth(d.aggregate_write_bw)));
+  out += fmt::format("capacity = {}\n", quoted(units::format_size(d.capacity)));
+  // Only when set, as the scenarios that predate them never give them.
+  if (d.request_latency > 0.0) out += fmt::format("request_latency = {}\n", quoted(units::format_duration(d.request_latency)));
+  if (d.read_ahead > 0) out += fmt::format("read_ahead = {}\n", quoted(units::format_size(d.read_ahead)));
+  if (d.max_request > 0) out += fmt::format("max_request = {}\n", quoted(units::format_size(d.max_request)));
+  if (d.write_cache > 0) {
+    out += fmt::format("write_cache = {}\nsustained_write_bw = {}\n", quoted(units::format_size(d.write_cache)),
+                       quoted(units::format_bandwidth(d.sustained_write_bw)));
+  }
+}
+
+void write_host(std::string& out, const HostConfig& h) {
+  out += fmt::format("\n[[hosts]]\nname = {}\ncores = {}\n", quoted(h.name), h.cores);
+  write_memory(out, h);
+  write_page_cache(out, h.cache);
+  for (const DiskSpec& d : h.disks) write_disk(out, d);
+}
+
+void write_network(std::string& out, const Scenario& s) {
   for (const LinkSpec& l : s.links) {
     out += fmt::format("\n[[links]]\nname = {}\nbandwidth = {}\nlatency = {}\nsharing = {}\n", quoted(l.name),
                        quoted(units::format_bandwidth(l.bandwidth)), quoted(units::format_duration(l.latency)),
@@ -119,10 +122,9 @@ std::string to_toml(const Scenario& s) {
   for (const RouteSpec& r : s.routes) {
     out += fmt::format("\n[[routes]]\nhosts = {}\nlinks = {}\n", list({r.host_a, r.host_b}), list(r.links));
   }
-  for (const FileSpec& f : s.files) {
-    out += fmt::format("\n[[files]]\nname = {}\nsize = {}\nhost = {}\ndisk = {}\ncached = {}\n", quoted(f.name),
-                       quoted(units::format_size(f.size)), quoted(f.host), quoted(f.disk), f.cached);
-  }
+}
+
+void write_work(std::string& out, const Scenario& s) {
   for (const AppSpec& a : s.apps) {
     out += fmt::format("\n[[apps]]\nname = {}\nhost = {}\n", quoted(a.name), quoted(a.host));
     if (a.memory_max > 0) out += fmt::format("memory_max = {}\n", quoted(units::format_size(a.memory_max)));
@@ -135,6 +137,23 @@ std::string to_toml(const Scenario& s) {
     else out += fmt::format("hosts = {}\n", list(w.hosts));
     for (const TaskSpec& t : w.tasks) write_task(out, "workflow.tasks", t, true);
   }
+}
+
+}  // namespace
+
+std::string to_toml(const Scenario& s) {
+  // A comment ends at a line break and may hold no control character: the path is printable().
+  std::string out = fmt::format("# resolved from {}\n", text::printable(s.source));
+  if (!s.title.empty()) out += fmt::format("title = {}\n", quoted(s.title));
+  out += fmt::format("profile = {}\nmemory_sample_interval = {}\ntrace = {}\n", quoted(to_string(s.profile)),
+                     quoted(units::format_duration(s.memory_sample_interval)), s.trace);
+  for (const HostConfig& h : s.hosts) write_host(out, h);
+  write_network(out, s);
+  for (const FileSpec& f : s.files) {
+    out += fmt::format("\n[[files]]\nname = {}\nsize = {}\nhost = {}\ndisk = {}\ncached = {}\n", quoted(f.name),
+                       quoted(units::format_size(f.size)), quoted(f.host), quoted(f.disk), f.cached);
+  }
+  write_work(out, s);
   return out;
 }
 

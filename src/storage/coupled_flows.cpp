@@ -127,8 +127,17 @@ bool FairShare::Impl::solve_component(const FlowClassKey& seed, bool leave_out_s
     return solve_component(seed, leave_out_slack);
   }
   if (component_classes.empty()) return true;
+  if (!make_problem()) return false;
+  solver.solve(problem, component_resources.size());
+  if (!left_out.empty() && !charge_left_out()) return false;
+  apply_rates();
+  recount_usage();
+  if (left_out.empty() && component_classes.size() > kHubAbove) form_hub_if_crowded();
+  return true;
+}
 
-  // A class of n flows is one flow of n times their weight and bound (see FlowClass).
+// A class of n flows is one flow of n times their weight and bound (see FlowClass).
+bool FairShare::Impl::make_problem() {
   problem.resize(component_classes.size());
   for (std::size_t i = 0; i < component_classes.size(); ++i) {
     FlowClass& c = *component_classes[i];
@@ -148,23 +157,28 @@ bool FairShare::Impl::solve_component(const FlowClassKey& seed, bool leave_out_s
     }
     if (p.usage_count == 0 && !std::isfinite(p.bound)) return false;
   }
-  solver.solve(problem, component_resources.size());
-  if (!left_out.empty()) {
-    for (std::size_t i = 0; i < component_classes.size(); ++i) {
-      const FlowClass& c = *component_classes[i];
-      const double change = problem[i].rate - c.contribution;
-      for (std::uint8_t u = 0; u < c.key.usage_count; ++u) {
-        ResourceState& r = resource(c.key.usages[u].resource);
-        if (r.local == kLeftOut) r.pending += c.key.usages[u].cost * change;
-      }
+  return true;
+}
+
+bool FairShare::Impl::charge_left_out() {
+  for (std::size_t i = 0; i < component_classes.size(); ++i) {
+    const FlowClass& c = *component_classes[i];
+    const double change = problem[i].rate - c.contribution;
+    for (std::uint8_t u = 0; u < c.key.usage_count; ++u) {
+      ResourceState& r = resource(c.key.usages[u].resource);
+      if (r.local == kLeftOut) r.pending += c.key.usages[u].cost * change;
     }
-    for (const ResourceState* r : left_out) {
-      if (r->usage + r->pending >= 1.0 - kSlack) return false;
-    }
-    for (ResourceState* r : left_out) r->usage += r->pending;
   }
-  // A class whose rate and first member are unchanged keeps its event: in a component of many
-  // clients of one server, most changes leave most classes as they were.
+  for (const ResourceState* r : left_out) {
+    if (r->usage + r->pending >= 1.0 - kSlack) return false;
+  }
+  for (ResourceState* r : left_out) r->usage += r->pending;
+  return true;
+}
+
+// A class whose rate and first member are unchanged keeps its event: in a component of many
+// clients of one server, most changes leave most classes as they were.
+void FairShare::Impl::apply_rates() {
   const double now = sim.now();
   for (std::size_t i = 0; i < component_classes.size(); ++i) {
     FlowClass& c = *component_classes[i];
@@ -175,6 +189,9 @@ bool FairShare::Impl::solve_component(const FlowClassKey& seed, bool leave_out_s
     c.rate = rate;
     schedule_head(c);
   }
+}
+
+void FairShare::Impl::recount_usage() {
   for (ResourceState* r : component_resources) {
     r->usage = 0.0;
     for (const FlowClass* c : r->classes) {
@@ -183,19 +200,19 @@ bool FairShare::Impl::solve_component(const FlowClassKey& seed, bool leave_out_s
       }
     }
   }
-  if (left_out.empty() && component_classes.size() > kHubAbove) {
-    // The resource bottlenecking the most classes, if many cross it: a hub from now on.
-    ResourceState* busiest = nullptr;
-    for (ResourceState* r : component_resources) r->slope = 0.0;
-    for (const detail::MaxMinFlow& p : problem) {
-      if (p.limit != detail::kByBound) component_resources[p.limit]->slope += 1.0;
-    }
-    for (ResourceState* r : component_resources) {
-      if (r->classes.size() > kHubAbove && r->slope > 0.0 && (busiest == nullptr || r->slope > busiest->slope)) busiest = r;
-    }
-    if (busiest != nullptr) form_hub(*busiest);
+}
+
+// The resource bottlenecking the most classes, if many cross it: a hub from now on.
+void FairShare::Impl::form_hub_if_crowded() {
+  ResourceState* busiest = nullptr;
+  for (ResourceState* r : component_resources) r->slope = 0.0;
+  for (const detail::MaxMinFlow& p : problem) {
+    if (p.limit != detail::kByBound) component_resources[p.limit]->slope += 1.0;
   }
-  return true;
+  for (ResourceState* r : component_resources) {
+    if (r->classes.size() > kHubAbove && r->slope > 0.0 && (busiest == nullptr || r->slope > busiest->slope)) busiest = r;
+  }
+  if (busiest != nullptr) form_hub(*busiest);
 }
 
 void FairShare::Impl::schedule_head(FlowClass& c) {

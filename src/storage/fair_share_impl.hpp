@@ -1,7 +1,8 @@
 #pragma once
-// FairShare::Impl: the state behind FairShare, shared by its two halves: fair_share.cpp (flows
-// starting and ending, resources crossed alone, the public interface) and coupled_flows.cpp
-// (flows coupling resources: classes, components, their solution).
+// FairShare::Impl: the state behind FairShare, shared by its three parts: fair_share.cpp (flows
+// starting and ending, resources crossed alone, the public interface), coupled_flows.cpp
+// (flows coupling resources: classes, components, their solution) and hub.cpp (saturated
+// resources many classes cross).
 
 #include <pagecache/fair_share.hpp>
 #include <pagecache/trace.hpp>
@@ -150,6 +151,14 @@ struct FairShare::Impl {
   }
   void solve_from(const detail::FlowClassKey& seed);
   bool solve_component(const detail::FlowClassKey& seed, bool leave_out_slack);
+  // solve_component's steps: the component's classes as the solver's problem (false: a class
+  // left with nothing to limit it); the left-out resources charged (false: one would
+  // saturate); the rates applied; usage recounted; a hub formed where many classes meet.
+  bool make_problem();
+  bool charge_left_out();
+  void apply_rates();
+  void recount_usage();
+  void form_hub_if_crowded();
   void schedule_head(detail::FlowClass& c);
   void finish_head(detail::FlowClass& c);
 

@@ -60,6 +60,13 @@ class MaxMinSolver {
   static constexpr int kPlainRounds = 4;
 
   void solve_with_heaps(std::span<MaxMinFlow> flows, std::size_t resource_count, std::uint32_t unfrozen, double level);
+  // solve_with_heaps' steps: the unfrozen flows indexed by resource and both heaps built; the
+  // entries that no longer hold dropped; the flows that freeze at `level` (into freezing_);
+  // those charged to their resources, whose levels rise. The last returns how many froze.
+  void index_unfrozen(std::span<const MaxMinFlow> flows, std::size_t resource_count);
+  void prune_heaps();
+  void collect_freezing(std::span<MaxMinFlow> flows, double level);
+  std::uint32_t charge_freezing(std::span<MaxMinFlow> flows, double level);
   double saturation_level(std::size_t resource) const noexcept;
 
   void reset_used(std::size_t resource_count);

@@ -1,3 +1,4 @@
+// Sizes, durations and bandwidths in a scenario's units: reading and writing them (pagecache/units.hpp).
 #include <pagecache/error.hpp>
 #include <pagecache/units.hpp>
 

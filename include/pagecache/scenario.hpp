@@ -21,8 +21,6 @@ enum class Profile { Paper, Linux };
 
 const char* to_string(Profile profile);
 CacheSettings settings_for(Profile profile);
-/// The switches of CacheSettings by their scenario key names ([hosts.page_cache] keys).
-std::vector<std::pair<std::string, bool*>> cache_switches(CacheSettings& settings);
 
 struct DiskSpec {
   std::string name;

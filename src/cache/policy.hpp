@@ -8,11 +8,12 @@
 // A policy's answers to the questions without arguments never change: PageCache asks them
 // once, when it is made.
 //
-// Implementations live in src/cache/policies/, one file each, and are named in its
-// registry.cpp: `kernel` (the kernel's behaviour; CacheSettings' switches are its
-// parameters, the `linux` profile's ablations), `wrench_cache` (WRENCH-cache's reading of the
-// paper, the `paper` profile; docs/wrench-cache.md) and `lru` (one LRU list, no
-// activation: a plain baseline).
+// Implementations live in src/cache/policies/, one file each declaring the policy and its
+// parameters (pagecache/cache_policies.hpp), and are named in its registry.cpp: `kernel` (the
+// kernel's behaviour; its switches are the `linux` profile's ablations), the `wrench_cache`
+// preset (the kernel policy with every switch at WRENCH-cache's reading of the paper, the
+// `paper` profile; docs/wrench-cache.md) and `lru` (one LRU list, no activation: a plain
+// baseline).
 
 #include "cache/block.hpp"
 
@@ -86,8 +87,8 @@ class Policy {
   virtual std::int64_t dirtyable(const PageCache& cache) const noexcept = 0;
 };
 
-/// The policy `settings.policy` names, with its parameters from `settings`. Throws
-/// ConfigError for a name not registered.
+/// The policy `settings.policy` names (a preset: the policy it presets), with its parameters
+/// from `settings`. Throws ConfigError for a name not registered.
 std::unique_ptr<Policy> make_policy(const CacheSettings& settings);
 
 }  // namespace pagecache::cache

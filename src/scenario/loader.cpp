@@ -1,6 +1,7 @@
 // Reading a scenario file: TOML text -> overrides applied -> every key read and checked ->
 // shorthands expanded -> references and sizes checked.
 
+#include <pagecache/cache_policies.hpp>
 #include <pagecache/scenario.hpp>
 #include <pagecache/scenario_file.hpp>
 
@@ -168,15 +169,17 @@ CacheSettings read_page_cache(const toml::table* table, const TomlReader& parent
     }
     s.policy = *policy;
   }
-  // The switches are the kernel policy's parameters: setting one chooses it, the others
-  // keeping the profile's values (under the paper profile, WRENCH-cache's).
-  for (const auto& [key, flag] : cache_switches(s)) {
-    if (auto v = r.optional_bool(key)) {
-      if (policy && *policy != "kernel") {
-        r.fail(key, fmt::format("a parameter of the kernel policy, and this host's policy is '{}'", *policy));
+  // A policy's parameters: setting one chooses that policy, the others keeping the profile's
+  // values (CacheSettings::set: under the paper profile, WRENCH-cache's).
+  for (const PolicyDeclaration& owner : cache_policies()) {
+    for (const PolicyParameter& parameter : owner.parameters) {
+      const auto v = r.optional_bool(std::string(parameter.key));
+      if (!v) continue;
+      if (policy && *policy != owner.name) {
+        r.fail(std::string(parameter.key), fmt::format("a parameter of the {} policy, and this host's policy is '{}'", owner.name, *policy));
       }
-      *flag = *v;
-      s.policy = "kernel";
+      if (s.policy != owner.name && find_cache_policy(s.policy)->preset_of != owner.name) s.policy = std::string(owner.name);
+      s.set(parameter.key, *v);
     }
   }
   r.finish();

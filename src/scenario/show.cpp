@@ -1,6 +1,7 @@
 // A resolved scenario written back as TOML, every default and every expanded shorthand
 // spelled out (`pcsim show`). Reading it back gives the same scenario.
 
+#include <pagecache/cache_policies.hpp>
 #include <pagecache/scenario.hpp>
 #include <pagecache/scenario_file.hpp>
 #include <pagecache/units.hpp>
@@ -83,9 +84,9 @@ void write_page_cache(std::string& out, const CacheSettings& cache) {
       quoted(cache.write_mode == WriteMode::Writeback ? "writeback" : "writethrough"), cache.dirty_ratio, cache.dirty_background_ratio,
       quoted(units::format_duration(cache.dirty_expire)), quoted(units::format_duration(cache.writeback_interval)));
   out += fmt::format("policy = {}\n", quoted(cache.policy));
-  CacheSettings settings = cache;
-  if (settings.policy == "kernel") {
-    for (const auto& [key, flag] : cache_switches(settings)) out += fmt::format("{} = {}\n", key, *flag);
+  // The policy's own parameters, as its declaration lists them (a preset has none).
+  if (const PolicyDeclaration* policy = find_cache_policy(cache.policy)) {
+    for (const PolicyParameter& p : policy->parameters) out += fmt::format("{} = {}\n", p.key, cache.get(p.key));
   }
 }
 

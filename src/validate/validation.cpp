@@ -3,6 +3,7 @@
 #include "text/json_string.hpp"
 #include "validate/paper_data.hpp"
 
+#include <pagecache/cache_policies.hpp>
 #include <pagecache/error.hpp>
 #include <pagecache/run.hpp>
 #include <pagecache/scenario.hpp>
@@ -23,15 +24,15 @@ Scenario load(const Options& o, const std::string& file, const std::vector<std::
   Scenario s = load_scenario(file, overrides, o.profile);
   for (HostConfig& h : s.hosts) {
     for (const auto& [key, value] : o.switches) {
-      bool found = false;
-      for (const auto& [name, flag] : cache_switches(h.cache)) {
-        if (name == key) {
-          *flag = value;
-          h.cache.policy = "kernel";  // whose parameter it is; the profile's values stay
-          found = true;
-        }
+      const PolicyDeclaration* owner = cache_policy_with(key);
+      if (owner == nullptr) throw ConfigError(fmt::format("--switch: unknown page-cache switch '{}'", key));
+      // A host whose policy (or preset) has no such switch takes the policy that has it.
+      const PolicyDeclaration* own = find_cache_policy(h.cache.policy);
+      if (own == nullptr || (own->parameter(key) == nullptr && own->preset_of != owner->name)) {
+        h.cache.policy = std::string(owner->name);
+        h.cache.parameters.clear();
       }
-      if (!found) throw ConfigError(fmt::format("--switch: unknown page-cache switch '{}'", key));
+      h.cache.set(key, value);
     }
   }
   return s;

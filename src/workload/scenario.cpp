@@ -30,19 +30,5 @@ std::vector<const LinkSpec*> route_between(const Scenario& scenario, const std::
   return links;
 }
 
-std::vector<std::pair<std::string, bool*>> cache_switches(CacheSettings& s) {
-  return {{"background_writeback", &s.background_writeback},
-          {"dirty_throttling", &s.dirty_throttling},
-          {"expire_oldest_first", &s.expire_oldest_first},
-          {"two_touch_activation", &s.two_touch_activation},
-          {"protect_files_being_written", &s.protect_files_being_written},
-          {"dirtyable_memory", &s.dirtyable_memory},
-          {"reclaim_inactive_only", &s.reclaim_inactive_only},
-          {"reclaim_may_take_file_being_read", &s.reclaim_may_take_file_being_read},
-          {"flush_splits_in_place", &s.flush_splits_in_place},
-          {"balance_after_every_change", &s.balance_after_every_change},
-          {"copies_hold_cores", &s.copies_hold_cores},
-          {"large_folios", &s.large_folios}};
-}
 
 }  // namespace pagecache

@@ -199,7 +199,7 @@ TEST_CASE("memory an application's buffer freed serves the next buffer, and the 
     Simulator sim;
     FairShare share(sim);
     HostSpec spec = cold_host(500e6);
-    spec.cache.large_folios = large_folios;
+    spec.cache.set("large_folios", large_folios);
     Host host(sim, share, spec);
     const DiskRef disk = host.add_disk("d", 100e6, 100e6);
     const FileRef cached = host.add_file("in", 100 * MB, disk, true);

@@ -240,7 +240,7 @@ TEST_CASE("background writeback starts above dirty_background_ratio, not at expi
   // plus one block. Without it, all 2 GB stay dirty until they expire (30 s).
   for (const bool background : {true, false}) {
     CacheSettings settings = kernel_04_01();
-    settings.background_writeback = background;
+    settings.set("background_writeback", background);
     Simulator sim;
     FairShare share(sim);
     Host host(sim, share, small_host(settings));
@@ -268,8 +268,7 @@ TEST_CASE("reading a file whose copy and buffer exceed memory needs reclaim of t
   // paper's Algorithm 2 spares the file being read and cannot go on.
   for (const bool may_take : {true, false}) {
     CacheSettings settings = CacheSettings::paper();
-    settings.policy = "kernel";  // the switch is the kernel policy's parameter
-    settings.reclaim_may_take_file_being_read = may_take;
+    settings.set("reclaim_may_take_file_being_read", may_take);  // the kernel policy's, the others as the paper's
     Simulator sim;
     FairShare share(sim);
     Host host(sim, share, small_host(settings));
@@ -369,7 +368,7 @@ TEST_CASE("dirty throttling holds writers at the kernel's setpoint and paces the
   // each chunk.
   for (const bool throttling : {true, false}) {
     CacheSettings settings = kernel_04_01();
-    settings.dirty_throttling = throttling;
+    settings.set("dirty_throttling", throttling);
     Simulator sim;
     FairShare share(sim);
     Host host(sim, share, small_host(settings));
@@ -540,7 +539,7 @@ TEST_CASE("two-touch activation: a file written and then read once in chunks has
   // WRENCH-cache activates at the first re-read.
   for (const bool two_touch : {true, false}) {
     CacheSettings settings = CacheSettings::kernel();
-    settings.two_touch_activation = two_touch;
+    settings.set("two_touch_activation", two_touch);
     Simulator sim;
     FairShare share(sim);
     Host host(sim, share, small_host(settings));
@@ -571,7 +570,7 @@ TEST_CASE("a copy out of the page cache waits for a core while a computation hol
   // the switch off the copy needs no core: 1 s on 1 core too.
   for (const auto& [cores, hold, expected] : {std::tuple{1, true, 2.0}, std::tuple{2, true, 1.0}, std::tuple{1, false, 1.0}}) {
     CacheSettings settings = CacheSettings::kernel();
-    settings.copies_hold_cores = hold;
+    settings.set("copies_hold_cores", hold);
     HostSpec spec = small_host(settings);
     spec.cores = cores;
     Simulator sim;

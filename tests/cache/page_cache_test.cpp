@@ -99,8 +99,7 @@ TEST_CASE("flushing takes the least recently used dirty data, skipping the exclu
   // the MRU end of the inactive list; in the kernel's it stays in place.
   for (const bool in_place : {false, true}) {
     CacheSettings settings = CacheSettings::paper();
-    settings.policy = "kernel";  // the switch is the kernel policy's parameter
-    settings.flush_splits_in_place = in_place;
+    settings.set("flush_splits_in_place", in_place);  // the kernel policy's, the others as the paper's
     PageCache cache(10000, settings);
     cache.set_checking(true);
     cache.add_dirty(0, 100, 0.0);
@@ -137,8 +136,7 @@ TEST_CASE("eviction frees clean data from the least recently used end", "[page_c
   // settings age the active list: C3 moves to the inactive list and 50 of it are reclaimed.
   for (const bool inactive_only : {false, true}) {
     CacheSettings settings = CacheSettings::paper();
-    settings.policy = "kernel";  // the switch is the kernel policy's parameter
-    settings.reclaim_inactive_only = inactive_only;
+    settings.set("reclaim_inactive_only", inactive_only);  // the kernel policy's, the others as the paper's
     PageCache cache(10000, settings);
     cache.set_checking(true);
     cache.add_clean(0, 100, 0.0);
@@ -201,8 +199,8 @@ TEST_CASE("with expire_oldest_first the periodic flusher takes the oldest expire
   // dirty block keeps its pieces in place by age.
   for (const bool oldest_first : {true, false}) {
     CacheSettings settings = CacheSettings::kernel();
-    settings.expire_oldest_first = oldest_first;
-    settings.two_touch_activation = false;  // one re-read activates
+    settings.set("expire_oldest_first", oldest_first);
+    settings.set("two_touch_activation", false);  // one re-read activates
     PageCache cache(10000, settings);
     cache.set_checking(true);
     cache.add_dirty(0, 100, 0.0);
@@ -238,8 +236,7 @@ TEST_CASE("with balance_after_every_change an eviction rebalances the lists at o
   // 300 - x <= 2 (100 + x), x = 34. WRENCH-cache balances only after reads.
   for (const bool always : {true, false}) {
     CacheSettings settings = CacheSettings::paper();
-    settings.policy = "kernel";  // the switch is the kernel policy's parameter
-    settings.balance_after_every_change = always;
+    settings.set("balance_after_every_change", always);  // the kernel policy's, the others as the paper's
     PageCache cache(10000, settings);
     cache.set_checking(true);
     cache.add_clean(0, 600, 0.0);
@@ -258,8 +255,8 @@ TEST_CASE("two-touch activation: written data read once stays inactive, data rea
   // paper's model activates at the first re-read.
   for (const bool two_touch : {true, false}) {
     CacheSettings settings = CacheSettings::kernel();
-    settings.two_touch_activation = two_touch;
-    settings.balance_after_every_change = false;
+    settings.set("two_touch_activation", two_touch);
+    settings.set("balance_after_every_change", false);
     PageCache cache(10000, settings);
     cache.set_checking(true);
     cache.add_dirty(0, 100, 0.0);
@@ -280,7 +277,7 @@ TEST_CASE("files being written keep their pages while other clean data is left",
   // take file 0. Without it, plain LRU order: file 0 goes first.
   for (const bool protect : {true, false}) {
     CacheSettings settings = CacheSettings::kernel();
-    settings.protect_files_being_written = protect;
+    settings.set("protect_files_being_written", protect);
     PageCache cache(10000, settings);
     cache.set_checking(true);
     cache.add_clean(0, 100, 0.0);
@@ -303,7 +300,7 @@ TEST_CASE("a read in chunks touches each page once: its cursor skips what it mar
   // now: activated). Without the cursor every chunk would start at the oldest block: the
   // second would activate it.
   CacheSettings settings = CacheSettings::kernel();
-  settings.balance_after_every_change = false;
+  settings.set("balance_after_every_change", false);
   PageCache cache(10000, settings);
   cache.set_checking(true);
   cache.add_clean(9, 1000, 0.0);  // keeps active <= 2 x inactive

@@ -45,8 +45,7 @@ TEST_CASE("dirtyable memory: free + cached + copies in flight (kernel), or free 
   // Room under the threshold: thresh - (dirty + writeback) = 280 - 100 and 220 - 100.
   for (const bool dirtyable_memory : {true, false}) {
     CacheSettings s = CacheSettings::paper();
-    s.policy = "kernel";  // the switch is the kernel policy's parameter
-    s.dirtyable_memory = dirtyable_memory;
+    s.set("dirtyable_memory", dirtyable_memory);  // the kernel policy's, the others as the paper's
     PageCache cache(1000, s);
     cache.set_checking(true);
     cache.allocate_anonymous(300);

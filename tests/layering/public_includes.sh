@@ -14,7 +14,7 @@ declare -A layer_of=(
   [error]=engine [task]=engine [simulator]=engine [event]=engine [timer]=engine [units]=engine
   [memory_state]=engine [trace]=engine
   [fair_share]=storage [devices]=storage
-  [cache_settings]=cache [host]=cache
+  [cache_settings]=cache [cache_policies]=cache [host]=cache
   [run]=workload [scenario]=workload
   [scenario_file]=scenario
   [outputs]=report

@@ -6,6 +6,8 @@
 #include "cache/page_cache.hpp"
 #include "cache/policy.hpp"
 
+#include <pagecache/cache_policies.hpp>
+
 namespace pagecache::cache {
 
 namespace {
@@ -39,6 +41,13 @@ class LruPolicy final : public Policy {
 };
 
 }  // namespace
+
+extern const PolicyDeclaration kLruPolicy{
+    .name = "lru",
+    .doc = "one least-recently-used list, no activation, the kernel's writeback: a baseline",
+    .parameters = {},
+    .preset_of = {},
+};
 
 std::unique_ptr<Policy> make_lru_policy(const CacheSettings&) { return std::make_unique<LruPolicy>(); }
 

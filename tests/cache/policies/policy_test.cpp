@@ -4,6 +4,7 @@
 #include "cache/page_cache.hpp"
 #include "cache/policy.hpp"
 
+#include <pagecache/cache_policies.hpp>
 #include <pagecache/error.hpp>
 
 #include <catch2/catch.hpp>
@@ -29,6 +30,31 @@ TEST_CASE("a CacheSettings names its policy; an unknown name is refused with the
   CacheSettings s;
   s.policy = "clock";
   CHECK_THROWS_WITH(PageCache(1000, s), Catch::Contains("unknown page-cache policy 'clock'") && Catch::Contains("kernel"));
+}
+
+TEST_CASE("a policy's parameters: defaults by profile, a preset becomes its policy when one is set, an unknown one refused",
+          "[policy]") {
+  const PolicyDeclaration* kernel = find_cache_policy(CacheSettings::kernel().policy);
+  REQUIRE(kernel != nullptr);
+  REQUIRE(!kernel->parameters.empty());
+  for (const PolicyParameter& p : kernel->parameters) {
+    INFO(p.key);
+    CHECK(cache_policy_with(p.key) == kernel);  // one owner per key
+    CHECK(CacheSettings::kernel().get(p.key) == p.linux_default);
+    CHECK(CacheSettings::paper().get(p.key) == p.paper_default);
+    CHECK(!p.doc.empty());
+  }
+  // The paper profile's preset, one switch set: the kernel policy, the others still the preset's.
+  CacheSettings paper = CacheSettings::paper();
+  REQUIRE(!find_cache_policy(paper.policy)->preset_of.empty());
+  paper.set("dirty_throttling", true);
+  CHECK(paper.policy == kernel->name);
+  CHECK(paper.get("dirty_throttling"));
+  CHECK(!paper.get("background_writeback"));
+  CacheSettings lru;
+  lru.policy = "lru";
+  CHECK_THROWS_WITH(lru.set("dirty_throttling", true), Catch::Contains("'dirty_throttling'") && Catch::Contains("'lru'"));
+  CHECK_THROWS_WITH(CacheSettings::kernel().get("no_such_switch"), Catch::Contains("'no_such_switch'"));
 }
 
 TEST_CASE("kernel and wrench_cache decide activation differently", "[policy]") {
@@ -73,7 +99,7 @@ TEST_CASE("kernel reclaim ages the active list; wrench_cache evicts active data 
   // the 50 of file 2 left over was deactivated with the part evicted, so it is inactive.
   for (const bool kernel : {true, false}) {
     CacheSettings s = kernel ? CacheSettings::kernel() : CacheSettings::paper();
-    s.two_touch_activation = false;  // so that one re-read activates under both
+    s.set("two_touch_activation", false);  // so that one re-read activates under both
     PageCache cache(10000, s);
     cache.set_checking(true);
     cache.add_clean(0, 100, 0.0);

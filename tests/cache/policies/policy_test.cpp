@@ -10,6 +10,11 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
 
 using namespace pagecache;
 using namespace pagecache::cache;
@@ -177,4 +182,27 @@ TEST_CASE("PageCache asks its policy at each decision", "[policy]") {
   CHECK(policy.expiries == 1);
   CHECK(taken.file == 2);
   CHECK(taken.bytes == 50);
+}
+
+TEST_CASE("every parameter a policy declares is documented: docs/linux-profile.md and docs/model.md name it", "[policy][docs]") {
+  const auto read = [](const char* doc) {
+    std::ifstream in(std::filesystem::path(PCSIM_SOURCE_DIR) / "docs" / doc);
+    REQUIRE(in);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const std::string profile = read("linux-profile.md");
+  const std::string model = read("model.md");
+  for (const PolicyDeclaration& policy : cache_policies()) {
+    CHECK(model.find(std::string("`") + std::string(policy.name) + "`") != std::string::npos);
+    for (const PolicyParameter& p : policy.parameters) {
+      INFO(policy.name << "." << p.key);
+      const std::string key = std::string("`") + std::string(p.key) + "`";
+      // In backquotes, or in a section's heading.
+      bool in_heading = false;
+      std::istringstream lines(profile);
+      for (std::string line; std::getline(lines, line);) in_heading = in_heading || (line.rfind("## ", 0) == 0 && line.find(p.key) != std::string::npos);
+      CHECK((profile.find(key) != std::string::npos || in_heading));
+      CHECK(model.find(key) != std::string::npos);
+    }
+  }
 }

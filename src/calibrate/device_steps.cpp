@@ -1,5 +1,4 @@
-// calibrate's steps that measure the device: O_DIRECT streams, writeback, buffered reads and
-// the device's own write cache.
+// calibrate's steps that measure the device: O_DIRECT streams, writeback, buffered reads, its write cache.
 #include "calibrate/steps.hpp"
 
 #include "calibrate/measure.hpp"
@@ -57,7 +56,7 @@ bool measure_streams(Calibration& c, Session& s, const std::filesystem::path& on
     c.request_rates.clear();
     c.request_fit = RequestFit{};
     c.request_fit.why = "the file system refuses O_DIRECT";
-    s.step = 5;
+    s.step = 5;  // the five O_DIRECT steps are skipped
     return false;
   }
   return true;

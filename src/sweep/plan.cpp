@@ -3,7 +3,7 @@
 #include "scenario/text_file.hpp"
 #include "scenario/toml_reader.hpp"
 #include "sweep/hash.hpp"
-#include "sweep/range.hpp"
+#include "sweep/plan_values.hpp"
 #include "text/json_string.hpp"
 
 #include <pagecache/error.hpp>
@@ -16,7 +16,6 @@
 #include <cmath>
 #include <filesystem>
 #include <optional>
-#include <set>
 #include <sstream>
 
 namespace pagecache::sweep {
@@ -26,41 +25,60 @@ namespace {
 namespace fs = std::filesystem;
 using scenario::location;
 
-[[noreturn]] void fail_at(const toml::node& node, const std::string& file, const std::string& what) {
-  throw ConfigError(fmt::format("{}: {}", location(node.source(), file), what));
-}
-
-// A value of an axis or a point as an override.
-Override override_of(const std::string& key, const toml::node& value, const std::string& file, const std::string& where) {
-  std::ostringstream text;
-  std::string shown;
-  if (const auto* s = value.as_string()) {
-    shown = s->get();
-    text << '"';  // a basic string: toml++ would write a literal one ('64 GB')
-    for (const char c : shown) {
-      const auto byte = static_cast<unsigned char>(c);
-      if (c == '"' || c == '\\') text << '\\' << c;
-      else if (byte < 0x20 || byte == 0x7f) text << fmt::format("\\u{:04X}", byte);
-      else text << c;
-    }
-    text << '"';
-  } else if (const auto* f = value.as_floating_point()) {
-    text << float_text(f->get());  // toml++ writes 0.2 as 0.20000000000000001
-    shown = text.str();
-  } else if (value.is_integer() || value.is_boolean()) {
-    value.visit([&](const auto& v) {
-      if constexpr (toml::is_value<decltype(v)>) text << v;
-    });
-    shown = text.str();
-  } else {
-    fail_at(value, file, fmt::format("{}: a value is a string, a number or true/false", where));
-  }
-  return {key, text.str(), shown};
-}
-
 std::string absolute_beside(const std::string& path, const std::string& file) {
   const fs::path p(path);
   return (p.is_absolute() ? p : fs::absolute(fs::path(file).parent_path() / p)).lexically_normal().string();
+}
+
+toml::table parse_toml(const std::string& text, const std::string& path) {
+  try {
+    return toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    throw ConfigError(fmt::format("{}: {}", location(e.source(), path), e.description()));
+  }
+}
+
+// The sweep file's top-level keys, as read.
+struct SweepFile {
+  std::optional<std::string> scenario, workflow, platform, files_host;
+  std::vector<std::string> hosts;
+  std::string profile;
+  std::vector<const toml::table*> axes, points;
+};
+
+SweepFile read_sweep_file(scenario::TomlReader& r) {
+  SweepFile f;
+  f.scenario = r.optional_string("scenario");
+  f.workflow = r.optional_string("workflow");
+  f.platform = r.optional_string("platform");
+  f.files_host = r.optional_string("files_host");
+  f.hosts = r.strings("hosts");
+  f.profile = r.string("profile", "");
+  if (!f.profile.empty() && f.profile != "paper" && f.profile != "linux") r.fail("profile", "expected \"paper\" or \"linux\"");
+  f.axes = r.tables("axes");
+  f.points = r.tables("points");
+  r.finish();
+  if (f.scenario && f.workflow) r.fail("workflow", "a sweep's base is a scenario or a workflow, not both");
+  if (f.workflow && !f.platform) r.fail("workflow", "a workflow runs on a platform: add platform = \"PLATFORM.xml\"");
+  if (!f.workflow && (f.platform || f.files_host || !f.hosts.empty())) {
+    r.fail(f.platform ? "platform" : f.files_host ? "files_host" : "hosts", "places a workflow's run: it goes with workflow = \"W.json\"");
+  }
+  return f;
+}
+
+// A scenario TOML naming the workflow, where its files are and the platform it runs on.
+std::string workflow_base(const SweepFile& f, const std::string& path) {
+  toml::table wf{{"file", absolute_beside(*f.workflow, path)}};
+  if (f.files_host) wf.insert("files_host", *f.files_host);
+  if (!f.hosts.empty()) {
+    toml::array list;
+    for (const std::string& h : f.hosts) list.push_back(h);
+    wf.insert("hosts", std::move(list));
+  }
+  const toml::table base{{"platform", absolute_beside(*f.platform, path)}, {"workflow", std::move(wf)}};
+  std::ostringstream out;
+  out << base;
+  return out.str();
 }
 
 }  // namespace
@@ -80,135 +98,24 @@ Plan Plan::load(const std::string& path, bool force) { return parse(scenario::re
 Plan Plan::parse(const std::string& text, const std::string& path, bool force, const PlanLimits& limits) {
   Plan plan;
   plan.file_ = fs::absolute(path).lexically_normal().string();
-  toml::table root;
-  try {
-    root = toml::parse(text, path);
-  } catch (const toml::parse_error& e) {
-    throw ConfigError(fmt::format("{}: {}", location(e.source(), path), e.description()));
-  }
+  const toml::table root = parse_toml(text, path);
   scenario::TomlReader r(root, "", path);
-  const auto scenario = r.optional_string("scenario");
-  const auto workflow = r.optional_string("workflow");
-  const auto platform = r.optional_string("platform");
-  const auto files_host = r.optional_string("files_host");
-  const std::vector<std::string> hosts = r.strings("hosts");
-  plan.profile_ = r.string("profile", "");
-  if (!plan.profile_.empty() && plan.profile_ != "paper" && plan.profile_ != "linux") r.fail("profile", "expected \"paper\" or \"linux\"");
-  const std::vector<const toml::table*> axes = r.tables("axes");
-  const std::vector<const toml::table*> points = r.tables("points");
-  r.finish();
-  if (scenario && workflow) r.fail("workflow", "a sweep's base is a scenario or a workflow, not both");
-  if (workflow && !platform) r.fail("workflow", "a workflow runs on a platform: add platform = \"PLATFORM.xml\"");
-  if (!workflow && (platform || files_host || !hosts.empty())) {
-    r.fail(platform ? "platform" : files_host ? "files_host" : "hosts", "places a workflow's run: it goes with workflow = \"W.json\"");
-  }
-  if (scenario) plan.scenario_ = absolute_beside(*scenario, path);
-  if (workflow) {
-    toml::table wf{{"file", absolute_beside(*workflow, path)}};
-    if (files_host) wf.insert("files_host", *files_host);
-    if (!hosts.empty()) {
-      toml::array list;
-      for (const std::string& h : hosts) list.push_back(h);
-      wf.insert("hosts", std::move(list));
-    }
-    const toml::table base{{"platform", absolute_beside(*platform, path)}, {"workflow", std::move(wf)}};
-    std::ostringstream out;
-    out << base;
-    plan.workflow_text_ = out.str();
-  }
-  if (axes.empty() == points.empty()) r.fail_table("a sweep has [[axes]] (a grid) or [[points]] (a list of runs), one of them");
+  const SweepFile f = read_sweep_file(r);
+  plan.profile_ = f.profile;
+  if (f.scenario) plan.scenario_ = absolute_beside(*f.scenario, path);
+  if (f.workflow) plan.workflow_text_ = workflow_base(f, path);
+  if (f.axes.empty() == f.points.empty()) r.fail_table("a sweep has [[axes]] (a grid) or [[points]] (a list of runs), one of them");
 
-  // First each axis's length, and the grid's, without making a value: a range of 10^9 values
-  // is refused at once, not once it has filled the memory.
-  struct Axis {
-    std::string key, name;
-    const toml::array* values = nullptr;
-    std::optional<Range> range;
-    double length = 0;
-  };
-  std::vector<Axis> grid;
-  double runs = 1.0;
-  for (std::size_t i = 0; i < axes.size(); ++i) {
-    scenario::TomlReader a(*axes[i], fmt::format("axes[{}]", i), path);
-    Axis axis;
-    axis.key = a.required_string("key");
-    const toml::node* values = a.raw("values");
-    const toml::table* range = a.optional_table("range");
-    a.finish();
-    axis.name = fmt::format("axis '{}'", axis.key);
-    for (const Axis& earlier : grid)
-      if (earlier.key == axis.key) a.fail("key", fmt::format("{} is swept twice", axis.name));
-    if ((values == nullptr) == (range == nullptr)) a.fail_table(fmt::format("{}: give values = [...] or range = {{...}}, one of them", axis.name));
-    if (values != nullptr) {
-      axis.values = values->as_array();
-      if (axis.values == nullptr) a.fail("values", fmt::format("{}: expected an array of values", axis.name));
-      axis.length = static_cast<double>(axis.values->size());
-      if (axis.length == 0) a.fail("values", fmt::format("{} has no value", axis.name));
-      if (axis.length > limits.axis_values) {
-        a.fail("values", fmt::format("{}: {} values, more than an axis may have ({:.0f})", axis.name, axis.values->size(), limits.axis_values));
-      }
-    } else {
-      axis.range = read_range(axis.key, *range, path, axis.name);
-      axis.length = range_length(*axis.range, limits.axis_values);
-    }
-    runs *= axis.length;
-    grid.push_back(std::move(axis));
-  }
-  if (!points.empty()) runs = static_cast<double>(points.size());
-  const double allowed = force ? kMaxNumberedRuns : limits.runs;
-  if (runs > allowed) {
-    if (runs > kMaxNumberedRuns) throw ConfigError(fmt::format("{}: {:.3g} runs, more than pcsim can number", path, runs));
-    std::string shape;
-    for (std::size_t i = 0; i < grid.size(); ++i) shape += fmt::format("{}{} {:.0f}", i ? " x " : "", grid[i].name, grid[i].length);
-    if (shape.empty()) shape = "points";
-    throw ConfigError(fmt::format("{}: {:.0f} runs ({}), more than {:.0f}: give --force to sweep them all", path, runs, shape, allowed));
-  }
-
+  const std::vector<AxisShape> grid = read_axes(f.axes, path, limits);
+  check_run_count(grid, f.points.size(), force, limits, path);
   std::vector<std::pair<std::size_t, std::string>> to_check;  // (axis, where) of the values to try on the base
   for (std::size_t i = 0; i < grid.size(); ++i) {
-    const Axis& axis = grid[i];
-    std::vector<Override> list;
-    if (axis.values != nullptr) {
-      list.reserve(axis.values->size());
-      for (const toml::node& v : *axis.values) list.push_back(override_of(axis.key, v, path, axis.name));
-    } else {
-      list = range_values(*axis.range);
-    }
-    std::set<std::string> seen;
-    for (const Override& o : list) {
-      if (!seen.insert(o.toml).second) {
-        scenario::TomlReader(*axes[i], fmt::format("axes[{}]", i), path)
-            .fail(axis.values != nullptr ? "values" : "range", fmt::format("{}: the value {} is there twice", axis.name, o.toml));
-      }
-    }
-    plan.keys_.push_back(axis.key);
-    plan.axes_.push_back(std::move(list));
-    to_check.emplace_back(i, axis.name);
+    std::vector<Override> values = axis_values(grid[i], *f.axes[i], i, path);
+    plan.keys_.push_back(grid[i].key);
+    plan.axes_.push_back(std::move(values));
+    to_check.emplace_back(i, grid[i].name);
   }
-  if (!points.empty()) {
-    // Keys in the order they first appear; a point leaves unset what it does not name.
-    std::vector<std::vector<Override>> rows;
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      std::vector<Override> row(plan.keys_.size());
-      for (const auto& [k, v] : *points[i]) {
-        const std::string key(k.str());
-        auto at = std::find(plan.keys_.begin(), plan.keys_.end(), key);
-        if (at == plan.keys_.end()) {
-          plan.keys_.push_back(key);
-          for (auto& earlier : rows) earlier.emplace_back();
-          row.emplace_back();
-          at = plan.keys_.end() - 1;
-        }
-        row[static_cast<std::size_t>(at - plan.keys_.begin())] = override_of(key, v, path, fmt::format("points[{}], key '{}'", i, key));
-      }
-      rows.push_back(std::move(row));
-    }
-    std::set<std::string> ids;
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-      if (!ids.insert(run_id(rows[i])).second) fail_at(*points[i], path, fmt::format("points[{}] is the same run as an earlier point", i));
-    }
-    plan.points_ = std::move(rows);
-  }
+  if (!f.points.empty()) plan.points_ = read_points(f.points, plan.keys_, path);
   // The grid as made: a log range of integers may have merged values that round alike.
   std::size_t size = plan.points_.size();
   if (plan.points_.empty()) {
@@ -217,16 +124,14 @@ Plan Plan::parse(const std::string& text, const std::string& path, bool force, c
   }
   plan.size_ = size;
   plan.check_values(to_check, limits.scenario);
-  if (!plan.points_.empty()) {
-    for (std::size_t i = 0; i < plan.points_.size(); ++i) {
-      try {
-        std::vector<std::pair<std::string, std::string>> overrides;
-        for (const Override& o : plan.points_[i])
-          if (!o.toml.empty()) overrides.emplace_back(o.key, o.toml);
-        plan.load_base(overrides, limits.scenario);
-      } catch (const ConfigError& e) {
-        fail_at(*points[i], path, fmt::format("points[{}]: {}", i, e.what()));
-      }
+  for (std::size_t i = 0; i < plan.points_.size(); ++i) {
+    try {
+      std::vector<std::pair<std::string, std::string>> overrides;
+      for (const Override& o : plan.points_[i])
+        if (!o.toml.empty()) overrides.emplace_back(o.key, o.toml);
+      plan.load_base(overrides, limits.scenario);
+    } catch (const ConfigError& e) {
+      fail_at(*f.points[i], path, fmt::format("points[{}]: {}", i, e.what()));
     }
   }
   plan.base_ = identify_base(plan.scenario_, plan.workflow_text_, plan.profile_);

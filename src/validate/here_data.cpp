@@ -105,16 +105,18 @@ std::vector<KeptRow<MemorySample>> read_kept_memory(std::string_view text, const
   return out;
 }
 
-HereMeasurements parse_here(const KeptTexts& texts) {
-  const std::vector<KeptRun> runs = read_kept_runs(texts.runs, texts.runs_file);
-  const std::vector<KeptRow<RealPhase>> phases = read_kept_phases(texts.phases, texts.phases_file);
-  const std::vector<KeptRow<MemorySample>> memory = read_kept_memory(texts.memory, texts.memory_file);
-  if (runs.empty()) throw ConfigError(fmt::format("{}:1: no runs after the header", texts.runs_file));
+namespace {
 
-  HereMeasurements m;
-  m.platform_toml = texts.platform_toml;
-  std::map<std::pair<std::string, int>, std::size_t> index;  // (case, repetition) -> run
-  std::map<std::string, const KeptRun*> first;              // a case's first repetition
+// (case, repetition) -> the run's index in HereMeasurements::runs and in the rows of runs.csv.
+using RunIndex = std::map<std::pair<std::string, int>, std::size_t>;
+// (run, pipeline, task, phase) -> the line of phases.csv
+using PhaseLines = std::map<std::tuple<std::size_t, int, int, std::string>, int>;
+
+// Each (case, repetition) once; a case's repetitions are scored against one simulation of it,
+// so they agree on what it is.
+RunIndex add_runs(HereMeasurements& m, const std::vector<KeptRun>& runs, const KeptTexts& texts) {
+  RunIndex index;
+  std::map<std::string, const KeptRun*> first;  // a case's first repetition
   for (const KeptRun& k : runs) {
     const RealCase& c = k.run.spec;
     const auto [at, fresh] = index.emplace(std::pair{c.name, k.run.repetition}, m.runs.size());
@@ -124,24 +126,30 @@ HereMeasurements parse_here(const KeptTexts& texts) {
     }
     const auto [was, first_seen] = first.emplace(c.name, &k);
     const RealCase& f = was->second->run.spec;
-    // A case's repetitions are scored against one simulation of it.
     if (!first_seen && std::tie(c.pipelines, c.tasks, c.file_size, c.compute, c.chunk) != std::tie(f.pipelines, f.tasks, f.file_size, f.compute, f.chunk)) {
       throw ConfigError(fmt::format("{}:{}: case {} has other pipelines, tasks, file size, compute time or chunk than on line {}", texts.runs_file,
                                     k.line, c.name, was->second->line));
     }
     m.runs.push_back(k.run);
   }
-  const auto run_of = [&](const auto& row, const std::string& file) -> std::size_t {
-    const auto it = index.find({row.case_name, row.repetition});
-    if (it == index.end()) {
-      throw ConfigError(fmt::format("{}:{}: case {} repetition {} is not in {}", file, row.line, row.case_name, row.repetition, name_of(texts.runs_file)));
-    }
-    return it->second;
-  };
+  return index;
+}
 
-  std::map<std::tuple<std::size_t, int, int, std::string>, int> seen;  // (run, pipeline, task, phase) -> line
+template <class T>
+std::size_t run_of(const RunIndex& index, const KeptRow<T>& row, const std::string& file, const KeptTexts& texts) {
+  const auto it = index.find({row.case_name, row.repetition});
+  if (it == index.end()) {
+    throw ConfigError(fmt::format("{}:{}: case {} repetition {} is not in {}", file, row.line, row.case_name, row.repetition, name_of(texts.runs_file)));
+  }
+  return it->second;
+}
+
+// Each phase within its run's pipelines and tasks, and once.
+PhaseLines add_phases(HereMeasurements& m, const std::vector<KeptRow<RealPhase>>& phases, const RunIndex& index,
+                      const std::vector<KeptRun>& runs, const KeptTexts& texts) {
+  PhaseLines seen;
   for (const KeptRow<RealPhase>& row : phases) {
-    const std::size_t i = run_of(row, texts.phases_file);
+    const std::size_t i = run_of(index, row, texts.phases_file, texts);
     const RealCase& c = m.runs[i].spec;
     const RealPhase& p = row.value;
     const auto beyond = [&](const char* what, int value, int count) {
@@ -157,9 +165,13 @@ HereMeasurements parse_here(const KeptTexts& texts) {
     }
     m.runs[i].phases.push_back(p);
   }
+  return seen;
+}
+
+void add_memory(HereMeasurements& m, const std::vector<KeptRow<MemorySample>>& memory, const RunIndex& index, const KeptTexts& texts) {
   std::vector<int> last_sample(m.runs.size(), 0);  // the line of each run's latest sample
   for (const KeptRow<MemorySample>& row : memory) {
-    const std::size_t i = run_of(row, texts.memory_file);
+    const std::size_t i = run_of(index, row, texts.memory_file, texts);
     RealRun& r = m.runs[i];
     // The samples of a run in time order: the real memory at an instant is the first at or after it.
     if (!r.memory.empty() && row.value.time < r.memory.back().time) {
@@ -169,8 +181,10 @@ HereMeasurements parse_here(const KeptTexts& texts) {
     r.memory.push_back(row.value);
     last_sample[i] = row.line;
   }
+}
 
-  // Rows that are needed: every phase of every run, and its memory.
+// Rows that are needed: every phase of every run, and its memory.
+void check_complete(const HereMeasurements& m, const std::vector<KeptRun>& runs, const PhaseLines& seen, const KeptTexts& texts) {
   for (std::size_t i = 0; i < m.runs.size(); ++i) {
     const RealRun& r = m.runs[i];
     const std::string run = fmt::format("{}:{}: case {} repetition {}", texts.runs_file, runs[i].line, r.spec.name, r.repetition);
@@ -186,6 +200,22 @@ HereMeasurements parse_here(const KeptTexts& texts) {
       }
     }
   }
+}
+
+}  // namespace
+
+HereMeasurements parse_here(const KeptTexts& texts) {
+  const std::vector<KeptRun> runs = read_kept_runs(texts.runs, texts.runs_file);
+  const std::vector<KeptRow<RealPhase>> phases = read_kept_phases(texts.phases, texts.phases_file);
+  const std::vector<KeptRow<MemorySample>> memory = read_kept_memory(texts.memory, texts.memory_file);
+  if (runs.empty()) throw ConfigError(fmt::format("{}:1: no runs after the header", texts.runs_file));
+
+  HereMeasurements m;
+  m.platform_toml = texts.platform_toml;
+  const RunIndex index = add_runs(m, runs, texts);
+  const PhaseLines seen = add_phases(m, phases, index, runs, texts);
+  add_memory(m, memory, index, texts);
+  check_complete(m, runs, seen, texts);
   return m;
 }
 

@@ -82,12 +82,6 @@ class Runner {
                                                                                 .sustained_write = d.sustained_write_bw},
                                                                   d.capacity);  // named as the host's cpu and memory are
       disks_[config.name] = std::move(disks);
-      // A profile of every change is recorded as the changes happen; sampled profiles are
-      // taken by sample_memory().
-      const std::size_t index = host_order_.size();
-      if (scenario_.memory_sample_interval <= 0.0) {
-        host->set_memory_observer([this, index](double now, const MemoryState& m) { record_memory(now, index, m); });
-      }
       hosts_[config.name] = std::move(host);
       cores_[config.name] = config.cores;
       host_order_.push_back(config.name);
@@ -177,8 +171,16 @@ class Runner {
         sim_.spawn(run_workflow_task(w, w.tasks[i], *plan++, hosts, i, std::move(prerequisites[i]), done[i]));
       }
     }
-    if (scenario_.memory_sample_interval > 0.0) sim_.spawn(sample_memory());
-    else record_all_memory();
+    if (scenario_.memory_sample_interval > 0.0) {
+      sim_.spawn(sample_memory());
+    } else {
+      // A profile of every change is recorded as the changes happen, from now: the files
+      // cached at the start changed memory before there was anything to report to.
+      for (std::size_t i = 0; i < host_list_.size(); ++i) {
+        host_list_[i]->set_memory_observer([this, i](double now, const MemoryState& m) { record_memory(now, i, m); });
+      }
+      record_all_memory();
+    }
 
     try {
       std::uint64_t next_progress = 1 << 12;

@@ -5,10 +5,6 @@
 // or memory ran out.
 
 #include <pagecache/error.hpp>
-#include <pagecache/outputs.hpp>
-#include <pagecache/run.hpp>
-#include <pagecache/scenario.hpp>
-#include <pagecache/scenario_file.hpp>
 #include <pagecache/version.hpp>
 
 #include "report/interrupt_cleanup.hpp"
@@ -18,88 +14,131 @@
 #include "validate/validation.hpp"
 #include "calibrate_command.hpp"
 #include "data_dir.hpp"
-#include "status_line.hpp"
+#include "scenario_commands.hpp"
 #include "sweep_command.hpp"
 #include "validate_here_command.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
-#include <toml++/toml.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <sstream>
 #include <new>
 #include <optional>
 #include <stdexcept>
 #include <string>
-#include <unistd.h>
-#include <utility>
 #include <vector>
 
 namespace {
 
-using Overrides = std::vector<std::pair<std::string, std::string>>;
+const char* const kForceHelp = "load a scenario beyond the limits on its size, events, simulated time and memory profile "
+                               "(what pcsim cannot represent is still refused)";
+const char* const kPlatformHelp = "platform file, SimGrid XML (WRENCH-cache's conventions) or TOML: what a workflow file runs on, or "
+                                  "in place of a scenario's own";
+const char* const kFilesHostHelp = "host whose disk stores a workflow file's files (default: the first of its recorded machines the "
+                                   "platform has, else the first of --hosts, else the platform's first host)";
+const char* const kHostsHelp = "hosts a workflow file's tasks may run on, besides those its recorded machines name (default: those "
+                               "machines, else with --files-host every other host, else the files host)";
 
-// `text` as a TOML string (for --set: a value is read as TOML).
-std::string toml_string(const std::string& text) {
-  std::ostringstream out;
-  out << toml::value<std::string>(text);
-  return out.str();
-}
-
-Overrides parse_sets(const std::vector<std::string>& sets) {
-  Overrides out;
-  for (const std::string& s : sets) {
-    const auto eq = s.find('=');
-    if (eq == std::string::npos || eq == 0) {
-      throw pagecache::ConfigError(fmt::format("--set '{}': expected KEY=VALUE, e.g. --set pipelines.count=16", s));
-    }
-    out.emplace_back(s.substr(0, eq), s.substr(eq + 1));
-  }
-  return out;
-}
-
-// What the command line gives besides a scenario: a platform, and for a workflow instance
-// where its files live and where its tasks may run.
-struct Inputs {
-  std::string platform;
-  std::string files_host;
-  std::vector<std::string> hosts;
+// `pcsim validate` without --here or --from: the paper's experiments against the real runs.
+struct ValidateCommand {
+  CLI::App* app = nullptr;
+  std::string json_path;
+  std::string report_path = "validate-report.html";
+  std::string profile = "linux";
+  std::vector<std::string> switches;
+  std::string data_dir;
+  std::string scenarios_dir;
+  pcsim::ValidateHereOptions here;
 };
 
-bool ends_with(const std::string& s, const std::string& tail) {
-  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+// Every command and option of pcsim, and where each lands once parsed. `run`, `show` and
+// `validate` share the scenario's --set: only one of them is parsed.
+struct CommandLine {
+  CLI::App app{"pcsim: a discrete-event simulator of the Linux page cache"};
+  pcsim::ScenarioArgs scenario;
+  pcsim::RunArgs run_args;
+  CLI::App* run = nullptr;
+  CLI::App* show = nullptr;
+  ValidateCommand validate;
+  pcsim::SweepCommand sweep;
+  pcsim::CalibrateCommand calibrate;
+  CLI::App* help = nullptr;
+  std::string help_topic;
+  std::vector<std::string> commands;  // their names, in order
+};
+
+void add_run_command(CommandLine& c) {
+  c.run = c.app.add_subcommand("run", "run a scenario or a workflow (without either: the embedded default, the paper's Exp 1 at 100 GB)");
+  CLI::App& run = *c.run;
+  run.add_option("scenario", c.scenario.path, "scenario file (TOML), or workflow file (WfFormat JSON, with --platform)");
+  run.add_option("--platform", c.scenario.inputs.platform, kPlatformHelp);
+  run.add_option("--files-host", c.scenario.inputs.files_host, kFilesHostHelp);
+  run.add_option("--hosts", c.scenario.inputs.hosts, kHostsHelp)->delimiter(',');
+  run.add_option("--out", c.run_args.out_dir,
+                 "output folder: made if absent; an empty folder or one an earlier run made (marked by .pcsim-output) "
+                 "is replaced whole; anything else is refused and left untouched")
+      ->capture_default_str();
+  run.add_option("--profile", c.scenario.profile, "model profile, overriding the scenario's")->check(CLI::IsMember({"paper", "linux"}));
+  run.add_option("--set", c.scenario.sets, "override a scenario key: KEY=VALUE (repeatable), e.g. pipelines.count=16");
+  run.add_flag("--quiet", c.run_args.quiet, "print nothing but errors");
+  run.add_flag("--no-cache-contents", c.run_args.no_cache_contents, "do not record cache.csv (large workloads)");
+  run.add_flag("--force", c.scenario.force, kForceHelp);
+  run.add_flag("--no-report", c.run_args.no_report, "do not write report.html (the run's figures drawn in one offline page)");
+  run.add_flag("--trace", c.run_args.trace,
+               "also write trace.json (Chrome Trace Event format: open it in ui.perfetto.dev or chrome://tracing); the scenario key "
+               "trace = true does the same");
 }
 
-std::string absolute(const std::string& path) { return std::filesystem::absolute(path).lexically_normal().string(); }
-
-// A workflow instance (WfFormat JSON) on a platform file (pagecache::load_workflow): --set
-// reaches every key, and a problem with an option names it.
-pagecache::Scenario load_workflow(const std::string& path, const Inputs& in, const std::vector<std::string>& sets, const std::string& profile,
-                                  const pagecache::ScenarioLimits& limits) {
-  pagecache::WorkflowOptions options;
-  options.platform = in.platform;
-  options.files_host = in.files_host;
-  options.hosts = in.hosts;
-  return pagecache::load_workflow(path, options, parse_sets(sets), profile, limits);
+void add_show_command(CommandLine& c) {
+  c.show = c.app.add_subcommand("show", "print the fully resolved scenario, defaults included, or a platform file alone");
+  CLI::App& show = *c.show;
+  show.add_option("scenario", c.scenario.path,
+                  "scenario file (TOML), workflow file (JSON, with --platform) or platform file (XML); the embedded default if omitted");
+  show.add_option("--platform", c.scenario.inputs.platform, std::string(kPlatformHelp) + "; alone, the platform is shown");
+  show.add_option("--files-host", c.scenario.inputs.files_host, kFilesHostHelp);
+  show.add_option("--hosts", c.scenario.inputs.hosts, kHostsHelp)->delimiter(',');
+  show.add_option("--profile", c.scenario.profile, "model profile, overriding the scenario's")->check(CLI::IsMember({"paper", "linux"}));
+  show.add_option("--set", c.scenario.sets, "override a scenario key: KEY=VALUE (repeatable)");
+  show.add_flag("--force", c.scenario.force, kForceHelp);
 }
 
-pagecache::Scenario load(const std::string& path, const Inputs& in, const std::vector<std::string>& sets, const std::string& profile, bool force) {
-  const pagecache::ScenarioLimits limits = force ? pagecache::ScenarioLimits::forced() : pagecache::ScenarioLimits{};
-  if (ends_with(path, ".json")) return load_workflow(path, in, sets, profile, limits);
-  if (!in.files_host.empty() || !in.hosts.empty()) {
-    throw pagecache::ConfigError("--files-host and --hosts place a workflow file's (JSON) files and tasks; a scenario gives them in its [workflow] table");
-  }
-  Overrides overrides = parse_sets(sets);
-  // A scenario on another platform: --platform is its `platform` key.
-  if (!in.platform.empty()) overrides.insert(overrides.begin(), {"platform", toml_string(absolute(in.platform))});
-  if (path.empty()) {
-    return pagecache::parse_scenario(pagecache::default_scenario_text(), "<embedded default>", overrides, profile, limits);
-  }
-  return pagecache::load_scenario(path, overrides, profile, limits);
+void add_validate_command(CommandLine& c) {
+  ValidateCommand& v = c.validate;
+  v.app = c.app.add_subcommand("validate", "compare the paper's experiments with the real measurements");
+  // The shipped data beside this pcsim (data_dir.hpp); a pcsim without it needs both options.
+  const std::filesystem::path shipped = pcsim::data_dir();
+  v.data_dir = shipped.empty() ? std::string() : (shipped / "validation" / "paper").string();
+  v.scenarios_dir = shipped.empty() ? std::string() : (shipped / "scenarios" / "paper").string();
+  v.app->add_option("--json", v.json_path, "also write the results as JSON to this file");
+  v.app->add_option("--report", v.report_path, "write the results as a self-contained HTML page to this file")->capture_default_str();
+  v.app->add_option("--profile", v.profile, "model profile (the paper scenarios' own profile is paper)")
+      ->check(CLI::IsMember({"paper", "linux"}))
+      ->capture_default_str();
+  v.app->add_option("--set", c.scenario.sets, "override a key of every scenario: KEY=VALUE (repeatable)");
+  v.app->add_option("--switch", v.switches, "force a page-cache switch on every host: NAME=true|false (ablations)");
+  v.app->add_option("--data", v.data_dir, "the validation data")->capture_default_str();
+  v.app->add_option("--scenarios", v.scenarios_dir, "the paper's scenarios")->capture_default_str();
+  pcsim::add_validate_here_options(*v.app, v.here);
+}
+
+// `help`, last: it names every command before it.
+void add_help_command(CommandLine& c) {
+  c.help = c.app.add_subcommand("help", "show this help, or a command's: pcsim help run");
+  for (const CLI::App* sub : c.app.get_subcommands({})) c.commands.push_back(sub->get_name());
+  c.help->add_option("command", c.help_topic, "the command to explain")->check(CLI::IsMember(c.commands));
+}
+
+void build_command_line(CommandLine& c) {
+  c.app.set_version_flag("--version", std::string("pcsim ") + pagecache::kVersion);
+  c.app.require_subcommand(1);
+  add_run_command(c);
+  add_show_command(c);
+  add_validate_command(c);
+  pcsim::add_sweep_command(c.app, c.sweep);
+  pcsim::add_calibrate_command(c.app, c.calibrate);
+  add_help_command(c);
 }
 
 // The command a user typed that pcsim does not know, with the closest it knows: CLI11 only
@@ -113,215 +152,66 @@ int unknown_command(const std::string& typed, const std::vector<std::string>& co
   return 2;
 }
 
-// Progress on a terminal only, for runs longer than half a second: simulated time reached and
-// events per second, at most five times a second, on one line of stderr.
-class Progress {
- public:
-  explicit Progress(bool enabled) : line_(enabled, std::chrono::milliseconds(500)) {}
-  void update(double sim_time, std::uint64_t events) {
-    if (const auto wall = line_.due()) {
-      line_.show(fmt::format("simulated {:.1f} s, {} events, {:.2f} M events/s", sim_time, events,
-                             *wall > 0 ? static_cast<double>(events) / *wall / 1e6 : 0.0));
-    }
+// Parses the arguments into `c`: the exit code if that is all (help, version, a mistake).
+std::optional<int> parse_command_line(CommandLine& c, int argc, char** argv) {
+  if (argc > 1 && argv[1][0] != '-' && std::find(c.commands.begin(), c.commands.end(), argv[1]) == c.commands.end()) {
+    return unknown_command(argv[1], c.commands);
   }
-  void clear() { line_.clear(); }
-
- private:
-  pcsim::StatusLine line_;
-};
-
-void print_warnings(const pagecache::Scenario& scenario) {
-  for (const std::string& warning : scenario.warnings) fmt::print(stderr, "pcsim: warning: {}\n", warning);
+  try {
+    c.app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return c.app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return c.app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    c.app.exit(e);
+    return 2;
+  }
+  return std::nullopt;
 }
 
-int run_command(const std::string& path, const Inputs& in, const std::vector<std::string>& sets, const std::string& profile,
-                const std::string& out_dir, bool quiet, bool cache_contents, bool force, bool trace, bool report) {
-  pagecache::Scenario scenario = load(path, in, sets, profile, force);
-  if (!quiet) print_warnings(scenario);
-  pagecache::check_output_folder(out_dir, path);  // before simulating, not after
-  Progress progress(!quiet);
-  pagecache::RunOptions options;
-  options.cache_contents = cache_contents;
-  options.progress = [&progress](double t, std::uint64_t events) { progress.update(t, events); };
-  // The same outputs as an embedding program writes (pagecache/outputs.hpp).
-  pagecache::RunOutputs outputs({.report = report, .trace = trace || scenario.trace});
-  outputs.attach(options);
-  // The outputs name the scenario (its file, title and profile); the run takes the rest and
-  // frees its applications and files once planned (at 10^5 applications, a fifth of its memory).
-  pagecache::Scenario named;
-  named.source = scenario.source;
-  named.title = scenario.title;
-  named.profile = scenario.profile;
-  pagecache::RunResult result;
-  try {
-    result = pagecache::run_scenario(std::move(scenario), options);
-  } catch (...) {
-    progress.clear();
-    throw;
-  }
-  progress.clear();
-  const std::vector<std::string> warnings = outputs.write(out_dir, named, result);
-  if (outputs.trace_truncated()) {
-    fmt::print(stderr, "pcsim: warning: trace.json holds every phase and memory row, but transfers, flushes, evictions and pauses "
-                       "only up to its first GB\n");
-  }
-  for (const std::string& warning : warnings) fmt::print(stderr, "pcsim: warning: {}\n", warning);
-  if (!quiet) {
-    fmt::print("{}", pagecache::readable_summary(named, result));
-    const std::string extra = std::string(report ? ", report.html" : "") + (outputs.writes_trace() ? ", trace.json" : "");
-    if (result.cache_not_recorded.empty()) {
-      fmt::print("outputs: {}/{{timeline.csv, memory.csv, cache.csv, summary.json, timing.json{}}}\n", out_dir, extra);
-    } else {
-      fmt::print("outputs: {}/{{timeline.csv, memory.csv, summary.json, timing.json{}}}; cache contents {}\n", out_dir, extra,
-                 pagecache::cache_contents_note(result));
-    }
-  }
+int help_command(const CommandLine& c) {
+  // The formatter, not app.help(), which would explain the help command itself.
+  const CLI::App* topic = c.help_topic.empty() ? &c.app : c.app.get_subcommand(c.help_topic);
+  fmt::print("{}", c.app.get_formatter()->make_help(topic, c.help_topic.empty() ? "pcsim" : "pcsim " + c.help_topic, CLI::AppFormatMode::Normal));
   return 0;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  // Ctrl-C, kill or a closed terminal while an output is written: its staging folder or
-  // temporary file goes too (exit 130, 143 or 129).
-  pagecache::report::install_interrupt_cleanup();
-  CLI::App app{"pcsim: a discrete-event simulator of the Linux page cache"};
-  app.set_version_flag("--version", std::string("pcsim ") + pagecache::kVersion);
-  app.require_subcommand(1);
-
-  std::string scenario_path;
-  std::string out_dir = "pcsim-out";
-  std::string profile;
-  std::vector<std::string> sets;
-  bool quiet = false;
-  bool no_cache_contents = false;
-  bool force = false;
-  const char* force_help = "load a scenario beyond the limits on its size, events, simulated time and memory profile "
-                           "(what pcsim cannot represent is still refused)";
-
-  Inputs inputs;
-  const char* platform_help = "platform file, SimGrid XML (WRENCH-cache's conventions) or TOML: what a workflow file runs on, or "
-                              "in place of a scenario's own";
-  const char* files_host_help = "host whose disk stores a workflow file's files (default: the first of its recorded machines the "
-                                "platform has, else the first of --hosts, else the platform's first host)";
-  const char* hosts_help = "hosts a workflow file's tasks may run on, besides those its recorded machines name (default: those "
-                           "machines, else with --files-host every other host, else the files host)";
-  auto* run = app.add_subcommand("run", "run a scenario or a workflow (without either: the embedded default, the paper's Exp 1 at 100 GB)");
-  run->add_option("scenario", scenario_path, "scenario file (TOML), or workflow file (WfFormat JSON, with --platform)");
-  run->add_option("--platform", inputs.platform, platform_help);
-  run->add_option("--files-host", inputs.files_host, files_host_help);
-  run->add_option("--hosts", inputs.hosts, hosts_help)->delimiter(',');
-  run->add_option("--out", out_dir,
-                  "output folder: made if absent; an empty folder or one an earlier run made (marked by .pcsim-output) "
-                  "is replaced whole; anything else is refused and left untouched")
-      ->capture_default_str();
-  run->add_option("--profile", profile, "model profile, overriding the scenario's")->check(CLI::IsMember({"paper", "linux"}));
-  run->add_option("--set", sets, "override a scenario key: KEY=VALUE (repeatable), e.g. pipelines.count=16");
-  run->add_flag("--quiet", quiet, "print nothing but errors");
-  run->add_flag("--no-cache-contents", no_cache_contents, "do not record cache.csv (large workloads)");
-  run->add_flag("--force", force, force_help);
-  bool no_report = false;
-  run->add_flag("--no-report", no_report, "do not write report.html (the run's figures drawn in one offline page)");
-  bool trace = false;
-  run->add_flag("--trace", trace,
-                "also write trace.json (Chrome Trace Event format: open it in ui.perfetto.dev or chrome://tracing); the scenario key "
-                "trace = true does the same");
-
-  auto* show = app.add_subcommand("show", "print the fully resolved scenario, defaults included, or a platform file alone");
-  show->add_option("scenario", scenario_path,
-                   "scenario file (TOML), workflow file (JSON, with --platform) or platform file (XML); the embedded default if omitted");
-  show->add_option("--platform", inputs.platform, std::string(platform_help) + "; alone, the platform is shown");
-  show->add_option("--files-host", inputs.files_host, files_host_help);
-  show->add_option("--hosts", inputs.hosts, hosts_help)->delimiter(',');
-  show->add_option("--profile", profile, "model profile, overriding the scenario's")->check(CLI::IsMember({"paper", "linux"}));
-  show->add_option("--set", sets, "override a scenario key: KEY=VALUE (repeatable)");
-  show->add_flag("--force", force, force_help);
-
-  auto* validate = app.add_subcommand("validate", "compare the paper's experiments with the real measurements");
-  std::string json_path;
-  // The shipped data beside this pcsim (data_dir.hpp); a pcsim without it needs both options.
-  const std::filesystem::path shipped = pcsim::data_dir();
-  std::string data_dir = shipped.empty() ? std::string() : (shipped / "validation" / "paper").string();
-  std::string scenarios_dir = shipped.empty() ? std::string() : (shipped / "scenarios" / "paper").string();
-  validate->add_option("--json", json_path, "also write the results as JSON to this file");
-  std::string report_path = "validate-report.html";
-  validate->add_option("--report", report_path, "write the results as a self-contained HTML page to this file")->capture_default_str();
-  std::string validate_profile = "linux";
-  validate->add_option("--profile", validate_profile, "model profile (the paper scenarios' own profile is paper)")
-      ->check(CLI::IsMember({"paper", "linux"}))
-      ->capture_default_str();
-  validate->add_option("--set", sets, "override a key of every scenario: KEY=VALUE (repeatable)");
-  std::vector<std::string> switches;
-  validate->add_option("--switch", switches, "force a page-cache switch on every host: NAME=true|false (ablations)");
-  validate->add_option("--data", data_dir, "the validation data")->capture_default_str();
-  validate->add_option("--scenarios", scenarios_dir, "the paper's scenarios")->capture_default_str();
-  pcsim::ValidateHereOptions here;
-  pcsim::add_validate_here_options(*validate, here);
-
-  pcsim::SweepCommand sweep;
-  pcsim::add_sweep_command(app, sweep);
-  pcsim::CalibrateCommand calibrate;
-  pcsim::add_calibrate_command(app, calibrate);
-
-  auto* help = app.add_subcommand("help", "show this help, or a command's: pcsim help run");
-  std::string help_topic;
-  std::vector<std::string> commands;
-  for (const CLI::App* sub : app.get_subcommands({})) commands.push_back(sub->get_name());
-  help->add_option("command", help_topic, "the command to explain")->check(CLI::IsMember(commands));
-
-  if (argc > 1 && argv[1][0] != '-' && std::find(commands.begin(), commands.end(), argv[1]) == commands.end()) {
-    return unknown_command(argv[1], commands);
+int validate_command(const ValidateCommand& v, const std::vector<std::string>& sets) {
+  // The command line's own mistakes first: they need no data to be seen.
+  const bool write_json = v.app->count("--json") > 0;  // `--json ''` is refused, not ignored
+  if (write_json) pagecache::report::check_output_file(v.json_path, "--json");
+  pagecache::report::check_output_file(v.report_path, "--report");
+  if (v.data_dir.empty() || v.scenarios_dir.empty()) {
+    throw pagecache::ConfigError(fmt::format("validate: no validation data beside this pcsim (looked in {}): give --data FOLDER and "
+                                             "--scenarios FOLDER (validation/paper and scenarios/paper of pcsim's sources)",
+                                             pcsim::data_dir_looked_at().string()));
   }
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    app.exit(e);
-    return 2;
-  }
+  const auto forced = pagecache::validate::parse_switches(v.switches);
+  const auto report = pagecache::validate::run({v.data_dir, v.scenarios_dir, v.profile, pcsim::parse_sets(sets), forced});
+  fmt::print("{}", report.text());
+  if (write_json) pagecache::report::write_output_file(v.json_path, report.json(), "--json");
+  pagecache::report::write_output_file(v.report_path, report.html(), "--report");
+  fmt::print("report: {}\n", v.report_path);
+  return 0;
+}
 
+// Runs the command that was parsed.
+int dispatch(CommandLine& c) {
+  if (c.help->parsed()) return help_command(c);
+  if (c.sweep.sweep->parsed()) return pcsim::run_sweep_command(c.sweep);
+  if (c.calibrate.app->parsed()) return pcsim::run_calibrate_command(c.calibrate);
+  const pcsim::ValidateHereOptions& here = c.validate.here;
+  if (c.validate.app->parsed() && (here.here || !here.from.empty())) return pcsim::run_validate_here(here);
+  if (c.validate.app->parsed()) return validate_command(c.validate, c.scenario.sets);
+  if (c.show->parsed()) return pcsim::show_command(c.scenario);
+  return pcsim::run_command(c.scenario, c.run_args);
+}
+
+// The parsed command's exit code: its own, or the documented one of the error that stopped it.
+int run_parsed_command(CommandLine& c) {
   try {
-    if (help->parsed()) {
-      // The formatter, not app.help(), which would explain the help command itself.
-      const CLI::App* topic = help_topic.empty() ? &app : app.get_subcommand(help_topic);
-      fmt::print("{}", app.get_formatter()->make_help(topic, help_topic.empty() ? "pcsim" : "pcsim " + help_topic, CLI::AppFormatMode::Normal));
-      return 0;
-    }
-    if (sweep.sweep->parsed()) return pcsim::run_sweep_command(sweep);
-    if (calibrate.app->parsed()) return pcsim::run_calibrate_command(calibrate);
-    if (validate->parsed() && (here.here || !here.from.empty())) return pcsim::run_validate_here(here);
-    if (validate->parsed()) {
-      // The command line's own mistakes first: they need no data to be seen.
-      const bool write_json = validate->count("--json") > 0;  // `--json ''` is refused, not ignored
-      if (write_json) pagecache::report::check_output_file(json_path, "--json");
-      pagecache::report::check_output_file(report_path, "--report");
-      if (data_dir.empty() || scenarios_dir.empty()) {
-        throw pagecache::ConfigError(fmt::format("validate: no validation data beside this pcsim (looked in {}): give --data FOLDER and "
-                                                 "--scenarios FOLDER (validation/paper and scenarios/paper of pcsim's sources)",
-                                                 pcsim::data_dir_looked_at().string()));
-      }
-      const auto forced = pagecache::validate::parse_switches(switches);
-      const auto report = pagecache::validate::run({data_dir, scenarios_dir, validate_profile, parse_sets(sets), forced});
-      fmt::print("{}", report.text());
-      if (write_json) pagecache::report::write_output_file(json_path, report.json(), "--json");
-      pagecache::report::write_output_file(report_path, report.html(), "--report");
-      fmt::print("report: {}\n", report_path);
-      return 0;
-    }
-    if (show->parsed()) {
-      // A platform alone: an XML file, or --platform without a scenario.
-      const bool platform_alone = ends_with(scenario_path, ".xml") || (scenario_path.empty() && !inputs.platform.empty());
-      if (platform_alone && !sets.empty()) throw pagecache::ConfigError("--set changes a scenario; a platform is shown as its file says");
-      const pagecache::Scenario scenario = platform_alone ? pagecache::load_platform(scenario_path.empty() ? inputs.platform : scenario_path, profile)
-                                                          : load(scenario_path, inputs, sets, profile, force);
-      print_warnings(scenario);
-      fmt::print("{}", pagecache::to_toml(scenario));
-      return 0;
-    }
-    return run_command(scenario_path, inputs, sets, profile, out_dir, quiet, !no_cache_contents, force, trace, !no_report);
+    return dispatch(c);
   } catch (const pagecache::ConfigError& e) {
     fmt::print(stderr, "pcsim: {}\n", e.what());
     return 2;
@@ -341,4 +231,16 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "pcsim: {}\n", e.what());
     return 1;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Ctrl-C, kill or a closed terminal while an output is written: its staging folder or
+  // temporary file goes too (exit 130, 143 or 129).
+  pagecache::report::install_interrupt_cleanup();
+  CommandLine command_line;
+  build_command_line(command_line);
+  if (const std::optional<int> done = parse_command_line(command_line, argc, argv)) return *done;
+  return run_parsed_command(command_line);
 }

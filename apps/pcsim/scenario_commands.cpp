@@ -1,0 +1,155 @@
+#include "scenario_commands.hpp"
+
+#include <pagecache/error.hpp>
+#include <pagecache/outputs.hpp>
+#include <pagecache/run.hpp>
+#include <pagecache/scenario.hpp>
+#include <pagecache/scenario_file.hpp>
+
+#include "status_line.hpp"
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+namespace pcsim {
+
+namespace {
+
+// `text` as a TOML string (for --set: a value is read as TOML).
+std::string toml_string(const std::string& text) {
+  std::ostringstream out;
+  out << toml::value<std::string>(text);
+  return out.str();
+}
+
+bool ends_with(const std::string& s, const std::string& tail) {
+  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+std::string absolute(const std::string& path) { return std::filesystem::absolute(path).lexically_normal().string(); }
+
+// A workflow instance (WfFormat JSON) on a platform file (pagecache::load_workflow): --set
+// reaches every key, and a problem with an option names it.
+pagecache::Scenario load_workflow(const std::string& path, const Inputs& in, const std::vector<std::string>& sets, const std::string& profile,
+                                  const pagecache::ScenarioLimits& limits) {
+  pagecache::WorkflowOptions options;
+  options.platform = in.platform;
+  options.files_host = in.files_host;
+  options.hosts = in.hosts;
+  return pagecache::load_workflow(path, options, parse_sets(sets), profile, limits);
+}
+
+pagecache::Scenario load(const ScenarioArgs& s) {
+  const pagecache::ScenarioLimits limits = s.force ? pagecache::ScenarioLimits::forced() : pagecache::ScenarioLimits{};
+  if (ends_with(s.path, ".json")) return load_workflow(s.path, s.inputs, s.sets, s.profile, limits);
+  if (!s.inputs.files_host.empty() || !s.inputs.hosts.empty()) {
+    throw pagecache::ConfigError("--files-host and --hosts place a workflow file's (JSON) files and tasks; a scenario gives them in its [workflow] table");
+  }
+  Overrides overrides = parse_sets(s.sets);
+  // A scenario on another platform: --platform is its `platform` key.
+  if (!s.inputs.platform.empty()) overrides.insert(overrides.begin(), {"platform", toml_string(absolute(s.inputs.platform))});
+  if (s.path.empty()) {
+    return pagecache::parse_scenario(pagecache::default_scenario_text(), "<embedded default>", overrides, s.profile, limits);
+  }
+  return pagecache::load_scenario(s.path, overrides, s.profile, limits);
+}
+
+// Progress on a terminal only, for runs longer than half a second: simulated time reached and
+// events per second, at most five times a second, on one line of stderr.
+class Progress {
+ public:
+  explicit Progress(bool enabled) : line_(enabled, std::chrono::milliseconds(500)) {}
+  void update(double sim_time, std::uint64_t events) {
+    if (const auto wall = line_.due()) {
+      line_.show(fmt::format("simulated {:.1f} s, {} events, {:.2f} M events/s", sim_time, events,
+                             *wall > 0 ? static_cast<double>(events) / *wall / 1e6 : 0.0));
+    }
+  }
+  void clear() { line_.clear(); }
+
+ private:
+  StatusLine line_;
+};
+
+void print_warnings(const pagecache::Scenario& scenario) {
+  for (const std::string& warning : scenario.warnings) fmt::print(stderr, "pcsim: warning: {}\n", warning);
+}
+
+// What a run printed unless --quiet: its summary and its outputs.
+void print_run(const pagecache::Scenario& named, const pagecache::RunResult& result, const pagecache::RunOutputs& outputs, const RunArgs& args) {
+  fmt::print("{}", pagecache::readable_summary(named, result));
+  const std::string extra = std::string(!args.no_report ? ", report.html" : "") + (outputs.writes_trace() ? ", trace.json" : "");
+  if (result.cache_not_recorded.empty()) {
+    fmt::print("outputs: {}/{{timeline.csv, memory.csv, cache.csv, summary.json, timing.json{}}}\n", args.out_dir, extra);
+  } else {
+    fmt::print("outputs: {}/{{timeline.csv, memory.csv, summary.json, timing.json{}}}; cache contents {}\n", args.out_dir, extra,
+               pagecache::cache_contents_note(result));
+  }
+}
+
+}  // namespace
+
+Overrides parse_sets(const std::vector<std::string>& sets) {
+  Overrides out;
+  for (const std::string& s : sets) {
+    const auto eq = s.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      throw pagecache::ConfigError(fmt::format("--set '{}': expected KEY=VALUE, e.g. --set pipelines.count=16", s));
+    }
+    out.emplace_back(s.substr(0, eq), s.substr(eq + 1));
+  }
+  return out;
+}
+
+int run_command(const ScenarioArgs& s, const RunArgs& args) {
+  pagecache::Scenario scenario = load(s);
+  if (!args.quiet) print_warnings(scenario);
+  pagecache::check_output_folder(args.out_dir, s.path);  // before simulating, not after
+  Progress progress(!args.quiet);
+  pagecache::RunOptions options;
+  options.cache_contents = !args.no_cache_contents;
+  options.progress = [&progress](double t, std::uint64_t events) { progress.update(t, events); };
+  // The same outputs as an embedding program writes (pagecache/outputs.hpp).
+  pagecache::RunOutputs outputs({.report = !args.no_report, .trace = args.trace || scenario.trace});
+  outputs.attach(options);
+  // The outputs name the scenario (its file, title and profile); the run takes the rest and
+  // frees its applications and files once planned (at 10^5 applications, a fifth of its memory).
+  pagecache::Scenario named;
+  named.source = scenario.source;
+  named.title = scenario.title;
+  named.profile = scenario.profile;
+  pagecache::RunResult result;
+  try {
+    result = pagecache::run_scenario(std::move(scenario), options);
+  } catch (...) {
+    progress.clear();
+    throw;
+  }
+  progress.clear();
+  const std::vector<std::string> warnings = outputs.write(args.out_dir, named, result);
+  if (outputs.trace_truncated()) {
+    fmt::print(stderr, "pcsim: warning: trace.json holds every phase and memory row, but transfers, flushes, evictions and pauses "
+                       "only up to its first GB\n");
+  }
+  for (const std::string& warning : warnings) fmt::print(stderr, "pcsim: warning: {}\n", warning);
+  if (!args.quiet) print_run(named, result, outputs, args);
+  return 0;
+}
+
+int show_command(const ScenarioArgs& s) {
+  // A platform alone: an XML file, or --platform without a scenario.
+  const bool platform_alone = ends_with(s.path, ".xml") || (s.path.empty() && !s.inputs.platform.empty());
+  if (platform_alone && !s.sets.empty()) throw pagecache::ConfigError("--set changes a scenario; a platform is shown as its file says");
+  const pagecache::Scenario scenario =
+      platform_alone ? pagecache::load_platform(s.path.empty() ? s.inputs.platform : s.path, s.profile) : load(s);
+  print_warnings(scenario);
+  fmt::print("{}", pagecache::to_toml(scenario));
+  return 0;
+}
+
+}  // namespace pcsim

@@ -1,0 +1,137 @@
+#include "workload/plans.hpp"
+
+#include <pagecache/error.hpp>
+#include <pagecache/units.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <map>
+
+namespace pagecache::workload {
+
+namespace {
+
+// Memory groups are never removed: a run may make at most so many (on one host).
+void check_memory_groups(const Scenario& scenario) {
+  std::size_t groups = 0;
+  for (const AppSpec& app : scenario.apps) groups += app.memory_max > 0 ? 1 : 0;
+  for (const WorkflowSpec& w : scenario.workflows) {
+    groups += static_cast<std::size_t>(std::count_if(w.tasks.begin(), w.tasks.end(), [](const TaskSpec& t) { return t.memory_limits.max > 0; }));
+  }
+  if (groups > GroupRef::kMax) {
+    throw ConfigError(fmt::format("{} applications and workflow tasks with a memory_max: a run may have at most {} memory groups", groups,
+                                  GroupRef::kMax));
+  }
+}
+
+}  // namespace
+
+Plans::Plans(const Scenario& scenario, const Platform& platform, const FileIndex& files) {
+  TaskIndex names;  // the task names met so far: a run of pipelines has a few
+  reserve(scenario);
+  plan_applications(scenario.apps, platform, files, names);
+  first_workflow_task_ = tasks_.size();
+  check_memory_groups(scenario);
+  plan_workflows(scenario.workflows, platform, files, names);
+  task_names_.shrink_to_fit();
+}
+
+// Exact sizes: at 10^5 pipelines a doubling array's spare half would be tens of MB.
+void Plans::reserve(const Scenario& scenario) {
+  std::size_t tasks = 0;
+  std::size_t files = 0;
+  const auto count = [&](const std::vector<TaskSpec>& of) {
+    tasks += of.size();
+    for (const TaskSpec& t : of) files += t.reads.size() + t.writes.size() + t.deletes.size();
+  };
+  for (const AppSpec& app : scenario.apps) count(app.tasks);
+  for (const WorkflowSpec& w : scenario.workflows) count(w.tasks);
+  tasks_.reserve(tasks);
+  planned_files_.reserve(files);
+  apps_.reserve(scenario.apps.size());
+}
+
+void Plans::plan_applications(const std::vector<AppSpec>& apps, const Platform& platform, const FileIndex& files, TaskIndex& names) {
+  for (const AppSpec& app : apps) {
+    Host& host = platform.host_named(app.host, "application", app.name);
+    // An application with a memory limit is a memory group of its host (a job's cgroup).
+    const GroupRef group = app.memory_max > 0 ? host.add_memory_group(app.memory_max, app.memory_high) : GroupRef{};
+    apps_.push_back({app.name, &host, static_cast<std::uint32_t>(tasks_.size()), static_cast<std::uint32_t>(app.tasks.size())});
+    for (const TaskSpec& task : app.tasks) {
+      plan_task(task, platform.files(), files, names);
+      tasks_.back().group = group;
+    }
+  }
+}
+
+void Plans::plan_workflows(const std::vector<WorkflowSpec>& workflows, const Platform& platform, const FileIndex& files, TaskIndex& names) {
+  for (const WorkflowSpec& w : workflows) {
+    if (w.hosts.empty()) throw ConfigError(fmt::format("workflow '{}': no host to run on", w.name));
+    for (const std::string& h : w.hosts) platform.host_named(h, "workflow", w.name);
+    for (const TaskSpec& task : w.tasks) {
+      if (!task.host.empty()) platform.host_named(task.host, "task", task.name);
+      plan_task(task, platform.files(), files, names);
+    }
+  }
+}
+
+void Plans::plan_task(const TaskSpec& task, const std::vector<PlacedFile>& placed, const FileIndex& files, TaskIndex& names) {
+  TaskPlan& plan = tasks_.emplace_back();
+  const auto [known, added] = names.try_emplace(task.name, static_cast<std::uint32_t>(task_names_.size()));
+  if (added) task_names_.push_back(task.name);
+  plan.name = known->second;
+  const auto add = [&](const std::vector<std::string>& list) {
+    for (const std::string& name : list) {
+      const auto it = files.find(name);
+      if (it == files.end()) throw ConfigError(fmt::format("task '{}': no file named '{}'", task.name, name));
+      planned_files_.push_back(it->second);
+    }
+    return static_cast<std::uint32_t>(planned_files_.size());
+  };
+  plan.reads = static_cast<std::uint32_t>(planned_files_.size());
+  plan.writes = add(task.reads);
+  plan.deletes = add(task.writes);
+  plan.end = add(task.deletes);
+  plan.chunk_size = task.chunk_size;
+  std::int64_t reading = 0;
+  for (std::uint32_t f = plan.reads; f < plan.writes; ++f) {
+    const PlacedFile& file = placed[planned_files_[f]];
+    reading = std::min(reading + file.host->file_size(file.ref), units::kMaxBytes * 2);
+  }
+  plan.memory = std::max<std::int64_t>(0, task.memory - reading);
+  plan.compute = task.compute;
+  plan.fsync = task.fsync;
+  plan.direct_io = task.direct_io;
+}
+
+WorkflowHosts place_workflow(const WorkflowSpec& w, const Platform& platform, Simulator& sim) {
+  WorkflowHosts p;
+  std::vector<int> cores;
+  std::map<std::string, std::size_t> index;
+  const auto add = [&](const std::string& name) {
+    const auto [it, added] = index.try_emplace(name, p.hosts.size());
+    if (added) {
+      p.hosts.push_back(&platform.host(name));
+      cores.push_back(platform.cores(name));
+    }
+    return it->second;
+  };
+  for (const std::string& h : w.hosts) p.shared.push_back(add(h));
+  int most = 0;  // the most cores of a shared host
+  for (const std::size_t h : p.shared) most = std::max(most, cores[h]);
+  p.own.reserve(w.tasks.size());
+  for (const TaskSpec& t : w.tasks) p.own.push_back(t.host.empty() ? CoreScheduler::kShared : add(t.host));
+  for (std::size_t i = 0; i < w.tasks.size(); ++i) {
+    const TaskSpec& t = w.tasks[i];
+    const bool own = p.own[i] != CoreScheduler::kShared;
+    if (t.cores > (own ? cores[p.own[i]] : most)) {
+      throw ConfigError(fmt::format("workflow '{}', task '{}': needs {} cores, more than {} has", w.name, t.name, t.cores,
+                                    own ? "its host" : "any of its workflow's hosts"));
+    }
+  }
+  p.cores = std::make_unique<CoreScheduler>(sim, std::move(cores), p.shared);
+  return p;
+}
+
+}  // namespace pagecache::workload

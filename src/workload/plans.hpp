@@ -1,0 +1,91 @@
+#pragma once
+// Plans: the scenario's applications and workflow tasks as their run reads them, made once
+// before it, the plans of all tasks side by side, so that an I/O phase looks no name up and
+// reads no cold string; and the placement of a workflow's tasks on its hosts' cores.
+
+#include "workload/core_scheduler.hpp"
+#include "workload/platform.hpp"
+
+#include <pagecache/host.hpp>
+#include <pagecache/scenario.hpp>
+#include <pagecache/simulator.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+namespace pagecache::workload {
+
+/// A task as its run reads it. Its files are ranges of one array of indices into the
+/// platform's files (Plans::file), in the order of the task's lists.
+struct TaskPlan {
+  std::uint32_t reads = 0;  // first read; the writes follow the reads, the deletes the writes
+  std::uint32_t writes = 0;
+  std::uint32_t deletes = 0;
+  std::uint32_t end = 0;
+  std::int64_t chunk_size = 0;
+  std::int64_t memory = 0;  // held besides the buffers of what it reads
+  double compute = 0.0;
+  std::uint32_t name = 0;  // Plans::task_name
+  bool fsync = false;
+  bool direct_io = false;
+  GroupRef group;  // its application's memory group, if it has one
+};
+
+/// An application as its run reads it: its tasks' plans are `tasks` from `first`.
+struct AppPlan {
+  std::string name;
+  Host* host;
+  std::uint32_t first;
+  std::uint32_t tasks;
+};
+
+class Plans {
+ public:
+  /// Plans every task of `scenario` on `platform` (which gives the applications' memory groups);
+  /// `files` indexes the platform's files by name.
+  Plans(const Scenario& scenario, const Platform& platform, const FileIndex& files);
+
+  /// Per application, in order; the workflows' task plans, in their order, from workflow_tasks().
+  const std::vector<AppPlan>& apps() const noexcept { return apps_; }
+  const TaskPlan* workflow_tasks() const noexcept { return tasks_.data() + first_workflow_task_; }
+  std::size_t task_count() const noexcept { return tasks_.size(); }
+  std::span<const TaskPlan> tasks_of(const AppPlan& app) const noexcept { return {tasks_.data() + app.first, app.tasks}; }
+
+  const std::string& task_name(const TaskPlan& plan) const noexcept { return task_names_[plan.name]; }
+  /// The file of a task's list, `f` in [reads, end) of its plan: its index in Platform::files().
+  std::uint32_t file(std::uint32_t f) const noexcept { return planned_files_[f]; }
+
+ private:
+  using TaskIndex = std::unordered_map<std::string_view, std::uint32_t>;  // in task_names_
+
+  void reserve(const Scenario& scenario);
+  void plan_applications(const std::vector<AppSpec>& apps, const Platform& platform, const FileIndex& files, TaskIndex& names);
+  void plan_workflows(const std::vector<WorkflowSpec>& workflows, const Platform& platform, const FileIndex& files, TaskIndex& names);
+  void plan_task(const TaskSpec& task, const std::vector<PlacedFile>& placed, const FileIndex& files, TaskIndex& names);
+
+  std::vector<AppPlan> apps_;
+  std::vector<TaskPlan> tasks_;  // per task, apps' then workflows', in order
+  std::size_t first_workflow_task_ = 0;
+  std::vector<std::string> task_names_;       // what TaskPlan::name names, each name once
+  std::vector<std::uint32_t> planned_files_;  // the files of the tasks' lists, in Platform::files()
+};
+
+/// The hosts a workflow's tasks may run on, and the scheduler of their cores: the workflow's
+/// hosts, then those its tasks name.
+struct WorkflowHosts {
+  std::vector<Host*> hosts;
+  std::unique_ptr<CoreScheduler> cores;
+  std::vector<std::size_t> shared;  // the workflow's hosts
+  std::vector<std::size_t> own;     // per task: its own host, if it names one (else CoreScheduler::kShared)
+};
+
+/// Where `w`'s tasks may run; ConfigError if a task needs more cores than its hosts have.
+WorkflowHosts place_workflow(const WorkflowSpec& w, const Platform& platform, Simulator& sim);
+
+}  // namespace pagecache::workload

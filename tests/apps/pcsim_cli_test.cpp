@@ -415,3 +415,16 @@ TEST_CASE("pcsim validate: the linux profile is closer to the real runs than WRE
     CHECK(field(c, "max_cached_diff_pct_of_memory") <= 10.0);
   }
 }
+
+TEST_CASE("a memory row for every change, with files cached at the start, is recorded from the run's start", "[cli][memory]") {
+  // Caching the files at the start changes memory before the run reports anywhere: this once
+  // ended in a segmentation fault (exit 139).
+  const fs::path dir = scratch("interval-zero-cached");
+  const std::string scenario = fs::path(PCSIM_SOURCE_DIR) / "scenarios/examples/many-writers.toml";
+  const Outcome o = pcsim(fmt::format("run '{}' --set memory_sample_interval=0 --out '{}' --quiet", scenario, (dir / "out").string()));
+  INFO(o.output);
+  REQUIRE(o.status == 0);
+  const auto rows = read_csv((dir / "out" / "memory.csv").string());
+  REQUIRE(rows.size() > 2);
+  CHECK(std::stod(rows.front().at("time_s")) == 0.0);
+}

@@ -1,0 +1,103 @@
+// The files of a scenario: its [[files]] tables, and the checks of every file (those of the
+// pipelines and workflow included) against the disks that store them.
+
+#include "scenario/loader_sections.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <string_view>
+#include <unordered_map>
+#include <unordered_set>
+
+namespace pagecache::scenario {
+
+void read_files(TomlReader& r, const std::string& file, Scenario& s, Origins& origins) {
+  const auto files = r.tables("files");
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    TomlReader f(*files[i], r.child_path("files", i), file);
+    origins.files.push_back({files[i], f.path(), &file});
+    FileSpec spec;
+    spec.name = f.required_name("name");
+    spec.size = f.required_size("size");
+    spec.host = f.name("host", s.hosts.front().name);
+    spec.disk = f.name("disk", "");
+    spec.cached = f.optional_bool("cached").value_or(false);
+    const auto h = std::find_if(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == spec.host; });
+    if (h == s.hosts.end()) f.fail("host", fmt::format("no host named '{}'", spec.host));
+    if (spec.disk.empty()) {
+      // A platform file's host may have none (a SimGrid cluster's).
+      if (h->disks.empty()) f.fail("host", fmt::format("host '{}' has no disk to store file '{}'", spec.host, spec.name));
+      spec.disk = h->disks.front().name;
+    }
+    f.finish();
+    s.files.push_back(std::move(spec));
+  }
+}
+
+// The references of the files: each names a disk its host has, and fits it.
+std::map<std::string, const FileSpec*> check_files(const Scenario& s, const Origins& origins) {
+  std::map<std::string, const FileSpec*> by_name;
+  std::unordered_map<std::string_view, const HostConfig*> host_by_name;
+  for (const HostConfig& h : s.hosts) host_by_name.emplace(h.name, &h);
+  for (std::size_t i = 0; i < s.files.size(); ++i) {
+    const FileSpec& f = s.files[i];
+    if (!by_name.emplace(f.name, &f).second) origins.file(i).fail("name", fmt::format("two files named '{}'", f.name));
+    const HostConfig& h = *host_by_name.at(f.host);
+    const auto d = std::find_if(h.disks.begin(), h.disks.end(), [&](const DiskSpec& x) { return x.name == f.disk; });
+    if (d == h.disks.end()) origins.file(i).fail("disk", fmt::format("file '{}': host '{}' has no disk '{}'", f.name, h.name, f.disk));
+    if (d->capacity > 0 && f.size > d->capacity) {
+      origins.file(i).fail(i < origins.files.size() ? "size" : "file_size",
+                           fmt::format("file '{}' ({}) does not fit on disk '{}' ({})", f.name, units::format_size(f.size), d->name,
+                                       units::format_size(d->capacity)));
+    }
+  }
+  return by_name;
+}
+
+// What the files on each disk take at the start (those no task writes) and at the end (those no
+// task deletes): both must fit its capacity. Files written and deleted meanwhile may need more.
+void check_disk_space(const Scenario& s, const Origins& origins) {
+  const bool any_capacity = std::any_of(s.hosts.begin(), s.hosts.end(), [](const HostConfig& h) {
+    return std::any_of(h.disks.begin(), h.disks.end(), [](const DiskSpec& d) { return d.capacity > 0; });
+  });
+  if (!any_capacity) return;
+  std::unordered_set<std::string_view> written, deleted;
+  auto note = [&](const std::vector<TaskSpec>& tasks) {
+    for (const TaskSpec& t : tasks) {
+      written.insert(t.writes.begin(), t.writes.end());
+      deleted.insert(t.deletes.begin(), t.deletes.end());
+    }
+  };
+  for (const AppSpec& a : s.apps) note(a.tasks);
+  for (const WorkflowSpec& w : s.workflows) note(w.tasks);
+  // What each disk holds at the start and at the end, summed in one pass over the files.
+  std::map<std::pair<std::string_view, std::string_view>, std::pair<std::int64_t, std::int64_t>> held;
+  for (const FileSpec& f : s.files) {
+    auto& [at_start, at_end] = held[{f.host, f.disk}];  // at most 2^60 each, summed while below 2^62
+    if (written.count(f.name) == 0) at_start = std::min(at_start + f.size, units::kMaxBytes * 2);
+    if (deleted.count(f.name) == 0) at_end = std::min(at_end + f.size, units::kMaxBytes * 2);
+  }
+  for (std::size_t h = 0; h < s.hosts.size(); ++h) {
+    for (std::size_t d = 0; d < s.hosts[h].disks.size(); ++d) {
+      const DiskSpec& disk = s.hosts[h].disks[d];
+      if (disk.capacity <= 0) continue;
+      const auto sums = held.find({s.hosts[h].name, disk.name});
+      if (sums == held.end()) continue;
+      const auto [at_start, at_end] = sums->second;
+      const bool start = at_start >= at_end;
+      const std::int64_t needed = std::max(at_start, at_end);
+      if (needed > disk.capacity) {
+        origins.disks[h][d].fail(origins.disks[h][d].has("capacity") ? "capacity" : "name",
+                                 fmt::format("the files on disk '{}' of host '{}' take {} {}, more than its capacity of {}", disk.name,
+                                             s.hosts[h].name, units::format_size(needed),
+                                             start ? "when the run starts (the files no task writes)"
+                                                   : "when the run ends (the files no task deletes)",
+                                             units::format_size(disk.capacity)));
+      }
+    }
+  }
+}
+
+}  // namespace pagecache::scenario

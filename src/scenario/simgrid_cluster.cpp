@@ -1,0 +1,154 @@
+// A SimGrid <cluster> (FLAT topology only) expanded as SimGrid expands it: a host per radical,
+// named prefix + radical + suffix, each with its private link (SPLITDUPLEX by default) and, if
+// the cluster asks for them, a loopback and a limiter; a backbone shared by all.
+
+#include "scenario/simgrid_reader.hpp"
+
+#include "scenario/simgrid_radical.hpp"
+#include "scenario/simgrid_text.hpp"
+
+#include <pagecache/error.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace pagecache::scenario {
+
+// The links of a cluster as its attributes give them. SimGrid makes a backbone, a limiter or a
+// loopback when one of its values is above 0.
+struct SgReader::ClusterLinks {
+  SgLink link;  // each node's private link, its id not yet given
+  Policy policy = Policy::SplitDuplex;
+  double bb_bw = 0.0;
+  double bb_lat = 0.0;
+  Policy bb_policy = Policy::Shared;
+  double limiter_bw = 0.0;
+  double loopback_bw = 0.0;
+  double loopback_lat = 0.0;
+};
+
+void SgReader::cluster(const pugi::xml_node& e) {
+  xml_.check_attributes(e, {"id", "prefix", "suffix", "radical", "speed", "core", "bw", "lat", "sharing_policy", "topology", "topo_parameters",
+                            "bb_bw", "bb_lat", "bb_sharing_policy", "router_id", "limiter_link", "loopback_bw", "loopback_lat"});
+  const std::size_t zone = declare_zone(e);
+  const std::string id = zone_ids_[zone];
+  const int line = xml_.line(e);
+  // An empty prefix or suffix is common ("node-" + N + ""): present is enough.
+  const auto present = [&](const char* name) {
+    auto text = xml_.optional(e, name);
+    if (!text) xml_.fail_attribute(e, name, "missing");
+    return *text;
+  };
+  const std::string prefix = present("prefix");
+  const std::string suffix = present("suffix");
+  check_cluster_topology(e);
+  SgHost node = cluster_node(e, id, line);
+  const ClusterLinks links = cluster_links(e, line);
+  SgCluster c = cluster_record(e, id, line, links);
+  expand_cluster(e, c, zone, std::move(node), links, prefix, suffix);
+  platform_.clusters.push_back(std::move(c));
+}
+
+void SgReader::check_cluster_topology(const pugi::xml_node& e) {
+  const std::string topology = xml_.optional(e, "topology").value_or("FLAT");
+  if (topology == "TORUS" || topology == "FAT_TREE" || topology == "DRAGONFLY") {
+    xml_.fail_attribute(e, "topology", fmt::format("topology '{}' is not supported (only FLAT)", topology));
+  }
+  if (topology != "FLAT") xml_.fail_attribute(e, "topology", fmt::format("'{}' is not one of FLAT, TORUS, FAT_TREE, DRAGONFLY", sg_shown(topology)));
+  if (!sg_trim(xml_.optional(e, "topo_parameters").value_or("")).empty()) xml_.warn(e, "attribute topo_parameters: ignored by a FLAT cluster");
+  if (!sg_trim(xml_.optional(e, "router_id").value_or("")).empty()) {
+    xml_.warn(e, "attribute router_id: ignored (a cluster's router only matters to routes between zones)");
+  }
+}
+
+// What every node of the cluster is, its id aside: speed, cores and the cluster's props.
+SgHost SgReader::cluster_node(const pugi::xml_node& e, const std::string& id, int line) {
+  SgHost node;
+  node.cluster = id;
+  node.line = line;
+  node.speed = speed_list(e).front();
+  if (const auto text = xml_.optional(e, "core")) node.cores = static_cast<int>(xml_.whole_number(e, "core", *text, 1, kMaxCores));
+  std::unordered_set<std::string> prop_ids;
+  xml_.for_each_element(e, [&](const pugi::xml_node& child) {
+    if (std::string_view(child.name()) != "prop") xml_.unexpected(child, e, {"prop"});
+    prop(child, node.props, prop_ids);
+    warn_if_energy(child, node.props.back().first);
+  });
+  return node;
+}
+
+SgReader::ClusterLinks SgReader::cluster_links(const pugi::xml_node& e, int line) {
+  ClusterLinks links;
+  SgLink& link = links.link;
+  link.line = line;
+  link.bandwidth = xml_.quantity(e, "bw", kSgBandwidth, xml_.required(e, "bw"), false);
+  link.latency = xml_.quantity(e, "lat", kSgTime, xml_.required(e, "lat"), true);
+  links.policy = sharing_policy(e, "sharing_policy", Policy::SplitDuplex, true);
+  link.sharing = links.policy == Policy::Fatpipe ? LinkSharing::Fatpipe : LinkSharing::Shared;
+
+  const auto optional_quantity = [&](const char* name, const SgQuantity& q) {
+    const auto text = xml_.optional(e, name);
+    return text && !sg_trim(*text).empty() ? xml_.quantity(e, name, q, *text, true) : 0.0;
+  };
+  links.bb_bw = optional_quantity("bb_bw", kSgBandwidth);
+  links.bb_lat = optional_quantity("bb_lat", kSgTime);
+  links.limiter_bw = optional_quantity("limiter_link", kSgBandwidth);
+  links.loopback_bw = optional_quantity("loopback_bw", kSgBandwidth);
+  links.loopback_lat = optional_quantity("loopback_lat", kSgTime);
+  links.bb_policy = sharing_policy(e, "bb_sharing_policy", Policy::Shared, false);
+  if (links.bb_lat > 0 && links.bb_bw == 0) xml_.fail_attribute(e, "bb_lat", "a backbone needs bb_bw above 0");
+  if (links.loopback_lat > 0 && links.loopback_bw == 0) xml_.fail_attribute(e, "loopback_lat", "a loopback needs loopback_bw above 0");
+  return links;
+}
+
+// The cluster as SgPlatform keeps it: its links' kinds and its radicals, at most as many as
+// the platform has room for; its first host the next one added.
+SgCluster SgReader::cluster_record(const pugi::xml_node& e, const std::string& id, int line, const ClusterLinks& links) {
+  SgCluster c;
+  c.id = id;
+  c.line = line;
+  c.split_duplex = links.policy == Policy::SplitDuplex;
+  c.backbone = links.bb_bw > 0;
+  c.limiter = links.limiter_bw > 0;
+  c.loopback = links.loopback_bw > 0;
+  const std::size_t room = std::min(limits_.max_cluster_hosts, limits_.max_hosts - std::min(limits_.max_hosts, platform_.hosts.size()));
+  try {
+    c.radicals = parse_sg_radical(xml_.required(e, "radical"), room);
+  } catch (const ConfigError& error) {
+    xml_.fail_attribute(e, "radical", error.what());
+  }
+  c.first_host = platform_.hosts.size();
+  return c;
+}
+
+// Links in SimGrid's order of creation: the backbone, then per node loopback, limiter, private link.
+void SgReader::expand_cluster(const pugi::xml_node& e, const SgCluster& c, std::size_t zone, SgHost node, const ClusterLinks& links,
+                              const std::string& prefix, const std::string& suffix) {
+  const std::string& id = c.id;
+  const int line = c.line;
+  if (c.backbone) {
+    add_link(SgLink{id + "_backbone", links.bb_bw, links.bb_lat, links.bb_policy == Policy::Fatpipe ? LinkSharing::Fatpipe : LinkSharing::Shared,
+                    DuplexHalf::None, "", {}, line},
+             e, "id");
+  }
+  SgLink link = links.link;
+  for (const int radical : c.radicals) {
+    node.id = prefix + std::to_string(radical) + suffix;
+    check_new_host(e, "radical", node.id);
+    add_host(node, zone);
+    const std::string link_id = id + "_link_" + std::to_string(radical);
+    if (c.loopback) {
+      add_link(SgLink{link_id + "_loopback", links.loopback_bw, links.loopback_lat, LinkSharing::Fatpipe, DuplexHalf::None, "", {}, line}, e, "id");
+    }
+    if (c.limiter) add_link(SgLink{link_id + "_limiter", links.limiter_bw, 0.0, LinkSharing::Shared, DuplexHalf::None, "", {}, line}, e, "id");
+    link.id = link_id;
+    if (c.split_duplex) {
+      add_split_duplex(link, e, "id");
+    } else {
+      add_link(link, e, "id");
+    }
+  }
+}
+
+}  // namespace pagecache::scenario

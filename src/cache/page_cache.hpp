@@ -83,7 +83,6 @@ class PageCache {
 
   // --- Memory -----------------------------------------------------------------------------
   MemoryState memory() const noexcept;
-  std::int64_t total() const noexcept { return total_; }
   std::int64_t free() const noexcept { return total_ - anonymous_ - cached() - reserved_; }
   std::int64_t reserved() const noexcept { return reserved_; }
   std::int64_t anonymous() const noexcept { return anonymous_; }
@@ -149,8 +148,6 @@ class PageCache {
   std::int64_t cached(FileId file) const noexcept;
   std::int64_t cached(FileId file, ListKind kind) const noexcept;
   std::int64_t dirty(FileId file) const noexcept;
-  /// Number of files known (ids are 0 .. file_count() - 1).
-  std::size_t file_count() const noexcept { return files_.size(); }
   /// Makes the entry of a file its host has just registered. Optional (any id gets its entry
   /// when first cached), but entries made during the run move every file's list heads when
   /// their array grows: with 10^5 applications each move relinks blocks long out of cache.
@@ -240,7 +237,6 @@ class PageCache {
   /// The least recently used dirty block with entry time <= `cutoff`, inactive list first,
   /// or kNoBlock. Repeated searches under one cutoff resume where the last one stopped.
   BlockId lru_expired(double cutoff);
-  const Block& block(BlockId id) const noexcept { return blocks_[id]; }
 
  private:
   // check_invariants' parts (page_cache_check.cpp). `most`: the blocks in use, more steps

@@ -68,7 +68,6 @@ CacheSettings read_page_cache(const toml::table* table, const TomlReader& parent
       if (policy && *policy != owner.name) {
         r.fail(std::string(parameter.key), fmt::format("a parameter of the {} policy, and this host's policy is '{}'", owner.name, *policy));
       }
-      if (s.policy != owner.name && find_cache_policy(s.policy)->preset_of != owner.name) s.policy = std::string(owner.name);
       s.set(parameter.key, *v);
     }
   }

@@ -1,5 +1,7 @@
 #include "cache/io_controller.hpp"
 
+#include "cache/chunk_read.hpp"
+
 #include "engine/check.hpp"
 #include "storage/readahead.hpp"
 
@@ -83,16 +85,14 @@ Task<void> IoController::make_room(std::int64_t required, FileId spared, FileId 
   // Planned again at each step: the writeback's transfers let others run, and eviction frees.
   for (;;) {
     co_await write_back(plan_room(*cache_, required).flush, spared, FlushCause::Reclaim);
-    cache_->evict(plan_room(*cache_, required).evict, spared);
-    if (plan_room(*cache_, required).fits) co_return;
+    if (evict_to_fit(*cache_, required, spared)) co_return;
     if (nothing_can_be_freed(*cache_)) {
       if (subject == kNoFile) {
         throw SimulationError(fmt::format("t = {:.6f} s: {} needs {} bytes of memory, only {} can be freed", sim_->now(), verb, required,
                                           cache_->free()));
       }
       throw SimulationError(fmt::format("t = {:.6f} s: {} '{}' needs {} bytes of memory, only {} can be freed", sim_->now(), verb,
-                                        (*files_)[subject].name,
-                                        required, cache_->free()));
+                                        (*files_)[subject].name, required, cache_->free()));
     }
     co_await wait_for_progress();
   }
@@ -143,44 +143,28 @@ Task<void> IoController::make_group_room(GroupId group, std::int64_t bytes, File
   }
 }
 
-std::int64_t IoController::room_for_read_at_once(const ReadRequest& request) {
-  ReadPlan plan = plan_read(*cache_, request);
-  if (plan.room.flush > 0) return -1;
-  cache_->evict(plan.room.evict, plan.spared);
-  plan = plan_read(*cache_, request);
-  return plan.room.fits ? plan.from_disk : -1;
-}
-
-Task<std::int64_t> IoController::room_for_read(FileId file, std::int64_t file_size, std::int64_t bytes, std::int64_t anonymous,
-                                               const char* verb) {
-  const ReadRequest request{.file = file, .file_size = file_size, .bytes = bytes, .anonymous = anonymous};
+Task<std::int64_t> IoController::room_for_chunk(FileId file, std::int64_t file_size, std::int64_t bytes, std::int64_t buffer, GroupId group,
+                                                const char* verb) {
+  const ReadRequest request{.file = file, .file_size = file_size, .bytes = bytes, .anonymous = buffer};
+  const bool in_group = group != kRootGroup;
+  if (in_group) cache_->charge_file(file, group);
+  // The group is charged with the buffer, and with the new cache data if the file is its own.
+  const bool owned = in_group && cache_->group_of(file) == group;
   for (;;) {
+    std::int64_t from_disk = -1;
+    if (in_group) {
+      co_await make_group_room(group, buffer + (owned ? plan_read(*cache_, request).from_disk : 0), file, verb);
+      from_disk = evict_for_chunk(*cache_, request);  // as a root group's reader tries before calling
+    }
     // While make_room waited, others may have evicted some of this file's data: more of the
     // chunk then comes from the device and needs room too.
-    const std::int64_t from_disk = room_for_read_at_once(request);
-    if (from_disk >= 0) co_return from_disk;
-    const ReadPlan plan = plan_read(*cache_, request);
-    co_await make_room(plan.required, plan.spared, request.file, verb);
-  }
-}
-
-ReadCursor IoController::take_chunk(FileId file, std::int64_t chunk, std::int64_t uncached, ReadCursor from, GroupId group) {
-  cache_->charge_file(file, group);
-  cache_->add_read(file, uncached, sim_->now());
-  const ReadCursor next = cache_->reaccess(file, chunk - uncached, sim_->now(), from);
-  cache_->allocate_anonymous(chunk, group);
-  return next;
-}
-
-Task<std::int64_t> IoController::room_for_read_in_group(FileId file, std::int64_t file_size, std::int64_t chunk, GroupId group) {
-  cache_->charge_file(file, group);
-  const bool owned = cache_->group_of(file) == group;
-  auto charged = [&] { return chunk + (owned ? plan_read(*cache_, {.file = file, .file_size = file_size, .bytes = chunk, .anonymous = chunk}).from_disk : 0); };
-  for (;;) {
-    co_await make_group_room(group, charged(), file, "reading");
-    std::int64_t disk_read = room_for_read_at_once({.file = file, .file_size = file_size, .bytes = chunk, .anonymous = chunk});
-    if (disk_read < 0) disk_read = co_await room_for_read(file, file_size, chunk, chunk, "reading");
-    if (cache_->group_headroom(group) >= chunk + (owned ? disk_read : 0)) co_return disk_read;
+    while (from_disk < 0) {
+      ReadPlan needs;
+      from_disk = evict_for_chunk(*cache_, request, &needs);
+      if (from_disk < 0) co_await make_room(needs.required, needs.spared, file, verb);
+    }
+    // While the host's room was made, others of the group may have taken its room again.
+    if (!in_group || cache_->group_headroom(group) >= buffer + (owned ? from_disk : 0)) co_return from_disk;
   }
 }
 
@@ -337,16 +321,11 @@ Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_siz
     // application's buffer is fresh memory: the reader faults in and zeroes each page it
     // copies into; from the disk that overlaps the device's transfer (readahead), from the
     // cache it adds to the copy.
-    std::int64_t disk_read = -1;
-    if (group != kRootGroup) {
-      disk_read = co_await room_for_read_in_group(file, size, chunk, group);
-    } else {
-      disk_read = room_for_read_at_once({.file = file, .file_size = size, .bytes = chunk, .anonymous = chunk});
-      if (disk_read < 0) disk_read = co_await room_for_read(file, size, chunk, chunk, "reading");
-    }
+    std::int64_t disk_read = group == kRootGroup ? evict_for_chunk(*cache_, {.file = file, .file_size = size, .bytes = chunk, .anonymous = chunk}) : -1;
+    if (disk_read < 0) disk_read = co_await room_for_chunk(file, size, chunk, chunk, group, "reading");
     const std::int64_t cache_read = chunk - disk_read;
     const std::int64_t cold = cold_taken();
-    cursor = take_chunk(file, chunk, disk_read, cursor, group);
+    cursor = start_chunk(*cache_, {.file = file, .file_size = size, .bytes = chunk, .anonymous = chunk}, disk_read, cursor, group, sim_->now());
     // Taken back by the host: new cache pages (the device's transfer fills them) and the
     // buffer (the reader's first touch), their faults one after the other (measured: a cold
     // read goes at about 1 / (2 / cold_fault) where both are cold), per byte of the chunk.

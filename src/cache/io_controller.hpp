@@ -1,6 +1,7 @@
 #pragma once
 // IoController: turns chunked file reads and writes into page-cache changes and timed
-// transfers: it carries out the plans of paper Algorithms 2 and 3 (plan.hpp, docs/model.md §4).
+// transfers: it carries out the plans of paper Algorithms 2 and 3 (a chunk read's steps in
+// chunk_read.hpp, the plans in plan.hpp; docs/model.md §4).
 //
 // Every step reads the cache state as it is when the step runs; other processes may change
 // it while this one waits for a transfer. The cache bookkeeping of a chunk (new blocks,
@@ -117,9 +118,6 @@ class IoController {
   /// Takes `bytes` of application memory for `group` (a task's memory, an O_DIRECT read's
   /// buffer), making room in the group and in the host; errors name `verb` and `subject`.
   Task<void> take_buffer(std::int64_t bytes, GroupId group, FileId subject, const char* verb);
-  /// room_for_read for a reader in a memory group: room in the group for its buffer and the
-  /// new cache data it is charged with, then in the host, until both hold at once.
-  Task<std::int64_t> room_for_read_in_group(FileId file, std::int64_t file_size, std::int64_t chunk, GroupId group);
   /// Flushes up to `amount` dirty bytes (skipping `excluded`) and waits for their writes.
   Task<std::int64_t> write_back(std::int64_t amount, FileId excluded, FlushCause cause, GroupId group = kAnyGroup);
   /// A writer short of `bytes` of memory, with nothing to flush or evict, waits for copies and
@@ -143,25 +141,18 @@ class IoController {
   /// A chunk of a client's read of a remote file; `cursor` and `server_cursor`: where the read
   /// left off in this host's cache and in the server's, updated.
   Task<IoTally> read_chunk_remote(FileId file, std::int64_t chunk, ReadCursor& cursor, ReadCursor& server_cursor, GroupId group);
-  /// A chunk read's cache bookkeeping, done when it starts: the `uncached` part is new
-  /// cache data, the rest is re-accessed, and the whole chunk's copy is application memory.
-  /// `from`: where the read's previous chunk left off in the cache (PageCache::reaccess);
-  /// returns where the next one starts.
-  ReadCursor take_chunk(FileId file, std::int64_t chunk, std::int64_t uncached, ReadCursor from = {}, GroupId group = kRootGroup);
   /// Makes room for `required` bytes (flush, then evict), sparing `spared`; if that is not
   /// enough while other transfers still hold memory (writebacks, copies in flight), waits for
   /// them and tries again. Throws SimulationError when nothing can ever free enough, naming
   /// what `verb` (e.g. "reading") was being done to `subject` (kNoFile: `verb` names what needs it).
   Task<void> make_room(std::int64_t required, FileId spared, FileId subject, const char* verb);
-  /// Room for a chunk read as plan_read says, when eviction alone makes it: evicts, plans
-  /// again (the eviction may have taken the file's own data) and returns the part to read
-  /// from the device, or -1 if room_for_read must run (writeback or waiting). Not a coroutine:
-  /// most chunk reads need no more, and a chunk read is the most frequent operation.
-  std::int64_t room_for_read_at_once(const ReadRequest& request);
-  /// room_for_read_at_once until it succeeds, making room between tries (make_room). The
-  /// request comes as scalars: a ReadRequest built by the caller would sit in the caller's
-  /// frame across the wait, and a reader's frame lives as long as its read.
-  Task<std::int64_t> room_for_read(FileId file, std::int64_t file_size, std::int64_t bytes, std::int64_t anonymous, const char* verb);
+  /// Room for a chunk read (chunk_read.hpp, step 3) that eviction alone did not make, or for
+  /// any chunk read of a reader in a memory group: room in the group for its `buffer` and the
+  /// new cache data it is charged with, then in the host, until both hold at once. Returns
+  /// the part of the chunk to read from the device. A coroutine only for these: most chunk
+  /// reads need no more than evict_for_chunk, and a chunk read is the most frequent operation.
+  /// Errors name `verb` (e.g. "reading") and the file.
+  Task<std::int64_t> room_for_chunk(FileId file, std::int64_t file_size, std::int64_t bytes, std::int64_t buffer, GroupId group, const char* verb);
   /// Waits until memory held by transfers in flight may have been released.
   Task<void> wait_for_progress();
 

@@ -4,6 +4,8 @@
 
 #include "cache/io_controller.hpp"
 
+#include "cache/chunk_read.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -39,15 +41,11 @@ Task<IoTally> IoController::read_chunk_remote(FileId file, std::int64_t chunk, R
   // A client read (NFS): what this host's cache lacks comes from the server, over the link,
   // and is kept in this host's cache (clean); the rest is a hit in this host's cache.
   const FileInfo& info = (*files_)[file];
-  std::int64_t remote_read = -1;
-  if (group != kRootGroup) {
-    remote_read = co_await room_for_read_in_group(file, info.size, chunk, group);
-  } else {
-    remote_read = room_for_read_at_once({.file = file, .file_size = info.size, .bytes = chunk, .anonymous = chunk});
-    if (remote_read < 0) remote_read = co_await room_for_read(file, info.size, chunk, chunk, "reading");
-  }
+  const ReadRequest request{.file = file, .file_size = info.size, .bytes = chunk, .anonymous = chunk};
+  std::int64_t remote_read = group == kRootGroup ? evict_for_chunk(*cache_, request) : -1;
+  if (remote_read < 0) remote_read = co_await room_for_chunk(file, info.size, chunk, chunk, group, "reading");
   const std::int64_t cache_read = chunk - remote_read;
-  cursor = take_chunk(file, chunk, remote_read, cursor, group);
+  cursor = start_chunk(*cache_, request, remote_read, cursor, group, sim_->now());
   if (remote_read > 0) co_await serve_remote(file, remote_read, &server_cursor);
   if (cache_read > 0) co_await memory_->read_into_fresh(cache_read);
   // From this host's point of view, data from the server is not from its own cache.
@@ -65,11 +63,11 @@ Task<void> IoController::serve_remote(FileId file, std::int64_t bytes, ReadCurso
 
 Task<void> IoController::serve_read(FileId file, std::int64_t bytes, const Route& route, FlowSpec client_copy, ReadCursor* cursor) {
   const FileInfo& info = (*files_)[file];
-  std::int64_t disk_read = room_for_read_at_once({.file = file, .file_size = info.size, .bytes = bytes, .anonymous = 0});
-  if (disk_read < 0) disk_read = co_await room_for_read(file, info.size, bytes, 0, "serving");
+  const ReadRequest request{.file = file, .file_size = info.size, .bytes = bytes, .anonymous = 0};  // the client's memory takes the copy
+  std::int64_t disk_read = evict_for_chunk(*cache_, request);
+  if (disk_read < 0) disk_read = co_await room_for_chunk(file, info.size, bytes, 0, kRootGroup, "serving");
   const std::int64_t cache_read = bytes - disk_read;
-  cache_->add_read(file, disk_read, sim_->now());
-  const ReadCursor next = cache_->reaccess(file, cache_read, sim_->now(), cursor != nullptr ? *cursor : ReadCursor{});
+  const ReadCursor next = start_chunk(*cache_, request, disk_read, cursor != nullptr ? *cursor : ReadCursor{}, kRootGroup, sim_->now());
   if (cursor != nullptr) *cursor = next;
   // Each part is one flow through the source device, the link and the client's memory: the
   // most loaded of them sets the pace.

@@ -14,8 +14,9 @@
 // parameters (pagecache/cache_policies.hpp), and are named in its registry.cpp: `kernel` (the
 // kernel's behaviour; its switches are the `linux` profile's ablations), the `wrench_cache`
 // preset (the kernel policy with every switch at WRENCH-cache's reading of the paper, the
-// `paper` profile; docs/wrench-cache.md) and `lru` (one LRU list, no activation: a plain
-// baseline).
+// `paper` profile; docs/wrench-cache.md), `lru` (one LRU list, no activation: a plain
+// baseline) and `arc` (ARC over the two lists, with ghost lists of its own: a policy with
+// state).
 
 #include "cache/block.hpp"
 

@@ -271,6 +271,7 @@ void PageCache::add_clean(FileId file, std::int64_t bytes, double now) { add_new
 void PageCache::add_read(FileId file, std::int64_t bytes, double now) {
   // The read that brought the data in is its first touch.
   add_new(file, bytes, BlockState::Clean, now, first_touch_);
+  if (bytes > 0) policy_->missed(*this, file, bytes);
 }
 
 void PageCache::add_dirty(FileId file, std::int64_t bytes, double now) {

@@ -158,7 +158,8 @@ class PageCache {
   /// MRU end of the inactive list.
   void add_clean(FileId file, std::int64_t bytes, double now);
   /// New data read from a device by an application: like add_clean, and this read is its
-  /// first touch if the policy says so (Policy::read_is_first_touch).
+  /// first touch if the policy says so (Policy::read_is_first_touch); the policy is told of
+  /// the miss (Policy::missed).
   void add_read(FileId file, std::int64_t bytes, double now);
   /// New data written: a dirty block (entry time `now`) at the MRU end of the inactive list.
   void add_dirty(FileId file, std::int64_t bytes, double now);
@@ -204,7 +205,8 @@ class PageCache {
   /// Bytes of `file` being written back now.
   std::int64_t writeback(FileId file) const noexcept;
   /// Drops every block of `file` (the file is deleted): clean data is freed, dirty data is
-  /// discarded. None of it may be in writeback (wait for it first).
+  /// discarded. None of it may be in writeback (wait for it first). The policy is told
+  /// (Policy::dropped).
   void drop_file(FileId file);
   /// Deletes up to `amount` bytes of clean data, skipping `excluded`, as Policy::reclaim
   /// chooses; `group`: only that group's data (the kernel's memcg reclaim,
@@ -224,6 +226,7 @@ class PageCache {
   void check_invariants() const;
 
   // --- Walks for policies: they change the lists, and leave settling to the operation ----
+  // Each block they evict is reported to the policy (Policy::evicted).
   /// Evicts clean blocks of `kind`, least recently used first, up to `budget` bytes (the last
   /// one split), skipping `excluded` and, if `spare_written` (the policy spares files being
   /// written), the files being written. Returns the bytes evicted.

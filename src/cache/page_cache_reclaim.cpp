@@ -23,9 +23,12 @@ std::int64_t PageCache::evict_clean(ListKind kind, std::int64_t budget, FileId e
   std::int64_t evicted = 0;
   auto take = [&](BlockId id) {
     const BlockId victim = blocks_[id].size > budget - evicted ? split_front(id, budget - evicted) : id;
-    evicted += blocks_[victim].size;
-    evicted_total_ += blocks_[victim].size;
+    const FileId file = blocks_[victim].file;
+    const std::int64_t size = blocks_[victim].size;
+    evicted += size;
+    evicted_total_ += size;
     destroy(victim);
+    policy_->evicted(*this, file, kind, size);
   };
   if (spare_written && target_ == kAnyGroup) {
     // The same victims in the same order as the walk below, without walking past the clean
@@ -67,9 +70,12 @@ std::int64_t PageCache::deactivate_oldest(std::int64_t budget, FileId excluded, 
     const bool spared = block.file == excluded || (spare_written && files_[block.file].writers > 0);
     if (block.state != BlockState::Clean || spared) continue;
     const BlockId victim = block.size > budget - evicted ? split_front(oldest, budget - evicted) : oldest;
-    evicted += blocks_[victim].size;
-    evicted_total_ += blocks_[victim].size;
+    const FileId file = blocks_[victim].file;
+    const std::int64_t size = blocks_[victim].size;
+    evicted += size;
+    evicted_total_ += size;
     destroy(victim);
+    policy_->evicted(*this, file, ListKind::Active, size);  // chosen as the oldest active data
   }
   return evicted;
 }

@@ -75,6 +75,7 @@ void PageCache::drop_file(FileId file) {
       destroy(id);
     }
   }
+  policy_->dropped(*this, file);
   settle();
   if (progress_hook_) progress_hook_();
 }

@@ -6,14 +6,17 @@
 // of, and whether writers are paced or flush themselves.
 //
 // A policy's answers to the questions without arguments never change: PageCache asks them
-// once, when it is made.
+// once, when it is made. A policy may keep state of its own (ghost lists, a target size):
+// PageCache tells it what happened to the data through the notifications at the end (evicted,
+// missed, dropped; by default they do nothing), and reclaim may change it.
 //
 // Implementations live in src/cache/policies/, one file each declaring the policy and its
 // parameters (pagecache/cache_policies.hpp), and are named in its registry.cpp: `kernel` (the
 // kernel's behaviour; its switches are the `linux` profile's ablations), the `wrench_cache`
 // preset (the kernel policy with every switch at WRENCH-cache's reading of the paper, the
-// `paper` profile; docs/wrench-cache.md) and `lru` (one LRU list, no activation: a plain
-// baseline).
+// `paper` profile; docs/wrench-cache.md), `lru` (one LRU list, no activation: a plain
+// baseline) and `arc` (ARC over the two lists, with ghost lists of its own: a policy with
+// state).
 
 #include "cache/block.hpp"
 
@@ -56,7 +59,8 @@ class Policy {
   virtual bool spares_files_being_written() const noexcept = 0;
   /// Evicts up to `amount` bytes of clean data, never of `excluded`, with PageCache's
   /// reclaim walks (evict_clean, deactivate_oldest); returns how many bytes it evicted.
-  virtual std::int64_t reclaim(PageCache& cache, std::int64_t amount, FileId excluded) const = 0;
+  /// Not const: a policy with state of its own may change it as it decides.
+  virtual std::int64_t reclaim(PageCache& cache, std::int64_t amount, FileId excluded) = 0;
   /// Memory a read may count on freeing by eviction before it must flush.
   virtual std::int64_t evictable(const PageCache& cache) const noexcept = 0;
   /// Whether making room for a read may evict and flush the file being read.
@@ -85,6 +89,20 @@ class Policy {
   // --- Dirty limits -----------------------------------------------------------------------
   /// Memory the dirty ratios are fractions of.
   virtual std::int64_t dirtyable(const PageCache& cache) const noexcept = 0;
+
+  // --- Notifications, for a policy with state of its own (nothing by default) -------------
+  // Once per block or per read chunk, never per page: the stateless policies pay a call each.
+  /// `bytes` of `file` were evicted from the list `from` by a reclaim walk (evict_clean's
+  /// list; deactivate_oldest's victims come from the active list). Called once per block
+  /// evicted, after it is gone from `cache`.
+  virtual void evicted(const PageCache& /*cache*/, FileId /*file*/, ListKind /*from*/, std::int64_t /*bytes*/) {}
+  /// `bytes` of `file` not in the cache were read from a device (a miss: PageCache::add_read),
+  /// once per read chunk, after they are cached. Not called for data written or cached from
+  /// the start (add_clean, add_dirty).
+  virtual void missed(const PageCache& /*cache*/, FileId /*file*/, std::int64_t /*bytes*/) {}
+  /// `file` was deleted (PageCache::drop_file): its data left the cache without eviction, and
+  /// a policy forgets what it remembers of it. Called after its blocks are gone.
+  virtual void dropped(const PageCache& /*cache*/, FileId /*file*/) {}
 };
 
 /// The policy `settings.policy` names (a preset: the policy it presets), with its parameters

@@ -93,7 +93,7 @@ class KernelPolicy final : public Policy {
   bool balances_after_every_change() const noexcept override { return s_.balance_after_every_change; }
 
   bool spares_files_being_written() const noexcept override { return s_.protect_files_being_written; }
-  std::int64_t reclaim(PageCache& cache, std::int64_t amount, FileId excluded) const override {
+  std::int64_t reclaim(PageCache& cache, std::int64_t amount, FileId excluded) override {
     // shrink_inactive_list takes clean inactive data; with none left, shrink_active_list ages
     // the active list. Files being written are spared in a first pass when asked.
     std::int64_t evicted = 0;

@@ -22,7 +22,7 @@ class LruPolicy final : public Policy {
   bool balances_after_every_change() const noexcept override { return false; }
 
   bool spares_files_being_written() const noexcept override { return false; }
-  std::int64_t reclaim(PageCache& cache, std::int64_t amount, FileId excluded) const override {
+  std::int64_t reclaim(PageCache& cache, std::int64_t amount, FileId excluded) override {
     return cache.evict_clean(ListKind::Inactive, amount, excluded, false);
   }
   std::int64_t evictable(const PageCache& cache) const noexcept override {

@@ -16,8 +16,10 @@ namespace pagecache::cache {
 extern const PolicyDeclaration kKernelPolicy;
 extern const PolicyDeclaration kWrenchCachePreset;
 extern const PolicyDeclaration kLruPolicy;
+extern const PolicyDeclaration kArcPolicy;
 std::unique_ptr<Policy> make_kernel_policy(const CacheSettings& settings);
 std::unique_ptr<Policy> make_lru_policy(const CacheSettings& settings);
+std::unique_ptr<Policy> make_arc_policy(const CacheSettings& settings);
 
 namespace {
 
@@ -30,6 +32,7 @@ const Registration kPolicies[] = {
     {&kKernelPolicy, &make_kernel_policy},
     {&kWrenchCachePreset, nullptr},
     {&kLruPolicy, &make_lru_policy},
+    {&kArcPolicy, &make_arc_policy},
 };
 
 const Registration* registration(std::string_view name) {

@@ -127,15 +127,26 @@ namespace {
 class CountingPolicy final : public Policy {
  public:
   mutable int rereads = 0, reclaims = 0, expiries = 0, dirtyables = 0;
+  Reread on_reread = Reread::Refresh;
+  // What the notifications reported, in order.
+  struct Eviction {
+    FileId file;
+    ListKind from;
+    std::int64_t bytes;
+    bool operator==(const Eviction&) const = default;
+  };
+  std::vector<Eviction> evictions;
+  std::vector<std::pair<FileId, std::int64_t>> misses;
+  std::vector<FileId> drops;
   std::string_view name() const noexcept override { return "counting"; }
   bool read_is_first_touch() const noexcept override { return false; }
   Reread reread(const Block&) const noexcept override {
     ++rereads;
-    return Reread::Refresh;
+    return on_reread;
   }
   bool balances_after_every_change() const noexcept override { return false; }
   bool spares_files_being_written() const noexcept override { return false; }
-  std::int64_t reclaim(PageCache& cache, std::int64_t amount, FileId excluded) const override {
+  std::int64_t reclaim(PageCache& cache, std::int64_t amount, FileId excluded) override {
     ++reclaims;
     return cache.evict_clean(ListKind::Inactive, amount, excluded, false);
   }
@@ -152,6 +163,9 @@ class CountingPolicy final : public Policy {
     ++dirtyables;
     return 1234;
   }
+  void evicted(const PageCache&, FileId file, ListKind from, std::int64_t bytes) override { evictions.push_back({file, from, bytes}); }
+  void missed(const PageCache&, FileId file, std::int64_t bytes) override { misses.emplace_back(file, bytes); }
+  void dropped(const PageCache&, FileId file) override { drops.push_back(file); }
 };
 
 }  // namespace
@@ -182,6 +196,38 @@ TEST_CASE("PageCache asks its policy at each decision", "[policy]") {
   CHECK(policy.expiries == 1);
   CHECK(taken.file == 2);
   CHECK(taken.bytes == 50);
+}
+
+TEST_CASE("PageCache tells its policy of each block evicted, each read from a device and each file dropped", "[policy]") {
+  auto owned = std::make_unique<CountingPolicy>();
+  CountingPolicy& policy = *owned;
+  PageCache cache(1000, CacheSettings::kernel(), std::move(owned));
+  cache.set_checking(true);
+  using E = CountingPolicy::Eviction;
+  // Misses are device reads only: file 0's 100 and file 2's 50; an empty read, file 1's data
+  // cached from the start and file 3's written data are none.
+  cache.add_read(0, 100, 0.0);
+  cache.add_read(0, 0, 0.0);
+  cache.add_clean(1, 100, 0.0);
+  cache.add_read(2, 50, 0.0);
+  cache.add_dirty(3, 10, 0.0);
+  CHECK(policy.misses == std::vector<std::pair<FileId, std::int64_t>>{{0, 100}, {2, 50}});
+  // Reclaim of 150 from the inactive list, LRU first: file 0's block, then 50 of file 1's.
+  CHECK(cache.evict(150, kNoFile) == 150);
+  CHECK(policy.evictions == std::vector<E>{{0, I, 100}, {1, I, 50}});
+  // File 2 re-read is activated; active aging of 30 evicts its first 30 bytes, from the
+  // active list (the other 20 go to the inactive list, not evicted: not reported).
+  policy.on_reread = Policy::Reread::Activate;
+  cache.reaccess(2, 50, 1.0);
+  CHECK(cache.deactivate_oldest(30, kNoFile, false) == 30);
+  CHECK(policy.evictions.back() == E{2, A, 30});
+  CHECK(policy.evictions.size() == 3);
+  CHECK(cache.cached(2, I) == 20);
+  // Dropping file 1 frees its 50 bytes: a drop, not an eviction.
+  cache.drop_file(1);
+  CHECK(policy.drops == std::vector<FileId>{1});
+  CHECK(policy.evictions.size() == 3);
+  CHECK(cache.cached(1) == 0);
 }
 
 TEST_CASE("every parameter a policy declares is documented: docs/linux-profile.md and docs/model.md name it", "[policy][docs]") {

@@ -16,11 +16,12 @@ namespace pagecache {
 
 /// One phase (read, compute or write) of one task: 56 bytes, names interned (a run of 10^5
 /// pipelines has 9 x 10^5 rows). The names are in RunResult::names: RunResult::app_name(row)
-/// and task_name(row) give them.
+/// and task_name(row) give them; RunResult::host_name(row) where the task ran.
 struct PhaseRow {
   std::uint32_t app = 0;   ///< the application's name: its index in RunResult::names
   std::uint32_t task = 0;  ///< the task's name: its index in RunResult::names
   PhaseKind phase = PhaseKind::Read;
+  std::uint32_t host = 0;  ///< the host the task ran on: its index in RunResult::hosts
   double start = 0.0;
   double end = 0.0;
   std::int64_t bytes = 0;
@@ -69,7 +70,7 @@ struct RunResult {
   std::vector<MemoryRow> memory;
   /// The applications' and tasks' names, each once, what PhaseRow::app and ::task name.
   std::vector<std::string> names;
-  /// The scenario's hosts, in its order, what MemoryRow::host names.
+  /// The scenario's hosts, in its order, what MemoryRow::host and PhaseRow::host name.
   std::vector<std::string> hosts;
   /// The scenario's files, in its order, what CacheRow::file names (empty if the cache contents
   /// are not recorded).
@@ -83,6 +84,7 @@ struct RunResult {
   const std::string& app_name(const PhaseRow& row) const { return names[row.app]; }
   const std::string& task_name(const PhaseRow& row) const { return names[row.task]; }
   const std::string& host_name(const MemoryRow& row) const { return hosts[row.host]; }
+  const std::string& host_name(const PhaseRow& row) const { return hosts[row.host]; }
 };
 
 struct RunOptions {

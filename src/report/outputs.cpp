@@ -22,7 +22,6 @@
 #include <initializer_list>
 #include <iterator>
 #include <map>
-#include <set>
 #include <string_view>
 #include <utility>
 
@@ -111,10 +110,11 @@ std::string csv_fields(std::initializer_list<std::string_view> texts) {
 
 void write_timeline_csv(const fs::path& path, const RunResult& r) {
   CsvFile csv(path);
-  fmt::format_to(csv.out(), "app,task,phase,start_s,end_s,bytes,cache_bytes,disk_bytes\n");
+  fmt::format_to(csv.out(), "app,task,host,phase,start_s,end_s,bytes,cache_bytes,disk_bytes\n");
   for (const PhaseRow& p : r.timeline) {
     csv.field(r.app_name(p));
     csv.field(r.task_name(p));
+    csv.field(r.host_name(p));
     csv.field(to_string(p.phase));
     fmt::format_to(csv.out(), FMT_COMPILE("{:.6f},{:.6f},{},{},{}\n"), p.start, p.end, p.bytes, p.cache_bytes, p.disk_bytes);
     csv.row_written();
@@ -123,16 +123,11 @@ void write_timeline_csv(const fs::path& path, const RunResult& r) {
 }
 
 void write_memory_csv(const fs::path& path, const RunResult& r) {
-  std::set<std::uint32_t> hosts;
-  for (const MemoryRow& m : r.memory) hosts.insert(m.host);
-  const bool with_host = hosts.size() > 1;  // one host: the documented columns exactly
   CsvFile csv(path);
-  fmt::format_to(csv.out(),
-                 "{}time_s,total_bytes,free_bytes,anonymous_bytes,cached_bytes,dirty_bytes,writeback_bytes,active_bytes,inactive_bytes\n",
-                 with_host ? "host," : "");
+  fmt::format_to(csv.out(), "host,time_s,total_bytes,free_bytes,anonymous_bytes,cached_bytes,dirty_bytes,writeback_bytes,active_bytes,inactive_bytes\n");
   for (const MemoryRow& m : r.memory) {
     const MemoryState& s = m.state;
-    if (with_host) csv.field(r.host_name(m));
+    csv.field(r.host_name(m));
     // Copies in flight hold their pages: counted as cached here, so that the columns add up.
     fmt::format_to(csv.out(), FMT_COMPILE("{:.6f},{},{},{},{},{},{},{},{}\n"), m.time, s.total, s.free, s.anonymous, s.cached + s.reserved,
                    s.dirty, s.writeback, s.active, s.inactive + s.reserved);

@@ -28,7 +28,15 @@ class ResultRecorder final : public TraceSink {
     if (result_.cache_not_recorded.empty()) result_.files.assign(start.files.begin(), start.files.end());
   }
   void on_phase(const PhaseEvent& e) override {
-    result_.timeline.push_back({intern(e.app), intern(e.task), e.kind, e.start, e.end, e.bytes, e.cache_bytes, e.disk_bytes});
+    result_.timeline.push_back({.app = intern(e.app),
+                                .task = intern(e.task),
+                                .phase = e.kind,
+                                .host = e.host,
+                                .start = e.start,
+                                .end = e.end,
+                                .bytes = e.bytes,
+                                .cache_bytes = e.cache_bytes,
+                                .disk_bytes = e.disk_bytes});
   }
   void on_memory(const MemoryEvent& e) override { result_.memory.push_back({e.time, e.host, e.state}); }
   void on_cache_contents(const CacheContentsEvent& e) override {

@@ -58,6 +58,7 @@ std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
 struct Phase {
   double start = 0, end = 0;
   std::int64_t bytes = 0;
+  std::string host;  // where the task ran
 };
 
 // timeline.csv by task, then phase.
@@ -65,10 +66,10 @@ std::map<std::string, std::map<std::string, Phase>> timeline(const fs::path& out
   std::map<std::string, std::map<std::string, Phase>> tasks;
   const auto rows = csv_rows(slurp(out / "timeline.csv"));
   REQUIRE(rows.size() > 1);
-  CHECK(rows[0] == std::vector<std::string>{"app", "task", "phase", "start_s", "end_s", "bytes", "cache_bytes", "disk_bytes"});
+  CHECK(rows[0] == std::vector<std::string>{"app", "task", "host", "phase", "start_s", "end_s", "bytes", "cache_bytes", "disk_bytes"});
   for (std::size_t i = 1; i < rows.size(); ++i) {
-    REQUIRE(rows[i].size() == 8);
-    tasks[rows[i][1]][rows[i][2]] = {std::stod(rows[i][3]), std::stod(rows[i][4]), std::stoll(rows[i][5])};
+    REQUIRE(rows[i].size() == 9);
+    tasks[rows[i][1]][rows[i][3]] = {std::stod(rows[i][4]), std::stod(rows[i][5]), std::stoll(rows[i][6]), rows[i][2]};
   }
   return tasks;
 }
@@ -208,10 +209,14 @@ TEST_CASE("two_hosts.xml runs a workflow over NFS: files on the storage host, ta
   // The first task read its three inputs from the server's disk (nothing cached at start).
   const auto tasks = timeline(out);
   const auto rows = csv_rows(slurp(out / "timeline.csv"));
-  const auto first_read = std::find_if(rows.begin(), rows.end(), [](const auto& r) { return r[1] == "mp2rage_skullstripping" && r[2] == "read"; });
+  const auto first_read = std::find_if(rows.begin(), rows.end(), [](const auto& r) { return r[1] == "mp2rage_skullstripping" && r[3] == "read"; });
   REQUIRE(first_read != rows.end());
-  CHECK((*first_read)[7] == "294913056");
+  CHECK((*first_read)[8] == "294913056");
   CHECK(tasks.size() == 4);
+  // Every phase ran on the compute host: the storage host only serves the files.
+  for (const auto& [task, phases] : tasks) {
+    for (const auto& [phase, p] : phases) CHECK(p.host == "compute_host");
+  }
 }
 
 TEST_CASE("the SimGrid platform examples load, and pcsim show prints their hosts, disks, links and routes", "[cli][inputs][simgrid]") {

@@ -45,9 +45,9 @@ RunResult small_run() {
   RunResult r;
   r.names = {"app", "a", "b"};
   r.hosts = {"h1", "h2"};
-  r.timeline = {{0, 1, PhaseKind::Read, 0.0, 2.0, 2'000'000'000, 0, 2'000'000'000},
-                {0, 1, PhaseKind::Compute, 2.0, 5.0, 0, 0, 0},
-                {0, 2, PhaseKind::Write, 1.0, 3.0, 1'000'000'000, 1'000'000'000, 0}};
+  r.timeline = {{0, 1, PhaseKind::Read, 0, 0.0, 2.0, 2'000'000'000, 0, 2'000'000'000},
+                {0, 1, PhaseKind::Compute, 0, 2.0, 5.0, 0, 0, 0},
+                {0, 2, PhaseKind::Write, 0, 1.0, 3.0, 1'000'000'000, 1'000'000'000, 0}};
   for (int i = 0; i <= 6; ++i) {
     r.memory.push_back({static_cast<double>(i), 0, memory(1'000'000'000, i * 300'000'000, 0)});
     r.memory.push_back({static_cast<double>(i), 1, memory(0, i * 100'000'000, i * 50'000'000)});

@@ -119,7 +119,7 @@ pagecache::RunResult hostile_result() {
   r.hosts.assign(kHostile.begin(), kHostile.end());
   for (std::size_t i = 0; i < n; ++i) {
     r.timeline.push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>((i + 1) % n), pagecache::PhaseKind::Write,
-                          0.5 * static_cast<double>(i), 1.25, 100, 60, -static_cast<std::int64_t>(i)});
+                          static_cast<std::uint32_t>((i + 2) % n), 0.5 * static_cast<double>(i), 1.25, 100, 60, -static_cast<std::int64_t>(i)});
     pagecache::MemoryRow m;
     m.time = static_cast<double>(i);
     m.host = static_cast<std::uint32_t>(i);
@@ -150,20 +150,21 @@ TEST_CASE("CSV fields with commas, quotes and line breaks read back as written, 
   REQUIRE(timeline.size() == n + 1);
   REQUIRE(memory.size() == n + 1);
   REQUIRE(cache.size() == n + 1);
-  CHECK(timeline[0] == std::vector<std::string>{"app", "task", "phase", "start_s", "end_s", "bytes", "cache_bytes", "disk_bytes"});
+  CHECK(timeline[0] == std::vector<std::string>{"app", "task", "host", "phase", "start_s", "end_s", "bytes", "cache_bytes", "disk_bytes"});
   CHECK(memory[0].front() == "host");
   CHECK(cache[0] == std::vector<std::string>{"app", "task", "phase", "file", "cached_bytes"});
   for (std::size_t i = 0; i < n; ++i) {
     INFO("row " << i + 1);
     const auto& t = timeline[i + 1];
-    REQUIRE(t.size() == 8);
+    REQUIRE(t.size() == 9);
     CHECK(t[0] == as_written(kHostile[i]));
     CHECK(t[1] == as_written(kHostile[(i + 1) % n]));
-    CHECK(t[2] == "write");
+    CHECK(t[2] == as_written(kHostile[(i + 2) % n]));  // the host
+    CHECK(t[3] == "write");
     // Numbers are never touched: a negative one keeps its sign and gets no quote.
-    CHECK(t[3] == fmt::format("{:.6f}", 0.5 * static_cast<double>(i)));
-    CHECK(t[4] == "1.250000");
-    CHECK(t[7] == fmt::format("{}", -static_cast<std::int64_t>(i)));
+    CHECK(t[4] == fmt::format("{:.6f}", 0.5 * static_cast<double>(i)));
+    CHECK(t[5] == "1.250000");
+    CHECK(t[8] == fmt::format("{}", -static_cast<std::int64_t>(i)));
     const auto& m = memory[i + 1];
     REQUIRE(m.size() == 10);
     CHECK(m[0] == as_written(kHostile[i]));
@@ -173,12 +174,12 @@ TEST_CASE("CSV fields with commas, quotes and line breaks read back as written, 
     REQUIRE(c.size() == 5);
     CHECK(c[0] == t[0]);
     CHECK(c[1] == t[1]);
-    CHECK(c[2] == t[2]);
+    CHECK(c[2] == t[3]);
     CHECK(c[3] == as_written(kHostile[(i + 3) % n]));
     CHECK(c[4] == fmt::format("{}", i * 7));
     for (const auto* row : {&t, &m, &c}) {
       for (std::size_t k = 0; k < row->size(); ++k) {
-        const bool number_column = row == &t ? k >= 3 : row == &m ? k >= 1 : k == 4;
+        const bool number_column = row == &t ? k >= 4 : row == &m ? k >= 1 : k == 4;
         if (!number_column) CHECK_FALSE(starts_formula((*row)[k]));
       }
     }
@@ -213,7 +214,7 @@ TEST_CASE("the terminal summary shows control characters in names as escapes", "
   s.title = "two\nlines";
   pagecache::RunResult r;
   r.names = {"evil\x1B[2J", "t\r"};
-  r.timeline.push_back({0, 1, pagecache::PhaseKind::Read, 0.0, 1.0, 0, 0, 0});
+  r.timeline.push_back({0, 1, pagecache::PhaseKind::Read, 0, 0.0, 1.0, 0, 0, 0});
   const std::string out = readable_summary(s, r);
   for (char c : out) {
     INFO(out);
@@ -227,8 +228,8 @@ TEST_CASE("the terminal summary shows a slow phase's rate, not 0.0", "[report]")
   pagecache::Scenario s;
   pagecache::RunResult r;
   r.names = {"app", "task"};
-  r.timeline.push_back({0, 1, pagecache::PhaseKind::Read, 0.0, 6213.0, 100'000'000, 0, 100'000'000});   // 0.0161 MB/s
-  r.timeline.push_back({0, 1, pagecache::PhaseKind::Write, 6213.0, 6313.0, 51'234'000'000, 0, 0});     // 512.34 MB/s
+  r.timeline.push_back({0, 1, pagecache::PhaseKind::Read, 0, 0.0, 6213.0, 100'000'000, 0, 100'000'000});   // 0.0161 MB/s
+  r.timeline.push_back({0, 1, pagecache::PhaseKind::Write, 0, 6213.0, 6313.0, 51'234'000'000, 0, 0});     // 512.34 MB/s
   const std::string out = readable_summary(s, r);
   INFO(out);
   CHECK_THAT(out, Catch::Contains(" 0.0161 "));

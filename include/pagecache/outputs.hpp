@@ -61,6 +61,10 @@ class RunOutputs {
   /// person, e.g. a replaced folder kept aside because someone wrote into it meanwhile.
   std::vector<std::string> write(const std::string& dir, const Scenario& scenario, const RunResult& result);
 
+  /// report.html's text for `result`, a run of `scenario`, as write() writes it (e.g. to show
+  /// it inline in a notebook). Any number of times, before write(); ConfigError if this object
+  /// was made without OutputSettings::report.
+  std::string report_html(const Scenario& scenario, const RunResult& result) const;
   /// Whether trace.json dropped transfers, flushes, evictions and pauses past
   /// OutputSettings::trace_max_bytes (known once write() has run).
   bool trace_truncated() const noexcept { return trace_truncated_; }

@@ -1,3 +1,4 @@
+#include "report/html_report.hpp"
 #include "report/output_rules.hpp"
 #include "report/outputs.hpp"
 #include "report/report_activity.hpp"
@@ -42,6 +43,12 @@ std::vector<std::string> RunOutputs::write(const std::string& dir, const Scenari
     recorders_->trace.reset();
   }
   return report::write_outputs(dir, scenario, result, options);
+}
+
+std::string RunOutputs::report_html(const Scenario& scenario, const RunResult& result) const {
+  if (!recorders_->activity) throw ConfigError("RunOutputs::report_html: these outputs were made without a report (OutputSettings::report)");
+  if (written_) throw Error("RunOutputs::report_html: after write(), the report's recorder is freed");
+  return report::report_html(scenario, result, *recorders_->activity);
 }
 
 void check_output_folder(const std::string& dir, const std::string& scenario_file) { report::check_output_folder(dir, scenario_file); }

@@ -95,7 +95,8 @@ Scenario parse_scenario(const std::string& toml_text, const std::string& source_
   try {
     root = toml::parse(toml_text, source_name);
   } catch (const toml::parse_error& e) {
-    throw ConfigError(fmt::format("{}:{}:{}: {}", source_name, e.source().begin.line, e.source().begin.column, e.description()));
+    throw ConfigError(fmt::format("{}:{}:{}: {}", source_name, e.source().begin.line, e.source().begin.column, e.description()),
+                      InputPlace{.file = source_name, .line = static_cast<int>(e.source().begin.line), .key = {}});
   }
   return scenario::resolve_document(std::move(root), source_name, overrides, profile_override, limits);
 }

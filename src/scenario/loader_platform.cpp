@@ -56,7 +56,8 @@ void read_toml_platform(const std::string& text, const Overrides& platform_overr
   try {
     platform.root = toml::parse(text, platform.file);
   } catch (const toml::parse_error& e) {
-    throw ConfigError(fmt::format("{}:{}:{}: {}", platform.file, e.source().begin.line, e.source().begin.column, e.description()));
+    throw ConfigError(fmt::format("{}:{}:{}: {}", platform.file, e.source().begin.line, e.source().begin.column, e.description()),
+                      InputPlace{.file = platform.file, .line = static_cast<int>(e.source().begin.line), .key = {}});
   }
   for (const auto& [key, value] : platform_overrides) apply_override(platform.root, key, value, platform.file);
   TomlReader p(platform.root, "", platform.file);

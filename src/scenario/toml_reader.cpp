@@ -19,6 +19,16 @@ std::string location(const toml::source_region& where, const std::string& file) 
   return fmt::format("{}:{}:{}", file, where.begin.line, where.begin.column);
 }
 
+InputPlace input_place(const toml::source_region& where, const std::string& file, std::string key) {
+  if (where.path != nullptr) {
+    for (const char* option : {"--set ", "--platform ", "--files-host ", "--hosts "}) {
+      if (where.path->rfind(option, 0) == 0) return InputPlace{.file = {}, .line = 0, .key = std::move(key)};
+    }
+    return InputPlace{.file = *where.path, .line = static_cast<int>(where.begin.line), .key = std::move(key)};
+  }
+  return InputPlace{.file = file, .line = static_cast<int>(where.begin.line), .key = std::move(key)};
+}
+
 std::string name_problem(std::string_view name) {
   if (name.empty()) return "a name cannot be empty";
   for (std::size_t i = 0; i < name.size();) {

@@ -26,6 +26,9 @@ namespace pagecache::scenario {
 /// Where a value came from: "file:line:col", or the option it was given with: "--set KEY=VALUE"
 /// for an override, "--files-host H" for an option of load_workflow.
 std::string location(const toml::source_region& where, const std::string& file);
+/// The same as a ConfigError's InputPlace, with the key's full path: no file or line for a
+/// value given by an option.
+InputPlace input_place(const toml::source_region& where, const std::string& file, std::string key);
 /// Empty if `name` can name a host, disk, file, application or task; else why not (control
 /// characters, invalid UTF-8, a leading = + - @ that a spreadsheet would run as a formula).
 std::string name_problem(std::string_view name);
@@ -44,11 +47,12 @@ class TomlReader {
   [[noreturn]] void fail(const std::string& key, const std::string& message) const {
     const toml::node* node = table_->get(key);
     const toml::source_region& where = node != nullptr ? node->source() : table_->source();
-    throw ConfigError(fmt::format("{}: key '{}': {}", location(where, *file_), full(key), message));
+    throw ConfigError(fmt::format("{}: key '{}': {}", location(where, *file_), full(key), message), input_place(where, *file_, full(key)));
   }
   [[noreturn]] void fail_table(const std::string& message) const {
     throw ConfigError(fmt::format("{}: {}: {}", location(table_->source(), *file_), path_.empty() ? std::string("scenario") : "'" + path_ + "'",
-                                  message));
+                                  message),
+                      input_place(table_->source(), *file_, path_));
   }
 
   std::optional<std::string> optional_string(const std::string& key) {
@@ -187,7 +191,8 @@ class TomlReader {
       if (read_.count(name) == 0) {
         const std::string meant = closest(name, read_);
         throw ConfigError(fmt::format("{}: unknown key '{}'{}", location(node.source(), *file_), full(name),
-                                      meant.empty() ? std::string() : fmt::format(" (did you mean '{}'?)", full(meant))));
+                                      meant.empty() ? std::string() : fmt::format(" (did you mean '{}'?)", full(meant))),
+                          input_place(node.source(), *file_, full(name)));
       }
     }
   }
@@ -216,9 +221,11 @@ class TomlReader {
     const std::string typo = closest(key, unknown);
     if (!typo.empty()) {
       const toml::node* node = table_->get(typo);
-      throw ConfigError(fmt::format("{}: unknown key '{}' (did you mean '{}'?)", location(node->source(), *file_), full(typo), full(key)));
+      throw ConfigError(fmt::format("{}: unknown key '{}' (did you mean '{}'?)", location(node->source(), *file_), full(typo), full(key)),
+                        input_place(node->source(), *file_, full(typo)));
     }
-    throw ConfigError(fmt::format("{}: missing key '{}' ({})", location(table_->source(), *file_), full(key), what));
+    throw ConfigError(fmt::format("{}: missing key '{}' ({})", location(table_->source(), *file_), full(key), what),
+                      input_place(table_->source(), *file_, full(key)));
   }
 
   std::optional<double> with_units(const std::string& key, Kind kind) {

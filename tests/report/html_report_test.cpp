@@ -115,7 +115,7 @@ TEST_CASE("above 200 tasks, report.html shows the tasks in each phase over time 
   for (int i = 0; i < 201; ++i) {
     // Task i reads during [i, i + 2): at most two read at once.
     r.names.push_back("p" + std::to_string(i));
-    r.timeline.push_back({static_cast<std::uint32_t>(i + 1), 0, PhaseKind::Read, static_cast<double>(i), i + 2.0, 1, 0, 1});
+    r.timeline.push_back({static_cast<std::uint32_t>(i + 1), 0, PhaseKind::Read, 0, static_cast<double>(i), i + 2.0, 1, 0, 1});
   }
   r.summary.makespan = 202.0;
   const std::string html = report_html(scenario(), r, ReportActivity{});

@@ -22,16 +22,29 @@ constexpr double kTitleRoom = 22.0;
 constexpr double kEdgeGap = 2.0;
 // Between neighbouring rotated labels, across their baselines.
 constexpr double kLabelGap = 3.0;
+// The bottom margin grows to the longest label up to this (the chart grows with it).
+constexpr double kMaxBottom = 180.0;
+
+double radians(double degrees) { return degrees * std::acos(-1.0) / 180.0; }
+
+// From the base line down to a label's anchor: the label's top at its anchor clears the y
+// axis' lowest tick label, centred on the base line.
+double anchor_drop() { return line_height() / 2 + kAscent * std::cos(radians(kAngle)) + kLabelGap; }
+
+// The bottom margin that holds the longest label whole and the axis title under it.
+double bottom_for(const std::vector<std::string>& categories) {
+  double widest = 0.0;
+  for (const std::string& c : categories) widest = std::max(widest, text_width(c));
+  return anchor_drop() + widest * std::sin(radians(kAngle)) + kDescent * std::cos(radians(kAngle)) + kTitleRoom;
+}
 
 // The category labels, rotated, anchored at their end under each category: every k-th when
 // neighbours would overlap, each shortened to what fits between its anchor and the SVG's left
 // edge and above the axis title. A transparent column over each category holds its full name as
 // a tooltip, labelled or not.
 void draw_categories(std::string& out, const Plot& p, const std::vector<std::string>& categories, double slot) {
-  const double pi = std::acos(-1.0);
-  const double cos_a = std::cos(kAngle * pi / 180), sin_a = std::sin(kAngle * pi / 180);
-  // A label's top at its anchor clears the y axis' lowest tick label (centred on the base line).
-  const double base_y = p.py(p.y.lo), anchor_y = base_y + line_height() / 2 + kAscent * cos_a + kLabelGap;
+  const double cos_a = std::cos(radians(kAngle)), sin_a = std::sin(radians(kAngle));
+  const double base_y = p.py(p.y.lo), anchor_y = base_y + anchor_drop();
   const std::size_t every = static_cast<std::size_t>(std::max(1.0, std::ceil((line_height() + kLabelGap) / (slot * sin_a))));
   const double below = (p.height - kTitleRoom - anchor_y - kDescent * cos_a) / sin_a;
   out += "<g class=\"categories\">";
@@ -61,6 +74,9 @@ std::string bar_chart(const BarChart& c) {
     if (c.stacked) highest = std::max(highest, sum);
   }
   Plot p = c.plot;
+  // Long labels get room under the bars, the plot keeping its height.
+  p.bottom = std::max(c.plot.bottom, std::min(bottom_for(c.categories), kMaxBottom));
+  p.height += p.bottom - c.plot.bottom;
   p.x = {0.0, static_cast<double>(std::max<std::size_t>(n, 1)), c.x_title};
   p.y = nice_range(0.0, highest > 0 ? highest : 1.0, c.y_title, 5);
 

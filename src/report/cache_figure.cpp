@@ -48,7 +48,7 @@ std::string cache_figure(const RunResult& r) {
   c.title = "page cache contents per file after each I/O phase";
   c.x_title = "after the I/O phase";
   c.y_title = "cached (GB)";
-  c.plot.bottom = 150;  // room for the rotated phase names ("app/task phase")
+  c.plot.bottom = 100;
   for (const std::uint32_t p : phases) {
     const PhaseRow& row = r.timeline.at(p);
     c.categories.push_back(fmt::format("{}/{} {}", r.app_name(row), r.task_name(row), to_string(row.phase)));

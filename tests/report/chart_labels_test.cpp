@@ -172,8 +172,10 @@ TEST_CASE("rotated category labels are thinned so that neighbours do not overlap
       for (std::size_t i = 0; i < n; ++i) c.categories.push_back(fmt::format("genome-dax-0/map_map_ID{:07} write", i));
       c.series = {{"f", kBlue, std::vector<double>(n, 1.0)}};
       c.plot.width = width;
-      c.plot.bottom = 150;
       const std::string svg = bar_chart(c);
+      std::smatch size;
+      REQUIRE(std::regex_search(svg, size, std::regex(R"re(<svg [^>]* height="([0-9]+)")re")));
+      const double height = std::stod(size[1]);
       CHECK(count(svg, "<rect class=\"category\"") == n);  // every category has its tooltip
       const std::regex re(R"re(<text class="tick" transform="translate\(([-0-9.]+) ([-0-9.]+)\) rotate\(-35\)"[^>]*><title>([^<]*)</title>([^<]*)</text>)re");
       std::vector<double> anchors;
@@ -181,7 +183,7 @@ TEST_CASE("rotated category labels are thinned so that neighbours do not overlap
         const double x = std::stod((*it)[1]), w = text_width((*it)[4].str());
         anchors.push_back(x);
         CHECK(x - w * std::cos(35 * pi / 180) >= 0.0);
-        CHECK(std::stod((*it)[2]) + w * std::sin(35 * pi / 180) <= c.plot.height - 20);  // above the axis title
+        CHECK(std::stod((*it)[2]) + w * std::sin(35 * pi / 180) <= height - 20);  // above the axis title
       }
       REQUIRE(!anchors.empty());
       // Parallel labels: apart across their baselines by at least a line's height.

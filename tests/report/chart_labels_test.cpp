@@ -176,7 +176,6 @@ TEST_CASE("rotated category labels are thinned so that neighbours do not overlap
       std::smatch size;
       REQUIRE(std::regex_search(svg, size, std::regex(R"re(<svg [^>]* height="([0-9]+)")re")));
       const double height = std::stod(size[1]);
-      CHECK(count(svg, "<rect class=\"category\"") == n);  // every category has its tooltip
       const std::regex re(R"re(<text class="tick" transform="translate\(([-0-9.]+) ([-0-9.]+)\) rotate\(-35\)"[^>]*><title>([^<]*)</title>([^<]*)</text>)re");
       std::vector<double> anchors;
       for (auto it = std::sregex_iterator(svg.begin(), svg.end(), re); it != std::sregex_iterator(); ++it) {
@@ -186,6 +185,9 @@ TEST_CASE("rotated category labels are thinned so that neighbours do not overlap
         CHECK(std::stod((*it)[2]) + w * std::sin(35 * pi / 180) <= height - 20);  // above the axis title
       }
       REQUIRE(!anchors.empty());
+      // Every category has its full name as a tooltip: on its label, or on its column if unlabelled.
+      CHECK(count(svg, "<rect class=\"category\"") + anchors.size() == n);
+      if (n == 100) CHECK(anchors.size() < n);  // thinned
       // Parallel labels: apart across their baselines by at least a line's height.
       for (std::size_t i = 1; i < anchors.size(); ++i) CHECK((anchors[i] - anchors[i - 1]) * std::sin(35 * pi / 180) >= line_height());
     }

@@ -22,10 +22,10 @@ struct BarChart {
   std::string title;  ///< the SVG's accessible title
   std::string x_title;
   std::string y_title;
-  std::vector<std::string> categories;  ///< labels under the bars (cut if long; full in a tooltip)
+  std::vector<std::string> categories;  ///< labels under the bars (shortened to fit; full in a tooltip)
   std::vector<BarSeries> series;
   bool stacked = true;  ///< false: the series' bars side by side in each category
-  Plot plot;            ///< size and margins (its axes are computed)
+  Plot plot;            ///< size and margins (its axes are computed; bottom and height grow for long labels)
 };
 
 /// The chart as an SVG element; data-rows is the number of categories.

@@ -47,6 +47,11 @@ Axis nice_range(double lo, double hi, std::string title, int target);
 /// A tick's label: as many decimals as the tick step needs.
 std::string tick_label(double value, double step);
 
+/// The ticks of `axis` drawn over `pixels`, about `target` of them, fewer if their labels would
+/// touch: along a horizontal axis each label's width, along a vertical one a line's height, plus
+/// a gap, must fit between neighbours. Only ticks inside the axis' range.
+std::vector<double> axis_ticks(const Axis& axis, double pixels, bool horizontal, int target);
+
 struct LegendEntry {
   std::string name;
   std::string_view colour;
@@ -63,7 +68,9 @@ std::string svg_open(std::string_view kind, std::size_t series, std::size_t rows
 void draw_axes(std::string& out, const Plot& plot, bool x_ticks = true, bool y_ticks = true);
 
 /// The legend, top to bottom in the series' order, in the right margin: one
-/// `<g class="legend-item" data-series="name">` per entry.
+/// `<g class="legend-item" data-series="name">` per distinct entry (an entry identical to an
+/// earlier one, name, colour and opacity, is not repeated), its label shortened to the margin
+/// with the full name in its tooltip.
 void draw_legend(std::string& out, const Plot& plot, const std::vector<LegendEntry>& entries);
 
 }  // namespace pagecache::chart

@@ -1,6 +1,7 @@
 #include "chart/gantt_chart.hpp"
 
 #include "chart/html_text.hpp"
+#include "chart/text_width.hpp"
 
 #include <fmt/format.h>
 
@@ -11,14 +12,21 @@ namespace pagecache::chart {
 namespace {
 
 constexpr double kRowHeight = 16.0;
-// Row labels longer than this are cut to fit the left margin (the full one is a tooltip).
-constexpr std::size_t kLabelChars = 22;
+// The left margin grows to the widest label up to this share of the width; longer labels are
+// shortened to it (the full one is a tooltip), so the plot keeps most of the width.
+constexpr double kMaxLabelShare = 0.4;
+// Between the SVG's left edge and a label, and between a label and the plot.
+constexpr double kEdgeGap = 4.0;
+constexpr double kPlotGap = 6.0;
 
 }  // namespace
 
 std::string gantt_chart(const Gantt& c) {
   Plot p = c.plot;
-  p.left = std::max(p.left, 160.0);
+  double widest = 0.0;
+  for (const GanttRow& row : c.rows) widest = std::max(widest, text_width(row.label));
+  p.left = std::max({p.left, 160.0, std::min(kEdgeGap + widest + kPlotGap, p.width * kMaxLabelShare)});
+  const double room = p.left - kPlotGap - kEdgeGap;
   p.height = p.top + p.bottom + kRowHeight * static_cast<double>(std::max<std::size_t>(c.rows.size(), 1));
   p.x = {0.0, c.x_end > 0 ? c.x_end : 1.0, c.x_title};
   p.y = {0.0, static_cast<double>(std::max<std::size_t>(c.rows.size(), 1)), ""};
@@ -30,7 +38,7 @@ std::string gantt_chart(const Gantt& c) {
     const double y = p.top + kRowHeight * static_cast<double>(r);
     out += fmt::format("<g class=\"gantt-row\"><text class=\"tick\" x=\"{}\" y=\"{}\" text-anchor=\"end\" dominant-baseline=\"middle\">"
                        "<title>{}</title>{}</text>",
-                       fixed(p.left - 6, 1), fixed(y + kRowHeight / 2, 1), escape(row.label), escape(shorten(row.label, kLabelChars)));
+                       fixed(p.left - kPlotGap, 1), fixed(y + kRowHeight / 2, 1), escape(row.label), escape(fit_text(row.label, room)));
     for (const GanttBar& b : row.bars) {
       const GanttSeries& s = c.series[b.series];
       // At least a hairline: a phase of a millisecond in an hour-long run stays visible.

@@ -2,8 +2,9 @@
 // trace.json: a run in the Chrome Trace Event format, which Perfetto UI (ui.perfetto.dev) and
 // chrome://tracing open. Timestamps are microseconds of simulated time.
 //   pid 1, "applications": a track (tid) per application, its phases as complete slices
-//          ("X": read, compute, write; args task, host, bytes, cache and disk bytes). Tasks of
-//          one workflow that overlap take further lanes of its track ("app #2", ...).
+//          ("X" named "TASK read", "TASK compute" or "TASK write"; args task, host, bytes, cache
+//          and disk bytes). Tasks of one workflow that overlap take further lanes of its
+//          track ("app #2", ...).
 //   pid 2 + h, "host NAME": counters of its memory (free, anonymous, cached clean, dirty,
 //          writeback, bytes), instants for flushes (by cause) and evictions, and the writers'
 //          throttling pauses as async slices.

@@ -19,7 +19,7 @@ from typing import Any, Iterable, Mapping, Optional, Union
 from . import _core
 from ._errors import Error, InputError, InvariantError, SimulationError
 from ._result import Result
-from ._scenario import ScenarioLike, load as _load
+from ._scenario import ScenarioLike, load as _load, with_request as _with_request
 
 __version__ = _core.__version__
 __all__ = ["run", "show", "Result", "Error", "InputError", "SimulationError", "InvariantError", "__version__"]
@@ -38,8 +38,9 @@ def run(scenario: ScenarioLike = None, *, profile: Optional[str] = None, set: Op
     for Result.write. cache_contents: record the cache contents (Result.cache).
     The GIL is released while it runs; Ctrl-C stops it with KeyboardInterrupt.
     """
-    loaded = _load(scenario, profile=profile, set=set, platform=platform, files_host=files_host, hosts=hosts)
-    return Result(_core.simulate(loaded, trace, cache_contents))
+    run = _with_request(scenario, lambda request: _core.run(request, trace, cache_contents), profile=profile, set=set,
+                        platform=platform, files_host=files_host, hosts=hosts)
+    return Result(run)
 
 
 def show(scenario: ScenarioLike = None, *, profile: Optional[str] = None, set: Optional[Mapping[str, Any]] = None,

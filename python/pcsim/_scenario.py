@@ -6,12 +6,13 @@ import json
 import math
 import os
 import tempfile
-from typing import Any, Iterable, Mapping, Optional, Union
+from typing import Any, Callable, Iterable, Mapping, Optional, TypeVar, Union
 
 from . import _core
 from ._errors import InputError
 
 ScenarioLike = Union[None, str, "os.PathLike[str]", Mapping[str, Any]]
+T = TypeVar("T")
 
 
 def toml_value(value: Any) -> str:
@@ -44,10 +45,17 @@ def _looks_like_toml(text: str) -> bool:
     return "\n" in text or "=" in text or text.lstrip().startswith("[")
 
 
-def load(scenario: ScenarioLike, *, profile: Optional[str] = None, set: Optional[Mapping[str, Any]] = None,
-         platform: Union[None, str, "os.PathLike[str]"] = None, files_host: Optional[str] = None,
-         hosts: Optional[Iterable[str]] = None) -> "_core.Scenario":
-    """The scenario as `pcsim run` would load it; raises InputError naming what is wrong."""
+def load(scenario: ScenarioLike, **options) -> "_core.Scenario":
+    """The scenario as `pcsim run` would load it; raises InputError naming what is wrong.
+    Options: profile, set, platform, files_host, hosts (pcsim.run's)."""
+    return with_request(scenario, _core.load, **options)
+
+
+def with_request(scenario: ScenarioLike, use: Callable[["_core.LoadRequest"], T], *, profile: Optional[str] = None,
+                 set: Optional[Mapping[str, Any]] = None, platform: Union[None, str, "os.PathLike[str]"] = None,
+                 files_host: Optional[str] = None, hosts: Optional[Iterable[str]] = None) -> T:
+    """`use` applied to the request that loads the scenario with these options (a dict's
+    instance is in a file only while `use` runs)."""
     request = _core.LoadRequest()
     request.overrides = _overrides(set)
     request.profile = profile or ""
@@ -56,22 +64,22 @@ def load(scenario: ScenarioLike, *, profile: Optional[str] = None, set: Optional
     request.hosts = list(hosts) if hosts is not None else []
     if scenario is None:
         request.kind = "default"
-        return _core.load(request)
+        return use(request)
     if isinstance(scenario, Mapping):
-        return _load_instance(scenario, request)
+        return _with_instance(scenario, request, use)
     if isinstance(scenario, os.PathLike) or (isinstance(scenario, str) and not _looks_like_toml(scenario)):
         path = os.fspath(scenario)
         request.kind = "workflow" if path.endswith(".json") else "file"
         request.source = path
-        return _core.load(request)
+        return use(request)
     if isinstance(scenario, str):
         request.kind = "text"
         request.source = scenario
-        return _core.load(request)
+        return use(request)
     raise InputError(f"scenario: a path, TOML text or a WfCommons instance (dict), not {type(scenario).__name__}")
 
 
-def _load_instance(instance: Mapping[str, Any], request: "_core.LoadRequest") -> "_core.Scenario":
+def _with_instance(instance: Mapping[str, Any], request: "_core.LoadRequest", use: Callable[["_core.LoadRequest"], T]) -> T:
     # The C++ reader reads an instance from a file: the dict is handed over in one, and
     # messages and outputs name the instance instead of that file.
     name = f"<instance {instance.get('name')}>" if isinstance(instance.get("name"), str) else "<instance>"
@@ -83,6 +91,6 @@ def _load_instance(instance: Mapping[str, Any], request: "_core.LoadRequest") ->
         request.source = path
         request.name = name
         try:
-            return _core.load(request)
+            return use(request)
         except InputError as e:
             raise InputError(str(e).replace(path, name), name if e.file == path else e.file, e.line, e.key) from None

@@ -139,9 +139,9 @@ PYBIND11_MODULE(_core, m) {
 
   m.def("load", &load, py::arg("request"), "A scenario as the request says (pcsim._scenario builds it).");
   m.def(
-      "simulate",
-      [](const pagecache::Scenario& scenario, bool trace, bool cache_contents) { return simulate(scenario, trace, cache_contents); },
-      py::arg("scenario"), py::arg("trace"), py::arg("cache_contents"), "Runs a copy of the scenario to its end, the GIL released.");
+      "run", [](const LoadRequest& request, bool trace, bool cache_contents) { return simulate(load(request), trace, cache_contents); },
+      py::arg("request"), py::arg("trace"), py::arg("cache_contents"),
+      "Loads the scenario and runs it to its end, the GIL released (the scenario is the run's: no copy).");
 
   py::class_<Run>(m, "Run")
       .def("summary_json", &Run::summary_json)

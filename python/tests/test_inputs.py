@@ -73,9 +73,11 @@ def test_a_simulation_error_has_its_time():
     assert "too-big.dat" in str(e.value)
 
 
-def test_ctrl_c_stops_a_run():
+def test_ctrl_c_stops_a_run(monkeypatch):
     # 20,000 pipelines on a host scaled for them take the simulator seconds; SIGINT a quarter
-    # of a second in stops the run within the next few thousand events.
+    # of a second in stops the run within the next few thousand events. (Debug builds check
+    # the cache's invariants after every change, which at this size takes hours: not here.)
+    monkeypatch.setenv("PAGECACHE_CHECK_INVARIANTS", "0")
     scenario = """
 title = "20,000 pipelines"
 [[hosts]]
@@ -96,12 +98,13 @@ tasks = 3
 cpu_time = "4 s"
 chunk_size = "100 MB"
 """
-    timer = threading.Timer(0.25, os.kill, (os.getpid(), signal.SIGINT))
+    sent = []
+    timer = threading.Timer(0.25, lambda: (sent.append(time.monotonic()), os.kill(os.getpid(), signal.SIGINT)))
     timer.start()
-    started = time.monotonic()
     try:
         with pytest.raises(KeyboardInterrupt):
             pcsim.run(scenario, cache_contents=False)
     finally:
         timer.cancel()
-    assert time.monotonic() - started < 2.0
+    # Within seconds of the signal, though a sanitized debug build may still be loading then.
+    assert sent and time.monotonic() - sent[0] < 5.0

@@ -15,8 +15,6 @@ from conftest import SOURCE, pcsim_cli
 # The scenarios scripts/check-outputs runs (scenarios/sweeps/ holds sweep plans, not scenarios).
 SHIPPED = sorted(str(p.relative_to(SOURCE)) for pattern in ("scenarios/paper/*.toml", "scenarios/examples/*.toml", "tests/apps/golden/*.toml")
                  for p in SOURCE.glob(pattern))
-# The 32,000-application cluster takes the command line half a minute per profile: not repeated here.
-SLOW = {"scenarios/examples/nfs-cluster.toml"}
 
 
 def cli_tables(tmp_path, *args):
@@ -43,7 +41,7 @@ def assert_same_table(ours, theirs):
 
 
 @pytest.mark.parametrize("profile", ["paper", "linux"])
-@pytest.mark.parametrize("scenario", [s for s in SHIPPED if s not in SLOW] + [None])
+@pytest.mark.parametrize("scenario", SHIPPED + [None])
 def test_tables_equal_the_command_lines_files(tmp_path, scenario, profile):
     args = ([scenario] if scenario else []) + ["--profile", profile]
     cli = pcsim_cli("run", *args, "--out", tmp_path / "cli", "--quiet", check=False)

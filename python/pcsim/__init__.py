@@ -7,8 +7,8 @@
 
 `run` and `show` take a scenario as a path (TOML, or a WfFormat / WRENCH workflow instance
 .json with `platform`), TOML text, a WfCommons instance as a dict (`json.load` of one), or
-None for the embedded default; and the options of `pcsim run`. Errors are InputError (the
-input is wrong) and SimulationError (the model cannot proceed).
+None for the embedded default; and the options of `pcsim run`. `validate` is `pcsim validate`.
+Errors are InputError (the input is wrong) and SimulationError (the model cannot proceed).
 """
 
 from __future__ import annotations
@@ -19,10 +19,11 @@ from typing import Any, Iterable, Mapping, Optional, Union
 from . import _core
 from ._errors import Error, InputError, InvariantError, SimulationError
 from ._result import Result
+from ._validate import validate
 from ._scenario import ScenarioLike, load as _load, with_request as _with_request
 
 __version__ = _core.__version__
-__all__ = ["run", "show", "Result", "Error", "InputError", "SimulationError", "InvariantError", "__version__"]
+__all__ = ["run", "show", "validate", "Result", "Error", "InputError", "SimulationError", "InvariantError", "__version__"]
 
 PathLike = Union[str, "os.PathLike[str]"]
 

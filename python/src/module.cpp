@@ -4,6 +4,7 @@
 
 #include "columns.hpp"
 #include "load.hpp"
+#include "validate.hpp"
 
 #include <pagecache/error.hpp>
 #include <pagecache/outputs.hpp>
@@ -142,6 +143,9 @@ PYBIND11_MODULE(_core, m) {
       "run", [](const LoadRequest& request, bool trace, bool cache_contents) { return simulate(load(request), trace, cache_contents); },
       py::arg("request"), py::arg("trace"), py::arg("cache_contents"),
       "Loads the scenario and runs it to its end, the GIL released (the scenario is the run's: no copy).");
+
+  m.def("validate_cases", &validate_cases, py::arg("data_dir"), py::arg("scenarios_dir"), py::arg("profile"), py::arg("overrides"),
+        py::arg("switches"), "pcsim validate's cases (pcsim.validate makes its tables from them).");
 
   py::class_<Run>(m, "Run")
       .def("summary_json", &Run::summary_json)

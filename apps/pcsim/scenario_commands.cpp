@@ -9,54 +9,25 @@
 #include "status_line.hpp"
 
 #include <fmt/format.h>
-#include <toml++/toml.h>
 
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
-#include <sstream>
 
 namespace pcsim {
 
 namespace {
 
-// `text` as a TOML string (for --set: a value is read as TOML).
-std::string toml_string(const std::string& text) {
-  std::ostringstream out;
-  out << toml::value<std::string>(text);
-  return out.str();
-}
-
 bool ends_with(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
 
-std::string absolute(const std::string& path) { return std::filesystem::absolute(path).lexically_normal().string(); }
-
-// A workflow instance (WfFormat JSON) on a platform file (pagecache::load_workflow): --set
-// reaches every key, and a problem with an option names it.
-pagecache::Scenario load_workflow(const std::string& path, const Inputs& in, const std::vector<std::string>& sets, const std::string& profile,
-                                  const pagecache::ScenarioLimits& limits) {
-  pagecache::WorkflowOptions options;
-  options.platform = in.platform;
-  options.files_host = in.files_host;
-  options.hosts = in.hosts;
-  return pagecache::load_workflow(path, options, parse_sets(sets), profile, limits);
-}
-
 pagecache::Scenario load(const ScenarioArgs& s) {
-  const pagecache::ScenarioLimits limits = s.force ? pagecache::ScenarioLimits::forced() : pagecache::ScenarioLimits{};
-  if (ends_with(s.path, ".json")) return load_workflow(s.path, s.inputs, s.sets, s.profile, limits);
-  if (!s.inputs.files_host.empty() || !s.inputs.hosts.empty()) {
-    throw pagecache::ConfigError("--files-host and --hosts place a workflow file's (JSON) files and tasks; a scenario gives them in its [workflow] table");
-  }
-  Overrides overrides = parse_sets(s.sets);
-  // A scenario on another platform: --platform is its `platform` key.
-  if (!s.inputs.platform.empty()) overrides.insert(overrides.begin(), {"platform", toml_string(absolute(s.inputs.platform))});
-  if (s.path.empty()) {
-    return pagecache::parse_scenario(pagecache::default_scenario_text(), "<embedded default>", overrides, s.profile, limits);
-  }
-  return pagecache::load_scenario(s.path, overrides, s.profile, limits);
+  pagecache::RunInputs in;
+  in.workflow = {.platform = s.inputs.platform, .files_host = s.inputs.files_host, .hosts = s.inputs.hosts};
+  in.overrides = parse_sets(s.sets);
+  in.profile = s.profile;
+  in.limits = s.force ? pagecache::ScenarioLimits::forced() : pagecache::ScenarioLimits{};
+  return pagecache::load_run_scenario(s.path, in);
 }
 
 // Progress on a terminal only, for runs longer than half a second: simulated time reached and

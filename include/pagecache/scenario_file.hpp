@@ -73,6 +73,21 @@ struct WorkflowOptions {
 Scenario load_workflow(const std::string& workflow, const WorkflowOptions& options,
                        const std::vector<std::pair<std::string, std::string>>& overrides = {},
                        const std::string& profile_override = {}, const ScenarioLimits& limits = {});
+/// What `pcsim run SCENARIO` (and the Python module's pcsim.run) take besides the scenario:
+/// --platform, --files-host and --hosts (`workflow`), --set, --profile, and the limits.
+struct RunInputs {
+  WorkflowOptions workflow;
+  std::vector<std::pair<std::string, std::string>> overrides;
+  std::string profile;
+  ScenarioLimits limits;
+};
+/// The scenario `pcsim run PATH` runs: a workflow instance (PATH ends in .json) on
+/// inputs.workflow.platform (load_workflow); a scenario file, its `platform` key replaced by
+/// inputs.workflow.platform if one is given; or, PATH empty, the embedded default. A ConfigError
+/// if --files-host or --hosts come with a scenario that is not a workflow instance.
+Scenario load_run_scenario(const std::string& path, const RunInputs& inputs);
+/// The same for a scenario's TOML text, `source_name` naming it in messages.
+Scenario parse_run_scenario(const std::string& toml_text, const std::string& source_name, const RunInputs& inputs);
 /// A platform file alone (TOML, or SimGrid XML with WRENCH-cache's conventions), with every
 /// route it lists (up to 10^5; Scenario::warnings says how many more), for `pcsim show`. The
 /// hosts of an XML file may lack what a run needs: their memory and memory bandwidths are then

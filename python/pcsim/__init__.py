@@ -7,7 +7,8 @@
 
 `run` and `show` take a scenario as a path (TOML, or a WfFormat / WRENCH workflow instance
 .json with `platform`), TOML text, a WfCommons instance as a dict (`json.load` of one), or
-None for the embedded default; and the options of `pcsim run`. `validate` is `pcsim validate`.
+None for the embedded default; and the options of `pcsim run`. `validate` is `pcsim validate`,
+`sweep` is `pcsim sweep run` and `merge` (a DataFrame of the runs, run on threads).
 Errors are InputError (the input is wrong) and SimulationError (the model cannot proceed).
 """
 
@@ -19,11 +20,12 @@ from typing import Any, Iterable, Mapping, Optional, Union
 from . import _core
 from ._errors import Error, InputError, InvariantError, SimulationError
 from ._result import Result
+from ._sweep import sweep
 from ._validate import validate
 from ._scenario import ScenarioLike, load as _load, with_request as _with_request
 
 __version__ = _core.__version__
-__all__ = ["run", "show", "validate", "Result", "Error", "InputError", "SimulationError", "InvariantError", "__version__"]
+__all__ = ["run", "show", "sweep", "validate", "Result", "Error", "InputError", "SimulationError", "InvariantError", "__version__"]
 
 PathLike = Union[str, "os.PathLike[str]"]
 

@@ -4,6 +4,7 @@
 
 #include "columns.hpp"
 #include "load.hpp"
+#include "sweep.hpp"
 #include "validate.hpp"
 
 #include <pagecache/error.hpp>
@@ -146,6 +147,10 @@ PYBIND11_MODULE(_core, m) {
 
   m.def("validate_cases", &validate_cases, py::arg("data_dir"), py::arg("scenarios_dir"), py::arg("profile"), py::arg("overrides"),
         py::arg("switches"), "pcsim validate's cases (pcsim.validate makes its tables from them).");
+
+  m.def("sweep_csv", &sweep_csv, py::arg("path"), py::arg("text"), py::arg("origin"), py::arg("jobs"), py::arg("force"),
+        "pcsim sweep run + merge in memory: every run of the sweep file (path) or sweep text, jobs at a time on threads with the "
+        "GIL released; results.csv's text (pcsim.sweep makes its table from it).");
 
   py::class_<Run>(m, "Run")
       .def("summary_json", &Run::summary_json)

@@ -18,4 +18,4 @@ case $installed in
   *) echo "FAIL: pcsim imported from $installed, not the venv" >&2; exit 1 ;;
 esac
 env -u PYTHONPATH PCSIM_BIN="$pcsim_bin" PCSIM_SOURCE_DIR="$source_dir" \
-  "$work/venv/bin/python" -m pytest -q -p no:cacheprovider python/tests/test_run.py python/tests/test_inputs.py
+  "$work/venv/bin/python" -m pytest -q -p no:cacheprovider python/tests/test_run.py python/tests/test_inputs.py python/tests/test_sweep.py

@@ -36,25 +36,19 @@ std::optional<std::size_t> whole_number(const std::string& text) {
   return static_cast<std::size_t>(std::stoull(text));
 }
 
-struct Finished {
-  std::string line;
-  bool failed = false;
-};
+}  // namespace
 
 // One run, start to end; any failure is its result, with pcsim run's exit code for it.
-Finished execute(const Plan& plan, const Run& run, const SweepOptions& options) {
+RunRecord execute_run(const Plan& plan, const Run& run, RunOptions run_options, const std::string& outputs_dir) {
   const auto start = std::chrono::steady_clock::now();
   const auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   int code = 1;
   std::string error;
   try {
     const Scenario scenario = plan.scenario(run);
-    RunOptions run_options;
-    run_options.cache_contents = options.keep_outputs;
+    run_options.cache_contents = !outputs_dir.empty();
     const RunResult result = run_scenario(scenario, run_options);
-    if (options.keep_outputs) {
-      report::write_outputs((fs::path(options.out_dir) / "runs" / run.id).string(), scenario, result, {.report = false, .activity = nullptr, .more = {}});
-    }
+    if (!outputs_dir.empty()) report::write_outputs(outputs_dir, scenario, result, {.report = false, .activity = nullptr, .more = {}});
     return {result_line(plan.fingerprint(), run, &result, 0, {}, wall()), false};
   } catch (const ConfigError& e) {
     code = 2;
@@ -72,8 +66,6 @@ Finished execute(const Plan& plan, const Run& run, const SweepOptions& options) 
   }
   return {result_line(plan.fingerprint(), run, nullptr, code, error, wall()), true};
 }
-
-}  // namespace
 
 // out_dir/sweep-plan.json: written by the first shard, the same for every other. Everything
 // in the folder is read and checked before the plan is written.
@@ -162,7 +154,8 @@ SweepOutcome run_sweep(const Plan& plan, const SweepOptions& options) {
   std::exception_ptr broken;
   const auto worker = [&] {
     for (std::size_t i = next++; i < pending.size(); i = next++) {
-      const Finished finished = execute(plan, pending[i], options);
+      const RunRecord finished =
+          execute_run(plan, pending[i], {}, options.keep_outputs ? (fs::path(options.out_dir) / "runs" / pending[i].id).string() : std::string());
       const std::lock_guard guard(lock);
       if (broken) return;
       try {

@@ -7,6 +7,8 @@
 
 #include "sweep/plan.hpp"
 
+#include <pagecache/run.hpp>
+
 #include <cstddef>
 #include <functional>
 #include <optional>
@@ -45,6 +47,19 @@ struct SweepOutcome {
   std::size_t skipped = 0;  ///< already in the results
   std::string results;      ///< the shard's results file
 };
+
+/// A finished run: its results line (result_line.hpp), and whether the run failed.
+struct RunRecord {
+  std::string line;
+  bool failed = false;
+};
+
+/// One run of the plan, start to end, as `sweep run` makes it. A failure of the run (a value
+/// its scenario refuses, the simulation stopped, memory exhausted) is the record's, with the
+/// exit code `pcsim run` would give; an exception `run_options.progress` throws passes through
+/// (a caller's way to stop a run). `outputs_dir`: also writes the run's outputs there, as
+/// `--keep-outputs` does (and records the cache contents they hold).
+RunRecord execute_run(const Plan& plan, const Run& run, RunOptions run_options, const std::string& outputs_dir = {});
 
 /// The file a shard writes: out_dir/results-I-of-N.jsonl.
 std::string results_path(const std::string& out_dir, const Shard& shard);

@@ -147,4 +147,12 @@ MergeOutcome merge(const MergeOptions& options) {
   return outcome;
 }
 
+std::string results_csv(const Plan& plan, const std::vector<std::string>& lines) {
+  if (lines.size() != plan.size()) throw Error(fmt::format("results_csv: {} lines for a plan of {} runs", lines.size(), plan.size()));
+  fmt::memory_buffer csv;
+  append_header(csv, plan);
+  for (std::size_t i = 0; i < plan.size(); ++i) append_row(csv, plan.run(i), nlohmann::json::parse(lines[i]));
+  return {csv.data(), csv.size()};
+}
+
 }  // namespace pagecache::sweep

@@ -5,8 +5,11 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 namespace pagecache::sweep {
+
+class Plan;
 
 struct MergeOptions {
   std::string dir;
@@ -27,5 +30,9 @@ struct MergeOutcome {
 /// results file pcsim did not make, a DIR without a sweep-plan.json, or a --csv that cannot
 /// receive the CSV ("--csv PATH: is a folder", checked first).
 MergeOutcome merge(const MergeOptions& options);
+
+/// results.csv's text for runs made in memory: `lines[i]` is run i's results line (one per
+/// run of `plan`, in its order), as execute_run made it. The rows merge would write for them.
+std::string results_csv(const Plan& plan, const std::vector<std::string>& lines);
 
 }  // namespace pagecache::sweep

@@ -28,3 +28,28 @@ def source():
 def in_source_tree(monkeypatch):
     # Scenario paths are given relative to the source tree, as the command line gets them.
     monkeypatch.chdir(SOURCE)
+
+
+def many_pipelines(count):
+    """A scenario's TOML text: `count` pipelines on a host scaled for 20,000 of them; thousands
+    take the simulator a good fraction of a second or more."""
+    return f"""
+title = "{count} pipelines"
+[[hosts]]
+name = "node"
+cores = 20000
+memory = "200 TB"
+memory_read_bw = "3000 GB/s"
+memory_write_bw = "3000 GB/s"
+[[hosts.disks]]
+name = "ssd"
+read_bw = "300 GB/s"
+write_bw = "300 GB/s"
+capacity = "100 PB"
+[pipelines]
+count = {count}
+file_size = "1 GB"
+tasks = 3
+cpu_time = "4 s"
+chunk_size = "100 MB"
+"""

@@ -9,7 +9,7 @@ import time
 import pytest
 
 import pcsim
-from conftest import SOURCE, pcsim_cli
+from conftest import many_pipelines, SOURCE, pcsim_cli
 
 INSTANCES = sorted((SOURCE / "inputs/wfcommons/instances").glob("*.json"))
 CHAMELEON = "platforms/wfcommons-chameleon.xml"
@@ -78,26 +78,7 @@ def test_ctrl_c_stops_a_run(monkeypatch):
     # of a second in stops the run within the next few thousand events. (Debug builds check
     # the cache's invariants after every change, which at this size takes hours: not here.)
     monkeypatch.setenv("PAGECACHE_CHECK_INVARIANTS", "0")
-    scenario = """
-title = "20,000 pipelines"
-[[hosts]]
-name = "node"
-cores = 20000
-memory = "200 TB"
-memory_read_bw = "3000 GB/s"
-memory_write_bw = "3000 GB/s"
-[[hosts.disks]]
-name = "ssd"
-read_bw = "300 GB/s"
-write_bw = "300 GB/s"
-capacity = "100 PB"
-[pipelines]
-count = 20000
-file_size = "1 GB"
-tasks = 3
-cpu_time = "4 s"
-chunk_size = "100 MB"
-"""
+    scenario = many_pipelines(20000)
     sent = []
     timer = threading.Timer(0.25, lambda: (sent.append(time.monotonic()), os.kill(os.getpid(), signal.SIGINT)))
     timer.start()

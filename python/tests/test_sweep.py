@@ -11,7 +11,7 @@ import pandas as pd
 import pytest
 
 import pcsim
-from conftest import pcsim_cli
+from conftest import many_pipelines, pcsim_cli
 
 WALL = ["wall_s", "sim_wall_s"]  # the only columns two sweeps of the same runs may differ in
 COUNTS = [2500, 2501, 2502, 2503, 2504, 2505]
@@ -74,36 +74,13 @@ def test_a_workflow_instance_as_a_dict(tmp_path):
     assert_same_runs(from_dict, merged(tmp_path, sweep_file))
 
 
-# A host scaled for many pipelines: a few thousand of them take the simulator a while.
-BIG = """
-title = "many pipelines"
-[[hosts]]
-name = "node"
-cores = 20000
-memory = "200 TB"
-memory_read_bw = "3000 GB/s"
-memory_write_bw = "3000 GB/s"
-[[hosts.disks]]
-name = "ssd"
-read_bw = "300 GB/s"
-write_bw = "300 GB/s"
-capacity = "100 PB"
-[pipelines]
-count = 1
-file_size = "1 GB"
-tasks = 3
-cpu_time = "4 s"
-chunk_size = "100 MB"
-"""
-
-
 @pytest.fixture
 def big(tmp_path, monkeypatch):
     """The scenario's file. Debug builds check the cache's invariants after every change:
     hours at these sizes, so not here."""
     monkeypatch.setenv("PAGECACHE_CHECK_INVARIANTS", "0")
     path = tmp_path / "many-pipelines.toml"
-    path.write_text(BIG)
+    path.write_text(many_pipelines(1))
     return path
 
 

@@ -33,7 +33,7 @@ void add_calibrate_command(CLI::App& app, CalibrateCommand& c) {
 }
 
 int run_calibrate_command(const CalibrateCommand& c) {
-  if (!c.out.empty()) pagecache::report::check_output_file(c.out, "--out");
+  if (c.app->count("--out") > 0) pagecache::report::check_output_file(c.out, "--out");  // `--out ''` is refused, not ignored
   cal::Options options;
   options.dir = c.dir;
   options.quick = c.quick;

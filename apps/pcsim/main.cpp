@@ -177,16 +177,44 @@ int help_command(const CommandLine& c) {
   return 0;
 }
 
+// Two names of one regular file (or of one file to be made); devices and FIFOs may take both.
+bool same_regular_file(const std::string& a, const std::string& b) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status sa = fs::status(a, ec), sb = fs::status(b, ec);
+  if (fs::exists(sa) && fs::exists(sb)) return fs::is_regular_file(sa) && fs::equivalent(a, b, ec);
+  return fs::weakly_canonical(a, ec) == fs::weakly_canonical(b, ec);
+}
+
+// The regular files directly in these folders.
+std::vector<std::string> files_in(std::initializer_list<std::string> folders) {
+  std::vector<std::string> files;
+  std::error_code ec;
+  for (const std::string& folder : folders) {
+    for (std::filesystem::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+      if (it->is_regular_file(ec)) files.push_back(it->path().string());
+    }
+  }
+  return files;
+}
+
 int validate_command(const ValidateCommand& v, const std::vector<std::string>& sets) {
   // The command line's own mistakes first: they need no data to be seen.
   const bool write_json = v.app->count("--json") > 0;  // `--json ''` is refused, not ignored
   if (write_json) pagecache::report::check_output_file(v.json_path, "--json");
   pagecache::report::check_output_file(v.report_path, "--report");
+  if (write_json && same_regular_file(v.json_path, v.report_path)) {
+    throw pagecache::ConfigError(fmt::format("--report {}: is --json's file too; name two files", v.report_path));
+  }
   if (v.data_dir.empty() || v.scenarios_dir.empty()) {
     throw pagecache::ConfigError(fmt::format("validate: no validation data beside this pcsim (looked in {}): give --data FOLDER and "
                                              "--scenarios FOLDER (validation/paper and scenarios/paper of pcsim's sources)",
                                              pcsim::data_dir_looked_at().string()));
   }
+  // Nor may an output take the place of the data or the scenarios validate reads.
+  const std::vector<std::string> inputs = files_in({v.data_dir, v.scenarios_dir});
+  if (write_json) pagecache::report::check_not_an_input(v.json_path, "--json", inputs);
+  pagecache::report::check_not_an_input(v.report_path, "--report", inputs);
   const auto forced = pagecache::validate::parse_switches(v.switches);
   const auto report = pagecache::validate::run({v.data_dir, v.scenarios_dir, v.profile, pcsim::parse_sets(sets), forced});
   fmt::print("{}", report.text());
@@ -202,6 +230,7 @@ int dispatch(CommandLine& c) {
   if (c.sweep.sweep->parsed()) return pcsim::run_sweep_command(c.sweep);
   if (c.calibrate.app->parsed()) return pcsim::run_calibrate_command(c.calibrate);
   const pcsim::ValidateHereOptions& here = c.validate.here;
+  if (c.validate.app->parsed()) pcsim::check_validate_mode(*c.validate.app);
   if (c.validate.app->parsed() && (here.here || !here.from.empty())) return pcsim::run_validate_here(here);
   if (c.validate.app->parsed()) return validate_command(c.validate, c.scenario.sets);
   if (c.show->parsed()) return pcsim::show_command(c.scenario);

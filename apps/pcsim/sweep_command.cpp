@@ -2,6 +2,7 @@
 
 #include "status_line.hpp"
 
+#include "report/output_file.hpp"
 #include "sweep/executor.hpp"
 #include "sweep/merge.hpp"
 #include "sweep/plan.hpp"
@@ -90,6 +91,7 @@ void add_sweep_command(CLI::App& app, SweepCommand& c) {
 
 int run_sweep_command(const SweepCommand& c) {
   if (c.merge->parsed()) {
+    if (c.merge->count("--csv") > 0) pagecache::report::check_output_file(c.csv, "--csv");  // `--csv ''` is refused, not ignored
     const sweep::MergeOutcome m = sweep::merge({c.out, c.csv, c.allow_missing});
     fmt::print("{}: {} runs{}{}\n", m.csv, m.runs, m.failed ? fmt::format(", {} failed", m.failed) : "",
                m.missing ? fmt::format(", {} missing", m.missing) : "");

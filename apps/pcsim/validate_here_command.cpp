@@ -10,10 +10,13 @@
 #include <pagecache/error.hpp>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string_view>
+#include <vector>
 
 namespace pcsim {
 
@@ -44,6 +47,30 @@ std::string read_text(const std::string& path, const char* what) {
 }
 
 }  // namespace
+
+void check_validate_mode(const CLI::App& validate) {
+  const bool here = validate.count("--here") > 0;
+  const bool from = validate.count("--from") > 0;
+  if (here && from) throw pagecache::ConfigError("validate: --here runs the experiments, --from scores those kept in a folder: give one");
+  const auto refuse = [&](std::initializer_list<const char*> options, std::string_view why) {
+    std::vector<std::string> given;
+    for (const char* name : options)
+      if (validate.count(name) > 0) given.emplace_back(name);
+    if (!given.empty()) {
+      throw pagecache::ConfigError(fmt::format("validate: {} {} {}", fmt::join(given, ", "), given.size() == 1 ? "is an option" : "are options", why));
+    }
+  };
+  if (here || from) {
+    refuse({"--json", "--report", "--profile", "--set", "--switch", "--data", "--scenarios"},
+           fmt::format("of the comparison with the paper's data, which {} does not make: it scores this machine's runs on their "
+                       "calibrated platform and prints the table{}",
+                       here ? "--here" : "--from", here ? " (also into --out's report.txt)" : ""));
+  }
+  if (!here) {
+    refuse({"--dir", "--platform", "--out", "--repeat", "--quick"},
+           from ? "of --here: --from scores the folder it names again, running nothing" : "of --here (the experiments run for real here)");
+  }
+}
 
 int run_validate_here(const ValidateHereOptions& o) {
   namespace cal = pagecache::calibrate;

@@ -21,6 +21,11 @@ struct ValidateHereOptions {
 
 /// Adds the options to `validate`.
 void add_validate_here_options(CLI::App& validate, ValidateHereOptions& options);
+/// Throws ConfigError naming the options given to `validate` (parsed) that its mode does not
+/// take, which would otherwise be ignored: --here's own (--dir, --platform, --out, --repeat,
+/// --quick) without --here; with --here or --from, the comparison with the paper's data
+/// (--json, --report, --profile, --set, --switch, --data, --scenarios); --here with --from.
+void check_validate_mode(const CLI::App& validate);
 /// Runs it; throws as the library does, returns the exit code otherwise.
 int run_validate_here(const ValidateHereOptions& options);
 

@@ -80,8 +80,9 @@ class RunOutputs {
 };
 
 /// The check `pcsim run` makes before simulating: throws ConfigError, naming the folder and
-/// why, if RunOutputs::write could not replace `dir` now, or if `dir` holds `scenario_file`
-/// (the scenario would be deleted with the folder; empty: no scenario file).
+/// why, if RunOutputs::write could not replace `dir` now (what is there is not pcsim's, or no
+/// folder can be made beside it), or if `dir` holds `scenario_file` (the scenario would be
+/// deleted with the folder; empty: no scenario file).
 void check_output_folder(const std::string& dir, const std::string& scenario_file = {});
 
 /// The files one by one. The CSV files are RFC 4180: a name holding a comma, a quote, CR or

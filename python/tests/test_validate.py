@@ -34,7 +34,7 @@ def test_the_cases_are_pcsim_validates(tmp_path, args, kwargs):
 
 
 def test_a_folder_without_the_data_is_named(tmp_path):
-    with pytest.raises(pcsim.InputError, match=r"exp1_real_phase_times\.csv: cannot read"):
+    with pytest.raises(pcsim.InputError, match=r"exp1_real_phase_times\.csv: cannot open the data file"):
         pcsim.validate(data=tmp_path, scenarios=SOURCE / "scenarios" / "paper")
     with pytest.raises(pcsim.InputError, match="true or false"):
         pcsim.validate(switch={"background_writeback": "no"})

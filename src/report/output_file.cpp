@@ -19,6 +19,7 @@
 #include <system_error>
 #include <unistd.h>
 #include <utility>
+#include <vector>
 
 namespace pagecache::report {
 
@@ -74,8 +75,9 @@ const char* kind_of(mode_t mode) {
 // A file replaced whole is written beside it first: its folder must take a new file.
 Destination writable_folder(Destination d, const std::string& path, std::string_view option) {
   const fs::path folder = folder_of(d.target);
-  if (::access(folder.c_str(), W_OK | X_OK) != 0) {
-    refuse(path, option, fmt::format("pcsim cannot write in the folder {} ({})", folder.string(), std::generic_category().message(errno)));
+  const int error = ::access(folder.c_str(), W_OK | X_OK) != 0 ? errno : probe_folder(folder, false);
+  if (error != 0) {
+    refuse(path, option, fmt::format("pcsim cannot write in the folder {} ({})", folder.string(), std::generic_category().message(error)));
   }
   return d;
 }
@@ -121,6 +123,17 @@ Destination destination(const std::string& path, std::string_view option) {
 }  // namespace
 
 void check_output_file(const std::string& path, std::string_view option) { (void)destination(path, option); }
+
+void check_not_an_input(const std::string& path, std::string_view option, const std::vector<std::string>& inputs) {
+  struct stat out{};
+  if (::stat(path.c_str(), &out) != 0 || !S_ISREG(out.st_mode)) return;  // replaces no file
+  for (const std::string& input : inputs) {
+    struct stat in{};
+    if (::stat(input.c_str(), &in) == 0 && in.st_dev == out.st_dev && in.st_ino == out.st_ino) {
+      refuse(path, option, fmt::format("is {}, which pcsim reads for this command; name another file", input));
+    }
+  }
+}
 
 OutputFile::OutputFile(const std::string& path, std::string_view option) : path_(path) {
   const Destination d = destination(path, option);

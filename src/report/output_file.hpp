@@ -14,6 +14,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace pagecache::report {
 
@@ -22,6 +23,11 @@ class RemovedOnInterrupt;
 /// Throws ConfigError ("OPTION PATH: why", or "PATH: why" without an option) if `path` may not
 /// receive an output now. Call it before long work, so that the work is not wasted.
 void check_output_file(const std::string& path, std::string_view option = {});
+
+/// Throws ConfigError ("OPTION PATH: is INPUT, which pcsim reads for this command; ...") if
+/// writing `path` would replace one of the files `inputs` names (the same file, through a link
+/// or not): an output never takes the place of what the command reads.
+void check_not_an_input(const std::string& path, std::string_view option, const std::vector<std::string>& inputs);
 
 /// An output written by the rule above, streamed: write() as often as needed, then commit().
 /// Destroyed uncommitted (an error or an interruption on the way), it leaves nothing behind

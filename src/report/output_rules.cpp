@@ -1,5 +1,7 @@
 #include "report/output_rules.hpp"
 
+#include "report/unique_name.hpp"
+
 #include <pagecache/error.hpp>
 
 #include <fmt/format.h>
@@ -15,6 +17,9 @@ namespace pagecache::report {
 namespace fs = std::filesystem;
 
 namespace {
+
+constexpr std::string_view kNameTooLong = "is a name longer than the file system allows";
+constexpr std::string_view kCannotExamine = "cannot be examined";
 
 bool same_file(const struct stat& a, const struct stat& b) { return a.st_dev == b.st_dev && a.st_ino == b.st_ino; }
 
@@ -58,8 +63,8 @@ std::optional<std::string> refusal(const fs::path& path, const std::string& scen
   struct stat st{};
   if (::lstat(path.c_str(), &st) != 0) {
     if (errno == ENOENT) return std::nullopt;
-    if (errno == ENAMETOOLONG) return "is a name longer than the file system allows";
-    return fmt::format("cannot be examined ({})", std::generic_category().message(errno));
+    if (errno == ENAMETOOLONG) return std::string(kNameTooLong);
+    return fmt::format("{} ({})", kCannotExamine, std::generic_category().message(errno));
   }
   if (S_ISLNK(st.st_mode)) return "is a symbolic link (pcsim neither replaces a link nor writes through one)";
   if (!S_ISDIR(st.st_mode)) return "is not a folder";
@@ -86,6 +91,8 @@ std::optional<std::string> refusal(const fs::path& path, const std::string& scen
 }
 
 void refuse(const std::string& dir, const fs::path& path, const std::string& reason) {
+  // A name the file system refuses, or cannot examine, is not about what the folder holds.
+  if (reason == kNameTooLong || reason.rfind(kCannotExamine, 0) == 0) throw ConfigError(fmt::format("--out {}: {} {}", dir, path.string(), reason));
   throw ConfigError(fmt::format("--out {}: will not replace {}: it {}. pcsim replaces only an empty folder or one it made (marked by "
                                 "{}) that holds nothing else; nothing was removed",
                                 dir, path.string(), reason, kMarkerName));
@@ -94,6 +101,14 @@ void refuse(const std::string& dir, const fs::path& path, const std::string& rea
 void check_output_folder(const std::string& dir, const std::string& scenario_file) {
   const fs::path path = output_folder_path(dir);
   if (const auto why = refusal(path, scenario_file)) refuse(dir, path, *why);
+  // The staging folder goes beside the target, in folders made as needed: the nearest folder
+  // that exists must take a new one.
+  fs::path existing = path.parent_path();
+  struct stat st{};
+  while (::lstat(existing.c_str(), &st) != 0 && existing != existing.parent_path()) existing = existing.parent_path();
+  if (const int error = probe_folder(existing, true); error != 0) {
+    throw ConfigError(fmt::format("--out {}: pcsim cannot make a folder in {} ({})", dir, existing.string(), std::generic_category().message(error)));
+  }
 }
 
 }  // namespace pagecache::report

@@ -1,10 +1,13 @@
 #include "report/unique_name.hpp"
 
+#include "report/interrupt_cleanup.hpp"
+
 #include <pagecache/error.hpp>
 
 #include <fmt/format.h>
 
 #include <cerrno>
+#include <fcntl.h>
 #include <random>
 #include <sys/stat.h>
 #include <system_error>
@@ -30,6 +33,21 @@ fs::path create_unique_folder(const fs::path& folder, const std::string& stem) {
     if (errno == EEXIST) return false;
     throw Error(fmt::format("cannot make the folder {}: {}", path.string(), std::generic_category().message(errno)));
   });
+}
+
+int probe_folder(const fs::path& folder, bool as_folder) {
+  const SignalsHeld held;
+  int error = 0;
+  const fs::path probe = create_unique(folder, ".pcsim.tmp", [&](const fs::path& path) {
+    int fd = -1;
+    const bool made = as_folder ? ::mkdir(path.c_str(), 0700) == 0 : (fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600)) >= 0;
+    if (!made && errno == EEXIST) return false;
+    if (!made) error = errno;
+    if (fd >= 0) ::close(fd);
+    return true;
+  });
+  if (error == 0) (void)(as_folder ? ::rmdir(probe.c_str()) : ::unlink(probe.c_str()));
+  return error;
 }
 
 }  // namespace pagecache::report

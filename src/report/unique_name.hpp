@@ -18,4 +18,9 @@ std::filesystem::path create_unique(const std::filesystem::path& folder, const s
 /// create_unique for an empty folder (mode 0777 less the umask). Throws Error if it fails.
 std::filesystem::path create_unique_folder(const std::filesystem::path& folder, const std::string& stem);
 
+/// Whether pcsim may make a file (or, `as_folder`, a folder) in `folder` now: 0, or the errno
+/// that refused it. Tried with one made under a fresh ".pcsim.tmp" name and removed at once,
+/// signals held: root passes access() where nothing can be made (/proc, a read-only mount).
+int probe_folder(const std::filesystem::path& folder, bool as_folder);
+
 }  // namespace pagecache::report

@@ -119,6 +119,10 @@ MergeOutcome merge(const MergeOptions& options) {
   outcome.csv = options.csv.empty() ? (fs::path(options.dir) / "results.csv").string() : options.csv;
   const std::string_view option = options.csv.empty() ? std::string_view() : std::string_view("--csv");
   report::check_output_file(outcome.csv, option);
+  // Nor may it take the place of what merge reads.
+  std::vector<std::string> inputs = results_files(options.dir);
+  inputs.push_back((fs::path(options.dir) / "sweep-plan.json").string());
+  report::check_not_an_input(outcome.csv, option, inputs);
   const Plan plan = read_plan(options);
   const std::unordered_map<std::string, Found> found = read_results(options, plan);
 

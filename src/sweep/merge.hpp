@@ -28,7 +28,8 @@ struct MergeOutcome {
 /// Throws ConfigError naming the missing (unless allowed) or duplicated runs, a result that is
 /// not of the plan's runs, a line that is not a result of the plan's base (file and line), a
 /// results file pcsim did not make, a DIR without a sweep-plan.json, or a --csv that cannot
-/// receive the CSV ("--csv PATH: is a folder", checked first).
+/// receive the CSV ("--csv PATH: is a folder", checked first) or is one of the files merge
+/// reads (sweep-plan.json, a results file).
 MergeOutcome merge(const MergeOptions& options);
 
 /// results.csv's text for runs made in memory: `lines[i]` is run i's results line (one per

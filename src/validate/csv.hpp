@@ -5,6 +5,7 @@
 // scenario: every fault is a ConfigError naming the file, the line and the column.
 // Header-only: the command-line tests read pcsim's outputs with it and link only pagecache.
 
+#include "scenario/text_file.hpp"
 #include "text/printable.hpp"
 
 #include <pagecache/error.hpp>
@@ -12,16 +13,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <initializer_list>
-#include <iterator>
 #include <map>
 #include <string>
 #include <string_view>
@@ -98,7 +95,8 @@ class CsvTable::Row {
     if (field.empty()) fail(column, "empty, expected a number");
     // strtod, as std::stod before: the shipped figures read to the same doubles. It skips
     // leading blanks, which a field the number alone does not have.
-    const bool blank = field.front() == ' ' || field.front() == '\t';
+    // Nor is a hexadecimal number ("0x10", "0x1p4"), which strtod reads too, a measurement's.
+    const bool blank = field.front() == ' ' || field.front() == '\t' || field.find_first_of("xXpP") != std::string::npos;
     char* end = nullptr;
     const double v = std::strtod(field.c_str(), &end);
     if (blank || end != field.c_str() + field.size() || std::isnan(v)) fail(column, fmt::format("'{}' is not a number", shown(field)));
@@ -203,16 +201,9 @@ inline CsvTable::CsvTable(std::string_view text, std::string file, const std::ve
   }
 }
 
-/// A file's bytes; a file that cannot be read is a ConfigError naming it and why.
-inline std::string read_text_file(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw ConfigError(fmt::format("{}: a folder, expected a file", path.string()));
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ConfigError(fmt::format("{}: cannot read: {}", path.string(), std::strerror(errno)));
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw ConfigError(fmt::format("{}: cannot read", path.string()));
-  return text;
-}
+/// A file's bytes: a regular file of at most 64 MiB (a FIFO or /dev/zero would be read for
+/// ever); else a ConfigError naming it and why.
+inline std::string read_text_file(const std::filesystem::path& path) { return scenario::read_text_file(path.string(), "data file"); }
 
 inline CsvTable CsvTable::read(const std::filesystem::path& path, const std::vector<std::string>& needed,
                                const std::vector<std::string>& optional) {

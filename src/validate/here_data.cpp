@@ -11,9 +11,7 @@
 #include <climits>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <tuple>
 
 namespace pagecache::validate {
@@ -221,14 +219,12 @@ HereMeasurements parse_here(const KeptTexts& texts) {
 
 HereMeasurements load_here(const std::filesystem::path& folder) {
   KeptTexts t;
-  {
-    const std::filesystem::path file = folder / "platform.toml";
-    std::ifstream in(file);
-    if (!in) throw ConfigError(fmt::format("{}: cannot read (is {} a folder that validate --here wrote?)", file.string(), folder.string()));
-    std::ostringstream text;
-    text << in.rdbuf();
-    t.platform_toml = text.str();
+  const std::filesystem::path platform = folder / "platform.toml";
+  std::error_code ec;
+  if (!std::filesystem::exists(platform, ec)) {
+    throw ConfigError(fmt::format("{}: cannot read (is {} a folder that validate --here wrote?)", platform.string(), folder.string()));
   }
+  t.platform_toml = read_text_file(platform);
   t.runs_file = (folder / "runs.csv").string();
   t.phases_file = (folder / "phases.csv").string();
   t.memory_file = (folder / "memory.csv").string();

@@ -96,6 +96,12 @@ TEST_CASE("an output option given a folder, a link to nothing or a missing folde
       {"validate --json loop", "pcsim: --json loop: is a link that leads back to itself"},
       {"validate --json ''", "pcsim: --json : no file named"},
       {"validate --report ''", "pcsim: --report : no file named"},
+      {"sweep merge nowhere --csv ''", "pcsim: --csv : no file named"},
+      {"calibrate --dir . --out ''", "pcsim: --out : no file named"},
+      {"validate --json v.json --report v.json", "pcsim: --report v.json: is --json's file too; name two files"},
+      // A folder no file can be made in, though root passes access() there.
+      {"validate --json /proc/v.json", "pcsim: --json /proc/v.json: pcsim cannot write in the folder /proc"},
+      {fmt::format("run '{}' --out /proc/pcsim-out", kTwoReaders), "pcsim: --out /proc/pcsim-out: pcsim cannot make a folder in /proc"},
   };
   for (const Case& c : cases) {
     const auto o = pcsim(c.args, dir);
@@ -105,6 +111,70 @@ TEST_CASE("an output option given a folder, a link to nothing or a missing folde
   }
   CHECK(names(dir) == std::set<std::string>{"adir", "dangling", "loop"});
   CHECK(names(dir / "adir").empty());
+}
+
+TEST_CASE("validate's options of the other mode are refused by name, not ignored", "[cli][outputs][validate]") {
+  const fs::path dir = scratch("paths-validate-modes");
+  const std::string kept = (fs::path(PCSIM_SOURCE_DIR) / "validation" / "here" / "dev-vm-2026-12-04").string();
+  struct Case {
+    std::string args;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {fmt::format("validate --from '{}' --json v.json --report r.html", kept),
+       "pcsim: validate: --json, --report are options of the comparison with the paper's data, which --from does not make"},
+      {fmt::format("validate --from '{}' --set hosts.0.memory=1GB", kept), "pcsim: validate: --set is an option of the comparison"},
+      {"validate --here --dir . --switch large_folios=false", "pcsim: validate: --switch is an option of the comparison with the paper's data, "
+                                                            "which --here does not make"},
+      {fmt::format("validate --from '{}' --quick", kept), "pcsim: validate: --quick is an option of --here: --from scores the folder"},
+      {"validate --out o --repeat 2", "pcsim: validate: --out, --repeat are options of --here"},
+      {fmt::format("validate --here --from '{}'", kept), "pcsim: validate: --here runs the experiments, --from scores those kept"},
+  };
+  for (const Case& c : cases) {
+    const auto o = pcsim(c.args, dir);
+    INFO(c.args << ": " << o.output);
+    CHECK(o.status == 2);
+    CHECK_THAT(o.output, Catch::Contains(c.message));
+  }
+  CHECK(names(dir).empty());
+}
+
+TEST_CASE("an output never takes the place of the validation data or scenarios pcsim reads", "[cli][outputs][validate]") {
+  const fs::path dir = scratch("paths-inputs");
+  fs::copy(fs::path(PCSIM_SOURCE_DIR) / "validation" / "paper", dir / "data");
+  const std::string scenarios = (fs::path(PCSIM_SOURCE_DIR) / "scenarios" / "paper").string();
+  const std::string before = slurp(dir / "data" / "exp1_real_phase_times.csv");
+  fs::create_symlink("data/exp1_real_phase_times.csv", dir / "link.csv");
+  for (const std::string option : {"--json", "--report"}) {
+    for (const std::string target : {"data/exp1_real_phase_times.csv", "link.csv"}) {
+      const auto o = pcsim(fmt::format("validate --data data --scenarios '{}' {} {}", scenarios, option, target), dir);
+      INFO(option << " " << target << ": " << o.output);
+      CHECK(o.status == 2);
+      CHECK_THAT(o.output, Catch::Contains(fmt::format("pcsim: {} {}: is ", option, target)) && Catch::Contains("which pcsim reads for this command"));
+    }
+  }
+  CHECK(slurp(dir / "data" / "exp1_real_phase_times.csv") == before);
+  CHECK(fs::is_symlink(dir / "link.csv"));
+}
+
+TEST_CASE("validation data that is a FIFO or a device is refused at once, not read for ever", "[cli][validate]") {
+  const fs::path dir = scratch("paths-data-fifo");
+  fs::copy(fs::path(PCSIM_SOURCE_DIR) / "validation" / "paper", dir / "data");
+  const std::string scenarios = (fs::path(PCSIM_SOURCE_DIR) / "scenarios" / "paper").string();
+  const fs::path file = dir / "data" / "exp1_real_phase_times.csv";
+  fs::remove(file);
+  REQUIRE(::mkfifo(file.c_str(), 0666) == 0);
+  const auto fifo = pcsim(fmt::format("validate --data data --scenarios '{}' --report r.html", scenarios), dir);
+  INFO(fifo.output);
+  CHECK(fifo.status == 2);
+  CHECK_THAT(fifo.output, Catch::Contains("exp1_real_phase_times.csv: not a regular file"));
+  fs::remove(file);
+  fs::create_symlink("/dev/zero", file);
+  const auto zero = pcsim(fmt::format("validate --data data --scenarios '{}' --report r.html", scenarios), dir);
+  INFO(zero.output);
+  CHECK(zero.status == 2);
+  CHECK_THAT(zero.output, Catch::Contains("exp1_real_phase_times.csv: not a regular file"));
+  CHECK_FALSE(fs::exists(dir / "r.html"));
 }
 
 TEST_CASE("an output file in a folder pcsim may not write in is refused before any work", "[cli][outputs]") {
@@ -151,6 +221,7 @@ TEST_CASE("run --out takes a name at the file system's limit, and a refused one 
   INFO(refused.output);
   CHECK(refused.status == 2);
   CHECK_THAT(refused.output, Catch::Contains("is a name longer than the file system allows"));
+  CHECK_THAT(refused.output, !Catch::Contains("pcsim replaces only"));  // about the name, not what a folder holds
   CHECK_FALSE(fs::exists(dir / "other"));
 }
 

@@ -6,7 +6,7 @@
 # axis, with no results folder made; (e) a results file pcsim did not write is refused and left
 # as it is; (f) a folder holds one sweep: results of another base, or of this base edited since,
 # are refused naming what changed, and any mix of shard splits runs each run once; (g) merge
-# --csv names its option.
+# --csv names its option, and never replaces what merge reads.
 #
 #   sweep_test.sh PCSIM_BINARY SOURCE_DIR
 set -euo pipefail
@@ -169,9 +169,17 @@ small "$work/e/four.toml" "1, 2, 3, 4"
 grep -q "1 runs done (0 failed), 3 already there" "$work/e/four.out" || fail "(shards): $(cat "$work/e/four.out")"
 "$pcsim" sweep merge "$work/e/D" >/dev/null || fail "(shards): merge refused"
 
-# (g) merge --csv names its option.
+# (g) merge --csv names its option; an empty one, or one of merge's inputs, is refused.
 mkdir "$work/e/a-folder"
 refused csv "--csv $work/e/a-folder: is a folder" "$pcsim" sweep merge "$work/e/C" --csv "$work/e/a-folder"
+refused csv-empty "--csv : no file named" "$pcsim" sweep merge "$work/e/C" --csv ''
+# Nor may --csv take the place of what merge reads: the files stay as they were.
+cp "$work/e/C/results-0-of-1.jsonl" "$work/e/C-results.kept"
+refused csv-input "--csv $work/e/C/results-0-of-1.jsonl: is $work/e/C/results-0-of-1.jsonl, which pcsim reads" \
+  "$pcsim" sweep merge "$work/e/C" --csv "$work/e/C/results-0-of-1.jsonl"
+cmp -s "$work/e/C/results-0-of-1.jsonl" "$work/e/C-results.kept" || fail "(csv-input): the results file was changed"
+ln -s C/sweep-plan.json "$work/e/plan-link"
+refused csv-plan "which pcsim reads" "$pcsim" sweep merge "$work/e/C" --csv "$work/e/plan-link"
 
 echo "sweep tests: $failures failures"
 [ "$failures" = 0 ]

@@ -647,7 +647,7 @@ TEST_CASE("the fuzz target's contract holds for the reference workflows, the see
       if (entry.path().extension() == ".json") inputs.push_back(entry.path());
     }
   }
-  REQUIRE(inputs.size() == 12);
+  REQUIRE(inputs.size() == 13);
   for (const auto& path : inputs) {
     INFO(path.string());
     const std::string text = testing::slurp(path);

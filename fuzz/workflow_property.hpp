@@ -38,7 +38,9 @@ inline std::string index_problem(const std::vector<std::size_t>& list, std::size
 
 /// "" if `w` keeps the reader's promises, else the first one broken.
 inline std::string workflow_problem(const scenario::WfWorkflow& w) {
-  if (w.format != "WfFormat 1.5" && w.format != "WRENCH 2.x (schema before 1.5)") return "unknown format '" + w.format + "'";
+  if (w.format != "WfFormat 1.5" && w.format != "WfFormat 1.6" && w.format != "WRENCH 2.x (schema before 1.5)") {
+    return "unknown format '" + w.format + "'";
+  }
   if (w.tasks.empty()) return "no tasks";
   if (w.tasks.size() > static_cast<std::size_t>(kFuzzMaxTasks)) return "more tasks than the limit";
   if (w.files.size() > static_cast<std::size_t>(kFuzzMaxFiles)) return "more files than the limit";
@@ -51,6 +53,10 @@ inline std::string workflow_problem(const scenario::WfWorkflow& w) {
   }
   const std::set<std::string> machines(w.machines.begin(), w.machines.end());
   if (machines.size() != w.machines.size()) return "a machine listed twice";
+  if (w.machine_speeds.size() != w.machines.size()) return "not one speed per machine";
+  for (const scenario::WfMachineSpeed& speed : w.machine_speeds) {
+    if (speed.place.empty()) return "a machine's speed without its place";
+  }
   ids.clear();
   for (std::size_t t = 0; t < w.tasks.size(); ++t) {
     const scenario::WfTask& task = w.tasks[t];

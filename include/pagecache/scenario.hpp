@@ -42,6 +42,9 @@ struct DiskSpec {
 struct HostConfig {
   std::string name;
   int cores = 1;
+  /// Speed of one core in flop/s (a SimGrid host's speed; a TOML host's `speed`); 0: not
+  /// given. Only a workflow file's compute = "speed" reads it (WorkflowImport).
+  double speed = 0.0;
   std::int64_t memory = 0;
   /// Memory neither free nor reclaimable at the start (e.g. tmpfs contents): counted as
   /// application memory for the whole run.

@@ -7,12 +7,14 @@
 #include <pagecache/cache_policies.hpp>
 #include <pagecache/error.hpp>
 
+#include "scenario/simgrid_units.hpp"
 #include "storage/readahead.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <tuple>
 #include <unordered_set>
@@ -175,6 +177,7 @@ HostConfig read_host(const toml::table& table, std::string path, std::size_t ind
   if (fresh) h.cache = settings_for(profile);
   h.name = fresh ? r.name("name", fmt::format("host{}", index + 1)) : r.name("name", h.name);
   h.cores = static_cast<int>(r.optional_integer("cores", 1, 1'000'000).value_or(h.cores));
+  h.speed = read_speed(r, "speed").value_or(h.speed);
   h.memory_in_use = r.optional_size("memory_in_use").value_or(h.memory_in_use);
   h.memory = fresh ? r.required_size("memory") : r.optional_size("memory").value_or(h.memory);
   if (r.has("memory") && h.memory <= 0) r.fail("memory", "must be > 0");
@@ -324,6 +327,25 @@ void read_start(TomlReader& r, const std::string& file, Scenario& s) {
     }
     st.finish();
   }
+}
+
+std::optional<double> read_speed(TomlReader& r, const std::string& key) {
+  const toml::node* node = r.raw(key);
+  if (node == nullptr) return std::nullopt;
+  double speed = 0;
+  if (node->is_number()) {
+    speed = *node->value<double>();
+  } else if (node->is_string()) {
+    try {
+      speed = parse_sg_speed(*node->value<std::string>());
+    } catch (const ConfigError& e) {
+      r.fail(key, e.what());
+    }
+  } else {
+    r.fail(key, "expected a speed in flop/s: a number, or a string in SimGrid's units such as \"1.2Gf\"");
+  }
+  if (!(speed > 0.0) || !std::isfinite(speed)) r.fail(key, fmt::format("must be > 0 flop/s, got {}", speed));
+  return speed;
 }
 
 }  // namespace pagecache::scenario

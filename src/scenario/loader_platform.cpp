@@ -49,7 +49,11 @@ void read_xml_platform(const std::string& text, const Overrides& platform_overri
   }
   platform.simgrid = read_simgrid_platform(text, platform.file);
   add_simgrid_platform(*platform.simgrid, s, origins);
-  for (std::size_t h = 0; h < s.hosts.size(); ++h) platform.from_xml.insert(h);
+  for (std::size_t h = 0; h < s.hosts.size(); ++h) {
+    platform.from_xml.insert(h);
+    // The speed, read by a workflow file's compute = "speed" alone.
+    if (const SgHost* host = platform.simgrid->find_host(s.hosts[h].name)) s.hosts[h].speed = host->speed;
+  }
 }
 
 void read_toml_platform(const std::string& text, const Overrides& platform_overrides, Scenario& s, Origins& origins, PlatformFile& platform) {

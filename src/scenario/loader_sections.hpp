@@ -76,6 +76,9 @@ void keep_what_the_run_uses(const SgPlatform& platform, const std::set<std::size
 
 /// The [[hosts]] tables of `r`, new hosts and host groups or amendments of `amendable` ones.
 void read_hosts(TomlReader& r, Scenario& s, const std::string& file, Origins& origins, std::set<std::size_t>& amendable);
+/// A speed at `key` of `r`, in flop/s: a number, or a string in SimGrid's units ("1.2Gf");
+/// it must be > 0.
+std::optional<double> read_speed(TomlReader& r, const std::string& key);
 /// [host_defaults]: what the hosts of a SimGrid platform (`from_xml`) lack.
 void read_host_defaults(TomlReader& r, const std::string& file, const std::set<std::size_t>& from_xml, Scenario& s, Origins& origins);
 /// [start.memory_in_use]: the memory in use of named hosts when the run starts.

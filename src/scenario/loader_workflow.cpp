@@ -90,7 +90,12 @@ WorkflowImport read_import_options(TomlReader& table) {
   if (auto compute = table.optional_string("compute")) {
     if (*compute == "runtime") options.compute = ComputeFrom::Runtime;
     else if (*compute == "cpu_share") options.compute = ComputeFrom::CpuShare;
-    else table.fail("compute", fmt::format("unknown '{}' (use \"runtime\" or \"cpu_share\")", *compute));
+    else if (*compute == "speed") options.compute = ComputeFrom::Speed;
+    else table.fail("compute", fmt::format("unknown '{}' (use \"runtime\", \"cpu_share\" or \"speed\")", *compute));
+  }
+  options.reference_speed = read_speed(table, "reference_speed");
+  if (options.reference_speed && options.compute != ComputeFrom::Speed) {
+    table.fail("reference_speed", "is read by compute = \"speed\" alone");
   }
   options.chunk_size = table.optional_size("chunk_size").value_or(options.chunk_size);
   if (options.chunk_size <= 0) table.fail("chunk_size", "must be > 0");

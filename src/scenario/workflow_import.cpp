@@ -3,6 +3,7 @@
 #include <pagecache/error.hpp>
 
 #include "scenario/toml_reader.hpp"
+#include "scenario/workflow_speed.hpp"
 #include "text/printable.hpp"
 
 #include <fmt/format.h>
@@ -165,6 +166,10 @@ void add_json_workflow(const WfWorkflow& wf, const WorkflowImport& o, Scenario& 
   w.hosts = workflow_hosts(o, ordered, files_host, s, hosts, fail);
   add_files(wf, o, files_host, files_disk, s, origins);
   add_tasks(wf, o, hosts, w, origins);
+  if (o.compute == ComputeFrom::Speed) {
+    const std::vector<double> ratios = speed_ratios(wf, w.tasks, w.hosts, o.reference_speed, s, origins, fail);
+    for (std::size_t t = 0; t < w.tasks.size(); ++t) w.tasks[t].compute = wf.tasks[t].runtime * ratios[t];
+  }
   s.workflows.push_back(std::move(w));
 }
 

@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,9 @@ enum class ComputeFrom {
   /// The runtime times the CPU share the instance records (avgCPU / 100 / cores, at most 1):
   /// the time the task's cores were busy; the rest, I/O among it, is left to the simulation.
   CpuShare,
+  /// The whole runtime times the recorded machine's speed over the speed of the host the task
+  /// runs on (WRENCH's scaling; workflow_speed.hpp says how and what is refused).
+  Speed,
 };
 
 struct WorkflowImport {
@@ -41,6 +45,8 @@ struct WorkflowImport {
   std::vector<std::string> hosts;
   bool inputs_cached = false;      ///< the files no task writes start in the files host's page cache
   ComputeFrom compute = ComputeFrom::Runtime;
+  /// compute = "speed": the flop/s of a recorded machine the instance gives no speed for.
+  std::optional<double> reference_speed;
   std::int64_t chunk_size = 100'000'000;
   MemoryLimits memory_limits;  ///< of each task's memory group (none by default)
 };

@@ -19,11 +19,11 @@ namespace pagecache::scenario {
 
 namespace {
 
-enum class Format { WfFormat15, WrenchTasks };
+enum class Format { WfFormat15, WfFormat16, WrenchTasks };
 
-// "1.5" is WfFormat 1.5. The old format has no schemaVersion (the WRENCH inputs) or an older
-// one (WfFormat 1.3 and 1.4 have the same shape), and a workflow.tasks array. Anything else,
-// WfFormat 1.6 included, is refused by name rather than half-read.
+// "1.5" is WfFormat 1.5, "1.6" the same with optional metrics. The old format has no
+// schemaVersion (the WRENCH inputs) or an older one (WfFormat 1.3 and 1.4 have the same shape),
+// and a workflow.tasks array. Anything else is refused by name rather than half-read.
 Format detect_format(const JsonObject& root) {
   const nlohmann::json* version = root.find("schemaVersion");
   const nlohmann::json* workflow = root.find("workflow");
@@ -36,9 +36,10 @@ Format detect_format(const JsonObject& root) {
   if (!version->is_string()) root.fail("schemaVersion", fmt::format("expected a string such as \"1.5\", got {}", a_type(*version)));
   const std::string& v = version->get_ref<const std::string&>();
   if (v == "1.5") return Format::WfFormat15;
+  if (v == "1.6") return Format::WfFormat16;
   static constexpr std::array<std::string_view, 5> kOlder = {"1.0", "1.1", "1.2", "1.3", "1.4"};
   if (std::find(kOlder.begin(), kOlder.end(), v) == kOlder.end()) {
-    root.fail("schemaVersion", fmt::format("{} is not a version this reader knows: it reads WfFormat 1.5, and the format before it "
+    root.fail("schemaVersion", fmt::format("{} is not a version this reader knows: it reads WfFormat 1.5 and 1.6, and the format before it "
                                            "(workflow.tasks, with no schemaVersion or 1.0 to 1.4)",
                                            quote_name(v)));
   }
@@ -73,8 +74,9 @@ WfWorkflow read_workflow_json(const std::string& text, const std::string& file, 
   Warnings warnings(out);
   const WorkflowLimits limits{max_tasks, max_files};
   std::string tasks_path;
-  if (detect_format(root) == Format::WfFormat15) {
-    out.format = "WfFormat 1.5";
+  const Format format = detect_format(root);
+  if (format == Format::WfFormat15 || format == Format::WfFormat16) {
+    out.format = format == Format::WfFormat15 ? "WfFormat 1.5" : "WfFormat 1.6";
     tasks_path = read_wfformat_15(root, limits, out, warnings);
   } else {
     out.format = "WRENCH 2.x (schema before 1.5)";
@@ -85,6 +87,8 @@ WfWorkflow read_workflow_json(const std::string& text, const std::string& file, 
     throw ConfigError(fmt::format("{}: {}[{}] (task {}): parents: dependency cycle: {} (each task lists the next among its parents)", file,
                                   tasks_path, first, quote_name(out.tasks[first].id), cycle_text(out.tasks, cycle)));
   }
+  // After the cycle check: the levels a 1.6 file states are those of an acyclic graph.
+  if (format == Format::WfFormat16) check_wfformat_16_metrics(root, out, warnings);
   warnings.finish();
   return out;
 }

@@ -1,10 +1,10 @@
 #pragma once
 // A workflow instance read from JSON into a neutral form: tasks (runtime, cores, memory, the
 // machines that ran them), the files they read and write (bytes), and their dependencies, as
-// indices. Two formats: WfFormat 1.5 (WfCommons: `workflow.specification` for the graph and
-// the files, `workflow.execution` for what was measured) and the format before it that WRENCH
-// 2.x reads (`workflow.tasks[]`, each with its own `files[]` marked input or output; also
-// WfFormat 1.3 and 1.4). Nothing here knows pcsim's scenarios: turning a workflow into one is
+// indices. Two formats: WfFormat 1.5 and 1.6 (WfCommons: `workflow.specification` for the
+// graph and the files, `workflow.execution` for what was measured; 1.6 adds optional figures
+// about both, `metrics`) and the format before it that WRENCH 2.x reads (`workflow.tasks[]`,
+// each with its own `files[]` marked input or output; also WfFormat 1.3 and 1.4). Nothing here knows pcsim's scenarios: turning a workflow into one is
 // the caller's business.
 
 #include <cstddef>
@@ -32,14 +32,24 @@ struct WfTask {
   std::vector<std::size_t> outputs;   ///< indices into files, each once, in the order listed
 };
 
+/// A recorded machine's CPU speed as the instance gives it, read only by compute = "speed"
+/// (workflow_speed.hpp), so that reading it can refuse nothing: 1.5 read exactly as before.
+struct WfMachineSpeed {
+  /// MHz: 1.5 and 1.6 execution.machines[].cpu.speedInMHz, old format workflow.machines[].cpu.speed
+  /// (MHz too, WfFormat 1.3 and 1.4). -1 if absent; NaN if not a number; else as written (0 too).
+  double mhz = -1;
+  std::string place;  ///< for messages: "FILE: workflow.execution.machines[0] (machine 'x'): cpu.speedInMHz"
+};
+
 struct WfWorkflow {
   std::string file;
   std::string name;
-  std::string format;                 ///< "WfFormat 1.5" or "WRENCH 2.x (schema before 1.5)"
+  std::string format;                 ///< "WfFormat 1.5", "WfFormat 1.6" or "WRENCH 2.x (schema before 1.5)"
   double makespan = -1;               ///< seconds: execution.makespanInSeconds (old: makespan/makespanInSeconds), -1 if absent
   std::vector<WfFile> files;          ///< specification.files order (old format: first-seen order)
   std::vector<WfTask> tasks;          ///< specification order; NOT necessarily topological (but acyclic)
   std::vector<std::string> machines;  ///< execution.machines[].nodeName (old: workflow.machines[]), in order
+  std::vector<WfMachineSpeed> machine_speeds;  ///< per machines[i]
   /// What was accepted but looks wrong, one line each in the form of the errors ("FILE: PATH
   /// (task 'x'): KEY: ..."): children that disagree with the parents (nighres_workflow.json's
   /// extract_brain_region lists itself), an old-format file given two sizes (the first is kept,
@@ -56,8 +66,10 @@ inline constexpr std::size_t kMaxWorkflowWarnings = 100;
 /// element at fault and the key ("FILE: workflow.specification.tasks[3] (task 'x'): parents: unknown task 'y'").
 /// `max_tasks`/`max_files` bound what is accepted (a hostile file must fail fast, naming the count).
 ///
-/// The format: `schemaVersion` "1.5" is WfFormat 1.5; no `schemaVersion`, or "1.0" to "1.4", with a
-/// `workflow.tasks` array is the old format; anything else (1.6 too) is refused, naming `schemaVersion`.
+/// The format: `schemaVersion` "1.5" is WfFormat 1.5, "1.6" WfFormat 1.6 (1.5 and its optional
+/// `metrics`: each figure a number of the right kind, else refused; one that disagrees with the
+/// workflow is a warning naming both); no `schemaVersion`, or "1.0" to "1.4", with a
+/// `workflow.tasks` array is the old format; anything else is refused, naming `schemaVersion`.
 /// Refused: wrong JSON types; missing ids, sizes or (old format) runtimes; sizes that are negative,
 /// fractional or above 2^60; runtimes negative or above 10^9 s; cores outside 1 to 10^6; a reference
 /// to an unknown task or file, or to a machine the workflow's machine list (if any) lacks; repeated

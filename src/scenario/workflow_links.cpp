@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <iterator>
+#include <limits>
 
 namespace pagecache::scenario {
 
@@ -85,7 +86,19 @@ void warn_about_children(const std::vector<WfTask>& tasks, const std::vector<Lis
   }
 }
 
-NameIndex read_machine_list(const JsonObject& holder, std::string_view key, WfWorkflow& out) {
+// The speed as written, refused nowhere: only compute = "speed" uses it (and checks it).
+WfMachineSpeed machine_speed(const JsonObject& machine, std::string_view speed_key) {
+  WfMachineSpeed speed;
+  speed.place = machine.message(fmt::format("cpu.{}", speed_key), "");
+  speed.place.resize(speed.place.size() - 2);  // the message's ": " before its (empty) text
+  const nlohmann::json* cpu = machine.find("cpu");
+  if (cpu == nullptr || !cpu->is_object() || !cpu->contains(speed_key)) return speed;
+  const nlohmann::json& value = (*cpu)[std::string(speed_key)];
+  speed.mhz = value.is_number() ? value.get<double>() : std::numeric_limits<double>::quiet_NaN();
+  return speed;
+}
+
+NameIndex read_machine_list(const JsonObject& holder, std::string_view key, std::string_view speed_key, WfWorkflow& out) {
   NameIndex known;
   const nlohmann::json::array_t* machines = holder.optional_array(key);
   if (machines == nullptr) return known;
@@ -96,6 +109,7 @@ NameIndex read_machine_list(const JsonObject& holder, std::string_view key, WfWo
     const auto [first, added] = known.insert(name);
     if (!added) machine.fail("nodeName", fmt::format("a second machine {}: the first is {}[{}]", quote_name(name), key, first));
     out.machines.push_back(std::move(name));
+    out.machine_speeds.push_back(machine_speed(machine, speed_key));
   }
   return known;
 }

@@ -81,8 +81,9 @@ void warn_about_children(const std::vector<WfTask>& tasks, const std::vector<Lis
 std::vector<std::size_t> read_parents(const JsonObject& task, std::size_t self, ReferenceReader& tasks);
 
 /// The machines listed at `key` of `holder` (objects with a `nodeName`, each once), appended
-/// to `out.machines`; their index.
-NameIndex read_machine_list(const JsonObject& holder, std::string_view key, WfWorkflow& out);
+/// to `out.machines`, with their cpu.`speed_key` (whatever it holds) to `out.machine_speeds`;
+/// their index.
+NameIndex read_machine_list(const JsonObject& holder, std::string_view key, std::string_view speed_key, WfWorkflow& out);
 
 /// The machines a task ran on, at whichever of `keys` it has (an array of names; the old
 /// `machine`, a single name). Each must be in `known`, unless the workflow lists none.

@@ -50,7 +50,7 @@ void read_execution(const JsonObject& workflow, const NameIndex& task_ids, const
     return;
   }
   out.makespan = execution->optional_number("makespanInSeconds", 0, units::kMaxSeconds).value_or(-1);
-  const NameIndex machines = read_machine_list(*execution, "machines", out);
+  const NameIndex machines = read_machine_list(*execution, "machines", "speedInMHz", out);
   const std::string machines_path = execution->path_of("machines");
   const json::array_t& records = execution->required_array("tasks", "a record per task, with its runtimeInSeconds");
   check_count(*execution, "tasks", records.size(), limits.max_tasks, "tasks");

@@ -92,7 +92,7 @@ std::string read_wrench_tasks(const JsonObject& root, const WorkflowLimits& limi
   if (const std::string_view key = workflow.one_of({"makespanInSeconds", "makespan"}); !key.empty()) {
     out.makespan = *workflow.optional_number(key, 0, units::kMaxSeconds);
   }
-  const NameIndex machines = read_machine_list(workflow, "machines", out);
+  const NameIndex machines = read_machine_list(workflow, "machines", "speed", out);
   const std::string machines_path = workflow.path_of("machines");
 
   // First the names, so that a task may name a parent listed after it.

@@ -108,6 +108,7 @@ void write_disk(std::string& out, const DiskSpec& d) {
 
 void write_host(std::string& out, const HostConfig& h) {
   out += fmt::format("\n[[hosts]]\nname = {}\ncores = {}\n", quoted(h.name), h.cores);
+  if (h.speed > 0.0) out += fmt::format("speed = {}\n", h.speed);  // flop/s, read back to the same double
   write_memory(out, h);
   write_page_cache(out, h.cache);
   for (const DiskSpec& d : h.disks) write_disk(out, d);

@@ -281,3 +281,19 @@ TEST_CASE("a name that is not valid UTF-8 shows with U+FFFD in place of each ill
   const toml::table table = toml::parse(to_toml(s));
   CHECK(table["title"].value<std::string>() == "bad \xEF\xBF\xBD title \xEF\xBF\xBD\xEF\xBF\xBD");
 }
+
+TEST_CASE("a host's speed shows as flop/s that read back to the same double, and a host without one shows none", "[scenario][show]") {
+  for (const std::string speed : {"\"1.234567891234Gf\"", "\"2.4Gf\"", "3e9", "1"}) {
+    std::string text = kScenario;
+    text.replace(text.find("name = \"h1\"\n"), 12, "name = \"h1\"\nspeed = " + speed + "\n");
+    const Scenario first = parse_scenario(text, "speed.toml");
+    REQUIRE(first.hosts[0].speed > 0.0);
+    const std::string shown = to_toml(first);
+    const Scenario again = parse_scenario(shown, "speed.toml");  // the same source: the same opening comment
+    INFO(speed << "\n" << shown);
+    CHECK(again.hosts[0].speed == first.hosts[0].speed);
+    CHECK(again.hosts[1].speed == 0.0);
+    CHECK(to_toml(again) == shown);
+  }
+  CHECK(to_toml(parse_scenario(kScenario, "plain.toml")).find("speed =") == std::string::npos);
+}

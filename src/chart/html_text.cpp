@@ -36,18 +36,6 @@ std::string escape(std::string_view s) {
   return out;
 }
 
-std::string shorten(std::string_view s, std::size_t max_chars) {
-  std::size_t bytes = 0, chars = 0;
-  while (bytes < s.size() && chars + 1 < max_chars) {
-    bytes += text::next_utf8_char(s.substr(bytes)).length;
-    ++chars;
-  }
-  if (bytes >= s.size()) return std::string(s);
-  // One character left: the rest fits if it is a single character, else it becomes "…".
-  if (bytes + text::next_utf8_char(s.substr(bytes)).length == s.size()) return std::string(s);
-  return std::string(s.substr(0, bytes)) + "\u2026";
-}
-
 std::string fixed(double value, int decimals) {
   const double scale = std::pow(10.0, decimals);
   if (std::abs(value) * scale < 0.5) value = 0.0;  // no "-0.0"

@@ -12,10 +12,6 @@ namespace pagecache::chart {
 /// control characters but tab and newline as U+FFFD, each ill-formed UTF-8 part as U+FFFD.
 std::string escape(std::string_view s);
 
-/// `s` cut to at most `max_chars` characters (code points), an ellipsis ending it if it was cut;
-/// not escaped (escape the result).
-std::string shorten(std::string_view s, std::size_t max_chars);
-
 /// `value` with `decimals` digits after the point, never "-0" (coordinates and figures: fixed
 /// precision keeps a page byte-identical for the same input).
 std::string fixed(double value, int decimals);

@@ -18,9 +18,11 @@ namespace pagecache::scenario {
 
 namespace {
 
-// `pcsim show` of a platform alone lists at most this many routes (a cluster of N hosts has
-// N (N - 1) / 2).
-constexpr std::size_t kMostShownRoutes = 100'000;
+// `pcsim show` of a platform alone lists every route of a platform of at most this many hosts
+// and routes, and else a summary with a few routes (a cluster of N hosts has N (N - 1) / 2).
+constexpr std::size_t kWholeHosts = 100;
+constexpr std::size_t kWholeRoutes = 5'050;  // SimGrid's cluster of 100 nodes (cluster_backbone.xml), whole
+constexpr std::size_t kExampleRoutes = 10;
 
 // A SimGrid platform: named .xml, or XML inside (a byte-order mark and spaces aside).
 bool is_xml_file(const std::string& path, const std::string& text) {
@@ -94,9 +96,18 @@ void read_platform(TomlReader& r, Scenario& s, const std::string& file, Origins&
 
 void add_shown_routes(const PlatformFile& platform, Scenario& s) {
   if (!platform.simgrid) return;
-  const std::size_t more = add_all_simgrid_routes(*platform.simgrid, kMostShownRoutes, s);
-  if (more > 0) s.warnings.push_back(fmt::format("{}: {} more routes not shown (the first {} are)", platform.file, more, kMostShownRoutes));
-  add_link_warnings(*platform.simgrid, s);
+  const SgPlatform& p = *platform.simgrid;
+  // Counted without listing them; a routed platform's only when it is small enough to list.
+  const std::size_t routes = p.route_count(kWholeHosts);
+  if (p.hosts.size() <= kWholeHosts && routes <= kWholeRoutes) {
+    add_all_simgrid_routes(p, s);
+  } else {
+    const std::size_t shown = add_example_simgrid_routes(p, kExampleRoutes, s);
+    const std::string count = routes > 0 ? fmt::format("{} routes", routes) : fmt::format("routes between {} pairs of hosts", p.hosts.size() * (p.hosts.size() - 1) / 2);
+    s.warnings.push_back(fmt::format("{}: a summary: {} hosts, {} links, {}; {} of the routes shown (`pcsim run` finds those it needs)",
+                                     platform.file, p.hosts.size(), p.links.size(), count, shown));
+  }
+  add_link_warnings(p, s);
 }
 
 // A run on a SimGrid platform keeps what it uses: the hosts that run tasks or store files, the

@@ -28,11 +28,12 @@ struct SgReader::ClusterLinks {
   double loopback_lat = 0.0;
 };
 
-void SgReader::cluster(const pugi::xml_node& e) {
+void SgReader::cluster(const pugi::xml_node& e, std::size_t parent) {
   xml_.check_attributes(e, {"id", "prefix", "suffix", "radical", "speed", "core", "bw", "lat", "sharing_policy", "topology", "topo_parameters",
                             "bb_bw", "bb_lat", "bb_sharing_policy", "router_id", "limiter_link", "loopback_bw", "loopback_lat"});
-  const std::size_t zone = declare_zone(e);
-  const std::string id = zone_ids_[zone];
+  const std::size_t zone = declare_zone(e, parent, SgRouting::Cluster);
+  platform_.zones[zone].cluster = platform_.clusters.size();
+  const std::string id = platform_.zones[zone].id;
   const int line = xml_.line(e);
   // An empty prefix or suffix is common ("node-" + N + ""): present is enough.
   const auto present = [&](const char* name) {
@@ -46,7 +47,13 @@ void SgReader::cluster(const pugi::xml_node& e) {
   SgHost node = cluster_node(e, id, line);
   const ClusterLinks links = cluster_links(e, line);
   SgCluster c = cluster_record(e, id, line, links);
+  c.zone = zone;
   expand_cluster(e, c, zone, std::move(node), links, prefix, suffix);
+  // SimGrid's gateway of the cluster, after its hosts: router_id, else a name made as its hosts' are.
+  const std::string router_id{sg_trim(xml_.optional(e, "router_id").value_or(""))};
+  c.router = router_id.empty() ? prefix + id + "_router" + suffix : router_id;
+  add_member(zone, {SgNetpoint::Kind::Router, platform_.routers.size()}, c.router, e, router_id.empty() ? "id" : "router_id");
+  platform_.routers.push_back({c.router, zone, line});
   platform_.clusters.push_back(std::move(c));
 }
 
@@ -57,9 +64,6 @@ void SgReader::check_cluster_topology(const pugi::xml_node& e) {
   }
   if (topology != "FLAT") xml_.fail_attribute(e, "topology", fmt::format("'{}' is not one of FLAT, TORUS, FAT_TREE, DRAGONFLY", sg_shown(topology)));
   if (!sg_trim(xml_.optional(e, "topo_parameters").value_or("")).empty()) xml_.warn(e, "attribute topo_parameters: ignored by a FLAT cluster");
-  if (!sg_trim(xml_.optional(e, "router_id").value_or("")).empty()) {
-    xml_.warn(e, "attribute router_id: ignored (a cluster's router only matters to routes between zones)");
-  }
 }
 
 // What every node of the cluster is, its id aside: speed, cores and the cluster's props.
@@ -123,7 +127,7 @@ SgCluster SgReader::cluster_record(const pugi::xml_node& e, const std::string& i
 }
 
 // Links in SimGrid's order of creation: the backbone, then per node loopback, limiter, private link.
-void SgReader::expand_cluster(const pugi::xml_node& e, const SgCluster& c, std::size_t zone, SgHost node, const ClusterLinks& links,
+void SgReader::expand_cluster(const pugi::xml_node& e, SgCluster& c, std::size_t zone, SgHost node, const ClusterLinks& links,
                               const std::string& prefix, const std::string& suffix) {
   const std::string& id = c.id;
   const int line = c.line;
@@ -136,7 +140,7 @@ void SgReader::expand_cluster(const pugi::xml_node& e, const SgCluster& c, std::
   for (const int radical : c.radicals) {
     node.id = prefix + std::to_string(radical) + suffix;
     check_new_host(e, "radical", node.id);
-    add_host(node, zone);
+    add_host(node, zone, e, "radical");
     const std::string link_id = id + "_link_" + std::to_string(radical);
     if (c.loopback) {
       add_link(SgLink{link_id + "_loopback", links.loopback_bw, links.loopback_lat, LinkSharing::Fatpipe, DuplexHalf::None, "", {}, line}, e, "id");

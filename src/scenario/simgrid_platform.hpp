@@ -88,13 +88,13 @@ struct SgRouter {
 
 struct SgHost {
   std::string id;
-  std::size_t zone = 0;  // the zone that holds it (a cluster's own zone for a cluster's node)
   double speed = 0;  // flop/s, of the pstate the host starts in (attribute pstate, default 0)
   int cores = 1;
   SgProps props;     // in document order; a cluster's props are given to each of its hosts
   std::vector<SgDisk> disks;
   std::string cluster;  // the id of the <cluster> that made this host, else empty
   int line = 0;
+  std::size_t zone = 0;  // the zone that holds it (a cluster's own zone for a cluster's node)
 };
 
 struct SgLink {

@@ -140,7 +140,11 @@ void SgReader::zone_child(const pugi::xml_node& child, const pugi::xml_node& e, 
     host_link(child, zone, star);
   } else if (name == "backbone" && star.cluster) {
     backbone(child, star);
-  } else if ((name == "host_link" || name == "backbone")) {
+  } else if (name == "cabinet" && star.cluster) {
+    xml_.check_attributes(child, {"id", "prefix", "suffix", "radical", "speed", "bw", "lat"});
+    xml_.check_empty(child);
+    star.cabinets.push_back(child);
+  } else if (name == "host_link" || name == "backbone" || name == "cabinet") {
     xml_.fail(child, "only a zone with routing=\"Cluster\" takes it");
   } else if (name == "route" || name == "zoneRoute" || name == "ASroute") {
     if (routing == SgRouting::None) xml_.fail(child, "a zone with routing=\"None\" has no routes");
@@ -156,7 +160,7 @@ void SgReader::zone_child(const pugi::xml_node& child, const pugi::xml_node& e, 
     zone_route(child, zone, true);
   } else {
     xml_.unexpected(child, e, {"prop", "zone", "AS", "cluster", "host", "router", "link", "route", "zoneRoute", "bypassRoute", "bypassZoneRoute",
-                               "host_link", "backbone", "trace"});
+                               "host_link", "backbone", "cabinet", "trace"});
   }
 }
 
@@ -197,6 +201,7 @@ void SgReader::add_member(std::size_t zone, SgNetpoint n, const std::string& id,
     const int line = first.kind == SgNetpoint::Kind::Host     ? platform_.hosts[first.index].line
                      : first.kind == SgNetpoint::Kind::Router ? platform_.routers[first.index].line
                                                               : platform_.zones[first.index].line;
+    if (first.kind == n.kind) xml_.fail_attribute(e, attribute, fmt::format("{} '{}' is declared twice (first at line {})", kind, sg_shown(id), line));
     xml_.fail_attribute(e, attribute, fmt::format("'{}' is already the name of a {} (line {}): hosts, routers and zones share names", sg_shown(id), kind, line));
   }
   if (zone != kNoZone) platform_.zones[zone].members.push_back(n);

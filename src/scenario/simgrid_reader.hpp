@@ -26,6 +26,7 @@ struct StarDraft {
   bool cluster = false;
   std::string backbone;
   std::vector<std::pair<std::string, std::pair<std::string, std::string>>> host_links;  // host -> (up, down)
+  std::vector<pugi::xml_node> cabinets;  // made into hosts and links when the zone closes, as SimGrid does
 };
 
 class SgReader {
@@ -68,6 +69,7 @@ class SgReader {
   void host_link(const pugi::xml_node& e, std::size_t zone, struct StarDraft& star);
   void backbone(const pugi::xml_node& e, struct StarDraft& star);
   void finish_star(std::size_t zone, StarDraft& star);
+  void cabinet(const pugi::xml_node& e, std::size_t zone, StarDraft& star);
 
   // A <cluster> (simgrid_cluster.cpp), in the steps of its reading.
   void cluster(const pugi::xml_node& e, std::size_t parent);

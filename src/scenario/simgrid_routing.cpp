@@ -118,7 +118,7 @@ std::size_t SgRouteFinder::zone_of(const SgPlatform& p, SgNetpoint n) const {
 
 std::vector<std::size_t> SgRouteFinder::zones_from_root(const SgPlatform& p, SgNetpoint n) const {
   std::vector<std::size_t> path;
-  for (std::size_t z = zone_of(p, n); z != kNoZone && path.size() <= p.zones.size(); z = p.zones[z].parent) path.push_back(z);
+  for (std::size_t z = zone_of(p, n); z < p.zones.size() && path.size() <= p.zones.size(); z = p.zones[z].parent) path.push_back(z);
   std::reverse(path.begin(), path.end());
   return path;
 }

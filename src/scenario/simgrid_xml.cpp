@@ -23,7 +23,6 @@ constexpr std::pair<std::string_view, std::string_view> kUnsupported[] = {
     {"process", "not supported: a deployment element (the scenario gives the workload)"},
     {"argument", "not supported: a deployment element (the scenario gives the workload)"},
     {"peer", "not supported: peers belong to Vivaldi zones"},
-    {"cabinet", "not supported: cabinets of Cluster zones (give their hosts and <host_link>s)"},
     {"storage", "not supported: removed in SimGrid 3.27 (use <disk>)"},
     {"storage_type", "not supported: removed in SimGrid 3.27 (use <disk>)"},
     {"mount", "not supported: removed in SimGrid 3.27 (use <disk>)"},
@@ -32,7 +31,7 @@ constexpr std::pair<std::string_view, std::string_view> kUnsupported[] = {
 
 // Elements pcsim reads, somewhere.
 constexpr std::string_view kRead[] = {"platform", "config", "random", "zone", "AS", "cluster", "host", "disk", "prop", "link", "route", "link_ctn",
-                                      "router", "zoneRoute", "ASroute", "bypassRoute", "bypassZoneRoute", "bypassASroute", "host_link", "backbone", "trace"};
+                                      "router", "zoneRoute", "ASroute", "bypassRoute", "bypassZoneRoute", "bypassASroute", "host_link", "backbone", "cabinet", "trace"};
 
 bool blank(const char* s) { return std::strspn(s, " \t\r\n") == std::strlen(s); }
 

@@ -5,7 +5,12 @@
 
 #include "scenario/simgrid_reader.hpp"
 
+#include "scenario/simgrid_radical.hpp"
 #include "scenario/simgrid_text.hpp"
+
+#include <pagecache/error.hpp>
+
+#include <algorithm>
 
 #include <fmt/format.h>
 
@@ -246,6 +251,7 @@ void SgReader::backbone(const pugi::xml_node& e, StarDraft& star) {
 // SimGrid builds the star when the zone closes: each host's way up is its up link then the
 // backbone, its way down the backbone then its down link.
 void SgReader::finish_star(std::size_t zone, StarDraft& draft) {
+  for (const pugi::xml_node& e : draft.cabinets) cabinet(e, zone, draft);
   SgStar star;
   star.zone = zone;
   for (auto& [host, links] : draft.host_links) {
@@ -257,6 +263,42 @@ void SgReader::finish_star(std::size_t zone, StarDraft& draft) {
   }
   platform_.zones[zone].star = platform_.stars.size();
   platform_.stars.push_back(std::move(star));
+}
+
+// <cabinet>: hosts prefix + N + suffix, each with links link_<host>_UP and link_<host>_DOWN.
+void SgReader::cabinet(const pugi::xml_node& e, std::size_t zone, StarDraft& star) {
+  const auto present = [&](const char* name) {
+    auto text = xml_.optional(e, name);
+    if (!text) xml_.fail_attribute(e, name, "missing");
+    return *text;
+  };
+  const std::string prefix = present("prefix");
+  const std::string suffix = present("suffix");
+  xml_.required(e, "id");
+  SgHost node;
+  node.line = xml_.line(e);
+  node.speed = xml_.quantity(e, "speed", kSgSpeed, xml_.required(e, "speed"), false);
+  SgLink link;
+  link.line = node.line;
+  link.bandwidth = xml_.quantity(e, "bw", kSgBandwidth, xml_.required(e, "bw"), false);
+  link.latency = xml_.quantity(e, "lat", kSgTime, xml_.required(e, "lat"), true);
+  std::vector<int> radicals;
+  const std::size_t room = std::min(limits_.max_cluster_hosts, limits_.max_hosts - std::min(limits_.max_hosts, platform_.hosts.size()));
+  try {
+    radicals = parse_sg_radical(xml_.required(e, "radical"), room);
+  } catch (const ConfigError& error) {
+    xml_.fail_attribute(e, "radical", error.what());
+  }
+  for (const int radical : radicals) {
+    node.id = prefix + std::to_string(radical) + suffix;
+    check_new_host(e, "radical", node.id);
+    add_host(node, zone, e, "radical");
+    link.id = "link_" + node.id + "_UP";
+    add_link(link, e, "radical");
+    link.id = "link_" + node.id + "_DOWN";
+    add_link(link, e, "radical");
+    star.host_links.push_back({node.id, {"link_" + node.id + "_UP", "link_" + node.id + "_DOWN"}});
+  }
 }
 
 }  // namespace pagecache::scenario

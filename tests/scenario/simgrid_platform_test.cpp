@@ -395,7 +395,7 @@ TEST_CASE("what cannot change a result is ignored with a warning naming file, li
   CHECK(p.find_link("l_UP") != nullptr);
   const Strings expected{
       "warn.xml:3: <prop id=\"network/model\">: ignored: SimGrid's configuration tunes SimGrid's models, not pcsim's",
-      "warn.xml:5: <prop id=\"colour\">: ignored: a property of a Full zone cannot change a result",
+      "warn.xml:5: <prop id=\"colour\">: ignored: a property of a zone cannot change a result",
       "warn.xml:6: <host id=\"a\">: attribute speed: '1000000000' has no unit, read as f (SimGrid does the same, warning that unit-less values are deprecated)",
       "warn.xml:6: <host id=\"a\">: attribute coordinates: ignored (only Vivaldi zones use coordinates)",
       "warn.xml:7: <link id=\"l\">: attribute latency: '3' has no unit, read as s (SimGrid does the same, warning that unit-less values are deprecated)",
@@ -452,7 +452,7 @@ TEST_CASE("a platform built by hand is searched without its index, and build_ind
   p.hosts.push_back(SgHost{"b", 1e9, 1, {}, {}, "", 2});
   p.links.push_back(SgLink{"x_UP", 1e9, 0, LinkSharing::Shared, DuplexHalf::Up, "x", {}, 3});
   p.links.push_back(SgLink{"x_DOWN", 1e9, 0, LinkSharing::Shared, DuplexHalf::Down, "x", {}, 3});
-  p.routes.push_back(SgRoute{"a", "b", {"x_UP"}, true, 4});
+  p.routes.push_back(SgRoute{"a", "b", {"x_UP"}, true, 4, "", "", 0});
   for (int pass = 0; pass < 2; ++pass) {
     INFO("pass " << pass);
     CHECK(p.find_host("b") == &p.hosts[1]);
@@ -518,11 +518,15 @@ TEST_CASE("an unknown element or attribute is refused, naming it, its line and t
 }
 
 TEST_CASE("what SimGrid knows and pcsim does not read is refused as not supported", "[scenario][simgrid]") {
-  CHECK(message_of("<platform version=\"4.1\">\n<zone id=\"z\" routing=\"Floyd\"/></platform>") ==
-        "bad.xml:2: <zone id=\"z\"> attribute routing: routing 'Floyd' is not supported (only Full)");
-  CHECK_THAT(message_of(in_zone("<router id=\"r\"/>")), Contains("bad.xml:3: <router id=\"r\">: not supported"));
-  CHECK_THAT(message_of(in_zone("<zoneRoute src=\"a\" dst=\"b\" gw_src=\"a\" gw_dst=\"b\"/>")), Contains("bad.xml:3: <zoneRoute src=\"a\" dst=\"b\">: not supported: routes between zones"));
-  CHECK_THAT(message_of(in_zone("<trace id=\"t\" periodicity=\"1\"/>")), Contains("<trace id=\"t\">: not supported: traces"));
+  // README, "SimGrid platforms": Vivaldi and Wifi zones and what connects a profile are refused by name.
+  CHECK(message_of("<platform version=\"4.1\">\n<zone id=\"z\" routing=\"Vivaldi\"/></platform>") ==
+        "bad.xml:2: <zone id=\"z\"> attribute routing: Vivaldi is refused: its latencies come from host coordinates, which pcsim does not model");
+  CHECK_THAT(message_of("<platform version=\"4.1\">\n<zone id=\"z\" routing=\"Wifi\"/></platform>"),
+             Contains("bad.xml:2: <zone id=\"z\"> attribute routing: Wifi is refused"));
+  CHECK_THAT(message_of("<platform version=\"4.1\">\n<zone id=\"z\" routing=\"RuleBased\"/></platform>"),
+             Contains("routing 'RuleBased' is not one of Full, Floyd, Dijkstra, DijkstraCache, Cluster, None"));
+  CHECK_THAT(message_of(in_zone("<trace_connect kind=\"SPEED\" trace=\"t\" element=\"a\"/>")),
+             Contains("bad.xml:3: <trace_connect>: not supported: it connects a profile that changes a host or link over time"));
   CHECK_THAT(message_of(in_zone("<host id=\"a\" speed=\"1Gf\" availability_file=\"a.txt\"/>")),
              Contains("bad.xml:3: <host id=\"a\"> attribute availability_file: not supported"));
   CHECK_THAT(message_of(in_zone("<link id=\"l\" bandwidth=\"1GBps\" sharing_policy=\"WIFI\"/>")),
@@ -537,9 +541,6 @@ TEST_CASE("what SimGrid knows and pcsim does not read is refused as not supporte
   CHECK_THAT(message_of("<platform version=\"4.1\"><zone id=\"z\" routing=\"None\">" + kTwoHosts +
                         "<link id=\"l\" bandwidth=\"1Bps\"/><route src=\"a\" dst=\"b\"><link_ctn id=\"l\"/></route></zone></platform>"),
              Contains("<route src=\"a\" dst=\"b\">: a zone with routing=\"None\" has no routes"));
-  CHECK_THAT(message_of("<platform version=\"4.1\"><zone id=\"z\" routing=\"Full\"><host id=\"a\" speed=\"1Gf\"/>"
-                        "<zone id=\"y\" routing=\"Full\"/></zone></platform>"),
-             Contains("<zone id=\"y\">: a zone holds either hosts and routes, or zones and clusters, not both"));
 }
 
 TEST_CASE("a route to an unknown host, or one of another zone, is refused", "[scenario][simgrid]") {

@@ -6,6 +6,7 @@
 
 #include "scenario/simgrid_radical.hpp"
 #include "scenario/simgrid_text.hpp"
+#include "scenario/simgrid_topology.hpp"
 
 #include <pagecache/error.hpp>
 
@@ -43,11 +44,17 @@ void SgReader::cluster(const pugi::xml_node& e, std::size_t parent) {
   };
   const std::string prefix = present("prefix");
   const std::string suffix = present("suffix");
-  check_cluster_topology(e);
+  const SgTopology topology = cluster_topology(e);
   SgHost node = cluster_node(e, id, line);
   const ClusterLinks links = cluster_links(e, line);
   SgCluster c = cluster_record(e, id, line, links);
   c.zone = zone;
+  c.topology = topology;
+  if (topology != SgTopology::Flat) {
+    expand_topology(e, c, zone, std::move(node), links, prefix, suffix);
+    platform_.clusters.push_back(std::move(c));
+    return;
+  }
   expand_cluster(e, c, zone, std::move(node), links, prefix, suffix);
   // SimGrid's gateway of the cluster, after its hosts: router_id, else a name made as its hosts' are.
   const std::string router_id{sg_trim(xml_.optional(e, "router_id").value_or(""))};
@@ -57,13 +64,14 @@ void SgReader::cluster(const pugi::xml_node& e, std::size_t parent) {
   platform_.clusters.push_back(std::move(c));
 }
 
-void SgReader::check_cluster_topology(const pugi::xml_node& e) {
+SgTopology SgReader::cluster_topology(const pugi::xml_node& e) {
   const std::string topology = xml_.optional(e, "topology").value_or("FLAT");
-  if (topology == "TORUS" || topology == "FAT_TREE" || topology == "DRAGONFLY") {
-    xml_.fail_attribute(e, "topology", fmt::format("topology '{}' is not supported (only FLAT)", topology));
-  }
+  if (topology == "TORUS") return SgTopology::Torus;
+  if (topology == "FAT_TREE") return SgTopology::FatTree;
+  if (topology == "DRAGONFLY") return SgTopology::Dragonfly;
   if (topology != "FLAT") xml_.fail_attribute(e, "topology", fmt::format("'{}' is not one of FLAT, TORUS, FAT_TREE, DRAGONFLY", sg_shown(topology)));
   if (!sg_trim(xml_.optional(e, "topo_parameters").value_or("")).empty()) xml_.warn(e, "attribute topo_parameters: ignored by a FLAT cluster");
+  return SgTopology::Flat;
 }
 
 // What every node of the cluster is, its id aside: speed, cores and the cluster's props.
@@ -153,6 +161,46 @@ void SgReader::expand_cluster(const pugi::xml_node& e, SgCluster& c, std::size_t
       add_link(link, e, "id");
     }
   }
+}
+
+// A TORUS, FAT_TREE or DRAGONFLY cluster: its hosts, one per element of the topology, then its
+// links in SimGrid's order (simgrid_topology.hpp). SimGrid makes no router for these.
+void SgReader::expand_topology(const pugi::xml_node& e, SgCluster& c, std::size_t zone, SgHost node, const ClusterLinks& links,
+                               const std::string& prefix, const std::string& suffix) {
+  std::size_t nodes = 0;
+  try {
+    nodes = sg_topology_nodes(c, xml_.optional(e, "topo_parameters").value_or(""));
+  } catch (const ConfigError& error) {
+    xml_.fail_attribute(e, "topo_parameters", error.what());
+  }
+  if (nodes > c.radicals.size()) {
+    xml_.fail_attribute(e, "radical", fmt::format("{} nodes for a topology of {} (SimGrid refuses it too)", c.radicals.size(), nodes));
+  }
+  if (nodes < c.radicals.size()) {
+    xml_.warn(e, fmt::format("attribute radical: {} nodes, of which the topology takes the first {}, as SimGrid does", c.radicals.size(), nodes));
+    c.radicals.resize(nodes);
+  }
+  if (links.bb_bw > 0) xml_.warn(e, "attribute bb_bw: ignored by a cluster with a topology, as SimGrid ignores it");
+  if (!sg_trim(xml_.optional(e, "router_id").value_or("")).empty()) xml_.warn(e, "attribute router_id: ignored (SimGrid makes no router for a cluster with a topology)");
+  if (c.topology == SgTopology::FatTree) c.link_serial = fat_tree_links_, c.position_base = fat_tree_positions_;
+  if (c.topology == SgTopology::Dragonfly) c.link_serial = dragonfly_links_;
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    node.id = prefix + std::to_string(c.radicals[k]) + suffix;
+    check_new_host(e, "radical", node.id);
+    add_host(node, zone, e, "radical");
+  }
+  std::size_t made = 0;
+  const LinkSharing sharing = links.policy == Policy::Fatpipe ? LinkSharing::Fatpipe : LinkSharing::Shared;
+  for (const SgTopologyLink& t : sg_topology_links(c)) {
+    SgLink l{t.id, links.link.bandwidth * t.bandwidth_factor, links.link.latency, sharing, DuplexHalf::None, "", {}, c.line};
+    if (t.kind == SgTopologyLink::Kind::Loopback) l.bandwidth = links.loopback_bw, l.latency = links.loopback_lat, l.sharing = LinkSharing::Fatpipe;
+    if (t.kind == SgTopologyLink::Kind::Limiter) l.bandwidth = links.limiter_bw, l.latency = 0.0, l.sharing = LinkSharing::Shared;
+    made += t.kind == SgTopologyLink::Kind::Private ? 1 : 0;
+    add_link(std::move(l), e, "id");
+  }
+  const std::size_t serials = c.split_duplex ? made / 2 : made;
+  if (c.topology == SgTopology::FatTree) fat_tree_links_ += serials, fat_tree_positions_ += static_cast<long>(c.size());
+  if (c.topology == SgTopology::Dragonfly) dragonfly_links_ += serials;
 }
 
 }  // namespace pagecache::scenario

@@ -196,6 +196,7 @@ const SgRoute* SgPlatform::find_route(std::string_view a, std::string_view b) co
   }
   // A bypass may override a route as written or a cluster's: SimGrid looks for one first.
   if (!bypass_routes.empty()) written = nullptr, cluster = nullptr;
+  if (cluster != nullptr && cluster->topology != SgTopology::Flat) cluster = nullptr;  // the finder routes topologies
   if (written != nullptr && !reversed) return written;
 
   std::vector<std::string> found;
@@ -232,7 +233,10 @@ const SgRoute* SgPlatform::find_route(std::string_view a, std::string_view b) co
   return route.get();
 }
 
-bool SgPlatform::is_routed() const { return !zone_routes.empty() || !bypass_routes.empty() || !stars.empty(); }
+bool SgPlatform::is_routed() const {
+  return !zone_routes.empty() || !bypass_routes.empty() || !stars.empty() ||
+         std::any_of(clusters.begin(), clusters.end(), [](const SgCluster& c) { return c.topology != SgTopology::Flat; });
+}
 
 std::size_t SgPlatform::route_count(std::size_t most_hosts) const {
   if (is_routed()) {

@@ -134,10 +134,16 @@ struct SgStar {
   std::string router;                              // the zone's gateway, if any
 };
 
-/// A FLAT <cluster>: its hosts and links are in SgPlatform::hosts and ::links, its routes are
-/// computed by route_links.
+enum class SgTopology { Flat, Torus, FatTree, Dragonfly };
+
+/// A <cluster>: its hosts and links are in SgPlatform::hosts and ::links, its routes are
+/// computed: a FLAT one's by route_links, the others' by sg_topology_route (simgrid_topology.hpp).
 struct SgCluster {
   std::string id;
+  SgTopology topology = SgTopology::Flat;
+  std::vector<unsigned> topology_parameters;  // topo_parameters' numbers in order
+  std::size_t link_serial = 0;                // FAT_TREE, DRAGONFLY: SimGrid's number of its first link
+  long position_base = 0;                     // FAT_TREE: SimGrid's position of its first node
   std::size_t first_host = 0;  // node k is SgPlatform::hosts[first_host + k]
   std::vector<int> radicals;   // node k is named prefix + radicals[k] + suffix
   bool split_duplex = true;    // private links are SPLITDUPLEX (_UP and _DOWN halves)

@@ -73,10 +73,12 @@ class SgReader {
 
   // A <cluster> (simgrid_cluster.cpp), in the steps of its reading.
   void cluster(const pugi::xml_node& e, std::size_t parent);
-  void check_cluster_topology(const pugi::xml_node& e);
+  SgTopology cluster_topology(const pugi::xml_node& e);
   SgHost cluster_node(const pugi::xml_node& e, const std::string& id, int line);
   ClusterLinks cluster_links(const pugi::xml_node& e, int line);
   SgCluster cluster_record(const pugi::xml_node& e, const std::string& id, int line, const ClusterLinks& links);
+  void expand_topology(const pugi::xml_node& e, SgCluster& c, std::size_t zone, SgHost node, const ClusterLinks& links,
+                       const std::string& prefix, const std::string& suffix);
   void expand_cluster(const pugi::xml_node& e, SgCluster& c, std::size_t zone, SgHost node, const ClusterLinks& links,
                       const std::string& prefix, const std::string& suffix);
 
@@ -94,7 +96,10 @@ class SgReader {
   std::unordered_map<std::string, int> duplex_lines_;     // SPLITDUPLEX ids as written -> line
   std::unordered_map<std::string, SgNetpoint> netpoint_at_;  // hosts, routers and zones share SimGrid's names
   std::unordered_map<std::string, int> route_lines_;        // "src\ndst" -> line of its route (routes between zones too)
-  std::unordered_map<std::string, int> bypass_lines_;       // "src\ndst" -> line of its bypass
+  std::unordered_map<std::string, int> bypass_lines_;
+  // SimGrid's counters that run on across the clusters of a platform (simgrid_topology.hpp).
+  std::size_t fat_tree_links_ = 0, dragonfly_links_ = 0;
+  long fat_tree_positions_ = 0;       // "src\ndst" -> line of its bypass
 };
 
 }  // namespace pagecache::scenario

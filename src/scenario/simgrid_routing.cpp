@@ -88,6 +88,12 @@ SgRouteFinder::SgRouteFinder(const SgPlatform& p) {
     for (std::size_t w = 0; w < p.stars[s].ways.size(); ++w) star_ways_[p.stars[s].zone].emplace(p.stars[s].ways[w].first, std::pair{s, w});
   }
   shortest_ = std::make_unique<Shortest>(*this);
+  trees_.resize(p.clusters.size());
+  flies_.resize(p.clusters.size());
+  for (std::size_t c = 0; c < p.clusters.size(); ++c) {
+    if (p.clusters[c].topology == SgTopology::FatTree) trees_[c] = std::make_unique<SgFatTree>(sg_fat_tree(p.clusters[c]));
+    if (p.clusters[c].topology == SgTopology::Dragonfly) flies_[c] = std::make_unique<SgDragonfly>(sg_dragonfly(p.clusters[c]));
+  }
 }
 
 SgRouteFinder::~SgRouteFinder() = default;
@@ -248,6 +254,11 @@ bool SgRouteFinder::star(const SgPlatform& p, std::size_t zone, SgNetpoint src, 
       return n.index - c.first_host;
     };
     const auto from = node(src), to = node(dst);
+    if (c.topology != SgTopology::Flat) {
+      // SimGrid's topologies route between their nodes only.
+      if (from && to) out.links = sg_topology_route(c, trees_[z.cluster].get(), flies_[z.cluster].get(), *from, *to);
+      return true;
+    }
     if (from && to) {
       out.links = c.route_links(*from, *to);
     } else {

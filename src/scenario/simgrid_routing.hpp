@@ -11,6 +11,7 @@
 // zone the first time one of its routes is asked for.
 
 #include "scenario/simgrid_platform.hpp"
+#include "scenario/simgrid_topology.hpp"
 
 #include <cstdint>
 #include <memory>
@@ -90,6 +91,8 @@ class SgRouteFinder {
   std::vector<bool> recursive_;
   std::vector<std::unordered_map<std::string, std::pair<std::size_t, std::size_t>>> star_ways_;  // (star, way) per id  // per zone with routing Cluster
   std::unique_ptr<Shortest> shortest_;
+  std::vector<std::unique_ptr<SgFatTree>> trees_;    // per cluster, a FAT_TREE's
+  std::vector<std::unique_ptr<SgDragonfly>> flies_;  // per cluster, a DRAGONFLY's
 };
 
 }  // namespace pagecache::scenario

@@ -248,7 +248,8 @@ TEST_CASE("what SimGrid refuses of routes between zones is refused naming the at
 }
 
 TEST_CASE("routed platforms keep the platform contract: find_route agrees with every route listed", "[scenario][simgrid][routing][fuzz]") {
-  for (const char* file : {"bypassRoute.xml", "routing_cluster.xml", "meta_cluster.xml", "cluster_multi.xml", "small_platform_with_routers.xml"}) {
+  for (const char* file : {"bypassRoute.xml", "routing_cluster.xml", "meta_cluster.xml", "cluster_multi.xml", "small_platform_with_routers.xml",
+                           "cluster_torus.xml", "cluster_fat_tree.xml"}) {
     INFO(file);
     std::ifstream in(std::string(PAGECACHE_INPUTS_DIR) + "/simgrid/" + file, std::ios::binary);
     std::stringstream text;
@@ -257,4 +258,70 @@ TEST_CASE("routed platforms keep the platform contract: find_route agrees with e
   }
   CHECK(fuzz::check_platform_text("<platform version=\"4.1\">" + two_ways("Floyd") + "</platform>", "f.xml").empty());
   CHECK(fuzz::check_platform_text("<platform version=\"4.1\">" + two_ways("Dijkstra") + "</platform>", "d.xml").empty());
+}
+
+TEST_CASE("SimGrid's cluster_torus.xml: dimension-order routing, right within half the ring, else left", "[scenario][simgrid][routing]") {
+  const SgPlatform p = reference("simgrid/cluster_torus.xml");
+  // Dimensions 3, 2, 2: node r has coordinates (r % 3, r / 3 % 2, r / 6). Node r's link in
+  // dimension j goes to the next rank in that ring: bob_cluster_link_from_r_to_n.
+  CHECK(p.hosts.size() == 12);
+  CHECK(p.find_link("bob_cluster_link_from_2_to_0_UP") != nullptr);   // the ring of dimension 0 wraps
+  CHECK(p.find_link("bob_cluster_link_from_4_to_1_DOWN") != nullptr); // rank 4 is last of dimension 1's ring
+  // 0 -> 4 = (1, 1, 0): dimension 0 first, target 1 is within 3 / 2 = 1 on the right: up link
+  // 0 -> 1; then dimension 1, 0 -> 1 on the right again: 1 -> 4.
+  CHECK(route(p, "node-0.simgrid.org", "node-4.simgrid.org") == Strings{"bob_cluster_link_from_0_to_1_UP", "bob_cluster_link_from_1_to_4_UP"});
+  // 0 -> 2: target 2 is not within 1 on the right of 0: left, wrapping to 2, over 2's link to
+  // 0 taken down.
+  CHECK(route(p, "node-0.simgrid.org", "node-2.simgrid.org") == Strings{"bob_cluster_link_from_2_to_0_DOWN"});
+  // A node to itself: its loopback (loopback_bw given).
+  CHECK(route(p, "node-7.simgrid.org", "node-7.simgrid.org") == Strings{"bob_cluster_link_7_loopback"});
+}
+
+TEST_CASE("SimGrid's cluster_fat_tree.xml: d-mod-k up to a common ancestor, then down by label", "[scenario][simgrid][routing]") {
+  const SgPlatform p = reference("simgrid/cluster_fat_tree.xml");
+  // "2;4,4;1,2;1,2": 16 nodes, 4 switches at level 1 (ids 31, 30, 29, 28: numbered down from
+  // 32), 2 at level 2 (27, 26). Node n has label (n % 4, n / 4) and one link to switch 31 - n / 4
+  // (link_from_<n>_<switch>_<n>); each level-1 switch has two links to each of 27 and 26,
+  // switch 31's numbered 16, 17 (to 27) and 18, 19 (to 26), switch 30's 20 to 23.
+  CHECK(p.hosts.size() == 16);
+  CHECK(p.find_link("link_from_31_26_19_DOWN") != nullptr);
+  // 0 -> 1: switch 31 holds both: up, then down to the child whose label digit 0 is 1.
+  CHECK(route(p, "node-0.simgrid.org", "node-1.simgrid.org") == Strings{"link_from_0_31_0_UP", "link_from_1_31_1_DOWN"});
+  // 0 -> 4 (label (0, 1)): up to 31; 31 does not hold 4: d = 4 mod (2 parents x 2 links) = 0,
+  // port 0 is link 16 to 27. Down from 27: ports scanned from 0, the first whose number mod 4
+  // is 4's digit 1 is port 1, switch 30's link 20; then 30's port 0, node 4.
+  CHECK(route(p, "node-0.simgrid.org", "node-4.simgrid.org") ==
+        Strings{"link_from_0_31_0_UP", "link_from_31_27_16_UP", "link_from_30_27_20_DOWN", "link_from_4_30_4_DOWN"});
+}
+
+TEST_CASE("SimGrid's cluster_dragonfly.xml: local, green, black and blue links with limiters", "[scenario][simgrid][routing]") {
+  const SgPlatform p = reference("simgrid/cluster_dragonfly.xml");
+  // "3,4;4,3;5,1;2": 3 groups of 4 chassis of 5 blades (routers) of 2 nodes: 120 nodes, router
+  // r = node / 2. Links are numbered in creation order: local ones 0-119 (router r, node k:
+  // 2r + k), green 120-239, black 240-329, blue 330-332. Node n's limiter is named n; router
+  // r's 239 - r (numbered down from 2 x 120).
+  CHECK(p.hosts.size() == 120);
+  CHECK(p.find_link("blue_link_between_group_0_and_1_routers_1_and_20_330_UP") != nullptr);
+  CHECK(p.find_link("blue_link_between_group_0_and_1_routers_1_and_20_330_UP")->bandwidth == 4 * 125e6);  // 4 blue links
+  // 0 -> 2 (router 1, same chassis): green from blade 0 to blade 1, the routers' limiters around it.
+  CHECK(route(p, "node-0.simgrid.org", "node-2.simgrid.org") ==
+        Strings{"bob_cluster_link_0_limiter", "local_link_from_router_0_to_node_0_0_UP", "bob_cluster_link_239_limiter",
+                "green_link_in_chassis_0_between_routers_0_and_1_120_UP", "bob_cluster_link_238_limiter",
+                "local_link_from_router_1_to_node_0_2_DOWN", "bob_cluster_link_2_limiter"});
+  // 0 -> 40 (group 1, router 20): green to the blade numbered as the target group (1), which
+  // is in chassis 0 already; its blue link to group 1 arrives at router 20 = the target's.
+  CHECK(route(p, "node-0.simgrid.org", "node-40.simgrid.org") ==
+        Strings{"bob_cluster_link_0_limiter", "local_link_from_router_0_to_node_0_0_UP", "bob_cluster_link_239_limiter",
+                "green_link_in_chassis_0_between_routers_0_and_1_120_UP", "blue_link_between_group_0_and_1_routers_1_and_20_330_UP",
+                "bob_cluster_link_238_limiter", "bob_cluster_link_219_limiter", "local_link_from_router_20_to_node_0_40_DOWN",
+                "bob_cluster_link_40_limiter"});
+  CHECK(route(p, "node-5.simgrid.org", "node-5.simgrid.org") == Strings{"bob_cluster_link_5_loopback"});
+}
+
+TEST_CASE("a topology's parameters are checked, naming the attribute", "[scenario][simgrid][routing]") {
+  const std::string cluster = R"(<cluster id="c" prefix="n" suffix="" radical="0-7" speed="1Gf" bw="1GBps" lat="0" )";
+  CHECK_THAT(message_of(cluster + "topology=\"FAT_TREE\" topo_parameters=\"2;4,4;1,2\"/>"), Contains("attribute topo_parameters: a fat tree is"));
+  CHECK_THAT(message_of(cluster + "topology=\"TORUS\" topo_parameters=\"3,0\"/>"), Contains("attribute topo_parameters: '0' is not a whole number"));
+  CHECK_THAT(message_of(cluster + "topology=\"TORUS\" topo_parameters=\"3,3\"/>"), Contains("attribute radical: 8 nodes for a topology of 9"));
+  CHECK_THAT(message_of(cluster + "topology=\"DRAGONFLY\" topo_parameters=\"1,1;1,1;1\"/>"), Contains("attribute topo_parameters: a dragonfly is"));
 }

@@ -5,12 +5,13 @@
 
 #include "scenario/simgrid_platform.hpp"
 
-#include "platform_property.hpp"
+#include "import_property.hpp"
 
 #include <pagecache/error.hpp>
 
 #include <catch2/catch.hpp>
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -38,6 +39,14 @@ std::string message_of(const std::string& body) {
     return e.what();
   }
   return "(read without error)";
+}
+
+std::string file_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  REQUIRE(in.good());
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 Strings route(const SgPlatform& p, const std::string& a, const std::string& b) {
@@ -324,4 +333,36 @@ TEST_CASE("a topology's parameters are checked, naming the attribute", "[scenari
   CHECK_THAT(message_of(cluster + "topology=\"TORUS\" topo_parameters=\"3,0\"/>"), Contains("attribute topo_parameters: '0' is not a whole number"));
   CHECK_THAT(message_of(cluster + "topology=\"TORUS\" topo_parameters=\"3,3\"/>"), Contains("attribute radical: 8 nodes for a topology of 9"));
   CHECK_THAT(message_of(cluster + "topology=\"DRAGONFLY\" topo_parameters=\"1,1;1,1;1\"/>"), Contains("attribute topo_parameters: a dragonfly is"));
+}
+
+TEST_CASE("the platform fuzzer's contract holds on the reference platforms and its seeds, which read within its bounds",
+          "[scenario][simgrid][fuzz]") {
+  std::vector<std::string> files;
+  for (const char* name : {"wrench-cache/single_host.xml", "wrench-cache/two_hosts.xml"}) files.push_back(std::string(PAGECACHE_INPUTS_DIR) + "/" + name);
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(PAGECACHE_INPUTS_DIR) + "/simgrid")) {
+    if (entry.path().extension() == ".xml") files.push_back(entry.path().string());
+  }
+  for (const auto& entry : std::filesystem::directory_iterator(PAGECACHE_FUZZ_SEEDS_DIR)) {
+    if (entry.path().extension() == ".xml") files.push_back(entry.path().string());
+  }
+  REQUIRE(files.size() >= 21);
+  std::size_t small = 0;
+  for (const std::string& path : files) {
+    INFO(path);
+    const std::string text = file_text(path);
+    CHECK(fuzz::check_platform_text(text, path).empty());
+    // Under the fuzzer's bounds (30 hosts a cluster, 100 in all) a platform reads, or is
+    // refused for its size; one that reads keeps the import contract too (show reads back).
+    if (fuzz::reads_as_small_platform(text)) {
+      ++small;
+      CHECK_FALSE(read_simgrid_platform(text, path, fuzz::fuzz_platform_limits()).hosts.empty());
+      CHECK(fuzz::check_platform_import(text).empty());
+    } else {
+      CHECK_THROWS_WITH(read_simgrid_platform(text, path, fuzz::fuzz_platform_limits()), Contains("attribute radical") || Contains("more than 100 hosts"));
+    }
+  }
+  CHECK(small >= 15);
+  // Broken inputs keep it too: refused with FILE:LINE.
+  CHECK(fuzz::check_platform_text("<platform version=\"4.1\"><zone id=\"z\" routing=\"Vivaldi\"/></platform>", "x.xml").empty());
+  CHECK(fuzz::check_platform_text("\xff\xfe<", "x.xml").empty());
 }

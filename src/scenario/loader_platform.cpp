@@ -94,6 +94,23 @@ void read_platform(TomlReader& r, Scenario& s, const std::string& file, Origins&
   read_network(r, s, file, origins);
 }
 
+namespace {
+
+// A summary keeps the first hosts and links, and those of the routes it shows.
+void keep_examples(Scenario& s) {
+  std::set<std::string> hosts, links;
+  for (const RouteSpec& r : s.routes) {
+    hosts.insert(r.host_a), hosts.insert(r.host_b);
+    links.insert(r.links.begin(), r.links.end());
+  }
+  std::size_t first = 0;
+  std::erase_if(s.hosts, [&](const HostConfig& h) { return first++ >= kExampleRoutes && hosts.count(h.name) == 0; });
+  first = 0;
+  std::erase_if(s.links, [&](const LinkSpec& l) { return first++ >= kExampleRoutes && links.count(l.name) == 0; });
+}
+
+}  // namespace
+
 void add_shown_routes(const PlatformFile& platform, Scenario& s) {
   if (!platform.simgrid) return;
   const SgPlatform& p = *platform.simgrid;
@@ -104,8 +121,10 @@ void add_shown_routes(const PlatformFile& platform, Scenario& s) {
   } else {
     const std::size_t shown = add_example_simgrid_routes(p, kExampleRoutes, s);
     const std::string count = routes > 0 ? fmt::format("{} routes", routes) : fmt::format("routes between {} pairs of hosts", p.hosts.size() * (p.hosts.size() - 1) / 2);
-    s.warnings.push_back(fmt::format("{}: a summary: {} hosts, {} links, {}; {} of the routes shown (`pcsim run` finds those it needs)",
-                                     platform.file, p.hosts.size(), p.links.size(), count, shown));
+    s.warnings.push_back(fmt::format("{}: a summary: {} hosts, {} links, {}; shown: the first {} hosts and routes, and the hosts and links "
+                                     "those routes cross (`pcsim run` finds the routes it needs)",
+                                     platform.file, p.hosts.size(), p.links.size(), count, std::max(shown, kExampleRoutes)));
+    keep_examples(s);
   }
   add_link_warnings(p, s);
 }

@@ -80,6 +80,7 @@ SgHost SgReader::cluster_node(const pugi::xml_node& e, const std::string& id, in
   node.cluster = id;
   node.line = line;
   node.speed = speed_list(e).front();
+  if (!(node.speed > 0)) xml_.fail_attribute(e, "speed", "the speed of pstate 0, where the hosts start, must be greater than 0");
   if (const auto text = xml_.optional(e, "core")) node.cores = static_cast<int>(xml_.whole_number(e, "core", *text, 1, kMaxCores));
   std::unordered_set<std::string> prop_ids;
   xml_.for_each_element(e, [&](const pugi::xml_node& child) {
@@ -145,6 +146,15 @@ void SgReader::expand_cluster(const pugi::xml_node& e, SgCluster& c, std::size_t
              e, "id");
   }
   SgLink link = links.link;
+  // Room made once: a cluster may have 10^5 nodes.
+  const std::size_t per_node = (c.split_duplex ? 2 : 1) + (c.loopback ? 1 : 0) + (c.limiter ? 1 : 0);
+  platform_.hosts.reserve(platform_.hosts.size() + c.size());
+  platform_.links.reserve(platform_.links.size() + per_node * c.size());
+  host_at_.reserve(host_at_.size() + c.size());
+  netpoint_at_.reserve(netpoint_at_.size() + c.size());
+  link_at_.reserve(link_at_.size() + per_node * c.size());
+  if (c.split_duplex) duplex_lines_.reserve(duplex_lines_.size() + c.size());
+  platform_.zones[zone].members.reserve(c.size() + 1);
   for (const int radical : c.radicals) {
     node.id = prefix + std::to_string(radical) + suffix;
     check_new_host(e, "radical", node.id);

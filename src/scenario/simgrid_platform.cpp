@@ -80,7 +80,13 @@ struct SgLookup {
   };
   std::unordered_map<std::uint64_t, RouteAt> route_at;  // by (src, dst) host indices
   std::vector<std::uint32_t> cluster_of;                // per host: its cluster's index + 1, or 0
-  std::unique_ptr<SgRouteFinder> finder;                // routes other than as written or a cluster's
+  // Routes other than as written or a FLAT cluster's: indexed on first need (a run on a cluster never needs it).
+  std::once_flag finder_made;
+  std::unique_ptr<SgRouteFinder> finder;
+  const SgRouteFinder& finder_of(const SgPlatform& p) {
+    std::call_once(finder_made, [&] { finder = std::make_unique<SgRouteFinder>(p); });
+    return *finder;
+  }
 
   // Routes built on request, by (src, dst) host indices.
   std::mutex mutex;
@@ -125,7 +131,6 @@ void SgPlatform::build_index() {
       lookup->cluster_of[cluster.first_host + k] = static_cast<std::uint32_t>(c + 1);
     }
   }
-  lookup->finder = std::make_unique<SgRouteFinder>(*this);
   lookup->hosts = hosts.size();
   lookup->links = links.size();
   lookup->routes = routes.size();
@@ -201,7 +206,7 @@ const SgRoute* SgPlatform::find_route(std::string_view a, std::string_view b) co
 
   std::vector<std::string> found;
   if (written == nullptr && cluster == nullptr) {
-    const bool routed = indexed ? lookup_->finder->host_route(*this, ia, ib, found) : SgRouteFinder(*this).host_route(*this, ia, ib, found);
+    const bool routed = indexed ? lookup_->finder_of(*this).host_route(*this, ia, ib, found) : SgRouteFinder(*this).host_route(*this, ia, ib, found);
     if (!routed) return nullptr;
   }
   const std::lock_guard<std::mutex> hold(lookup_->mutex);
@@ -300,7 +305,7 @@ std::vector<SgRoute> SgPlatform::first_routes(std::size_t most) const {
 void SgPlatform::visit_routes(const std::function<bool(const SgRoute&)>& visit) const {
   if (is_routed()) {
     if (up_to_date(*lookup_, *this)) {
-      for_each_routed(*this, *lookup_->finder, visit);
+      for_each_routed(*this, lookup_->finder_of(*this), visit);
     } else {
       for_each_routed(*this, SgRouteFinder(*this), visit);
     }

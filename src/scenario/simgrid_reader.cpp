@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdint>
 #include <iterator>
 
@@ -167,14 +168,19 @@ void SgReader::zone_child(const pugi::xml_node& child, const pugi::xml_node& e, 
 // SimGrid's routing kinds; Vivaldi and Wifi model what pcsim cannot (see README, SimGrid platforms).
 SgRouting SgReader::routing_of(const pugi::xml_node& e) {
   const std::string routing = xml_.required(e, "routing");
-  if (routing == "Full") return SgRouting::Full;
-  if (routing == "Floyd") return SgRouting::Floyd;
-  if (routing == "Dijkstra") return SgRouting::Dijkstra;
-  if (routing == "DijkstraCache") return SgRouting::DijkstraCache;
-  if (routing == "Cluster") return SgRouting::Cluster;
-  if (routing == "None") return SgRouting::None;
-  if (routing == "Vivaldi") xml_.fail_attribute(e, "routing", "Vivaldi is refused: its latencies come from host coordinates, which pcsim does not model");
-  if (routing == "Wifi") xml_.fail_attribute(e, "routing", "Wifi is refused: its hosts share one medium at rates of their own, which pcsim does not model");
+  // SimGrid compares the names without case ("WIFI" is its Wifi).
+  const auto is = [&](std::string_view name) {
+    return routing.size() == name.size() &&
+           std::equal(routing.begin(), routing.end(), name.begin(), [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b)); });
+  };
+  if (is("Full")) return SgRouting::Full;
+  if (is("Floyd")) return SgRouting::Floyd;
+  if (is("Dijkstra")) return SgRouting::Dijkstra;
+  if (is("DijkstraCache")) return SgRouting::DijkstraCache;
+  if (is("Cluster")) return SgRouting::Cluster;
+  if (is("None")) return SgRouting::None;
+  if (is("Vivaldi")) xml_.fail_attribute(e, "routing", "Vivaldi is refused: its latencies come from host coordinates, which pcsim does not model");
+  if (is("Wifi")) xml_.fail_attribute(e, "routing", "Wifi is refused: its hosts share one medium at rates of their own, which pcsim does not model");
   xml_.fail_attribute(e, "routing", fmt::format("routing '{}' is not one of Full, Floyd, Dijkstra, DijkstraCache, Cluster, None", sg_shown(routing)));
 }
 
@@ -224,6 +230,8 @@ void SgReader::host(const pugi::xml_node& e, std::size_t zone) {
     pstate = static_cast<std::size_t>(xml_.whole_number(e, "pstate", *text, 0, static_cast<long long>(speeds.size()) - 1));
   }
   h.speed = speeds[pstate];
+  // Other pstates may be 0 (a host switched off, SimGrid's energy examples): pcsim runs at the first.
+  if (!(h.speed > 0)) xml_.fail_attribute(e, "speed", fmt::format("the speed of pstate {}, where the host starts, must be greater than 0", pstate));
   if (const auto text = xml_.optional(e, "core")) h.cores = static_cast<int>(xml_.whole_number(e, "core", *text, 1, kMaxCores));
   if (const auto text = xml_.optional(e, "coordinates"); text && !sg_trim(*text).empty()) {
     xml_.warn(e, "attribute coordinates: ignored (only Vivaldi zones use coordinates)");
@@ -283,7 +291,7 @@ std::vector<double> SgReader::speed_list(const pugi::xml_node& e) {
   std::size_t start = 0;
   while (true) {
     const std::size_t comma = text.find(',', start);
-    speeds.push_back(xml_.quantity(e, "speed", kSgSpeed, std::string_view(text).substr(start, comma - start), false));
+    speeds.push_back(xml_.quantity(e, "speed", kSgSpeed, std::string_view(text).substr(start, comma - start), true));
     if (comma == std::string::npos) break;
     start = comma + 1;
   }

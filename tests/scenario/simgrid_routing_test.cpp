@@ -301,6 +301,11 @@ TEST_CASE("SimGrid's cluster_fat_tree.xml: d-mod-k up to a common ancestor, then
   // is 4's digit 1 is port 1, switch 30's link 20; then 30's port 0, node 4.
   CHECK(route(p, "node-0.simgrid.org", "node-4.simgrid.org") ==
         Strings{"link_from_0_31_0_UP", "link_from_31_27_16_UP", "link_from_30_27_20_DOWN", "link_from_4_30_4_DOWN"});
+  // 0 -> 5: the destination's position picks the port up: 5 mod 4 = 1, switch 31's port 1 is
+  // its first link to 26 (18). Down from 26: port 1 (5's digit 1) is switch 30's link 22, then
+  // 30's port 1, node 5.
+  CHECK(route(p, "node-0.simgrid.org", "node-5.simgrid.org") ==
+        Strings{"link_from_0_31_0_UP", "link_from_31_26_18_UP", "link_from_30_26_22_DOWN", "link_from_5_30_5_DOWN"});
 }
 
 TEST_CASE("SimGrid's cluster_dragonfly.xml: local, green, black and blue links with limiters", "[scenario][simgrid][routing]") {

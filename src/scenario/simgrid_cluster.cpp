@@ -186,6 +186,11 @@ void SgReader::expand_topology(const pugi::xml_node& e, SgCluster& c, std::size_
   if (nodes > c.radicals.size()) {
     xml_.fail_attribute(e, "radical", fmt::format("{} nodes for a topology of {} (SimGrid refuses it too)", c.radicals.size(), nodes));
   }
+  // Bounded as nodes are: a few numbers could ask for 10^12 switches and links.
+  const double most = 16.0 * static_cast<double>(limits_.max_cluster_hosts);
+  if (const double size = sg_topology_size(c); size > most) {
+    xml_.fail_attribute(e, "topo_parameters", fmt::format("{:g} links and switches, more than the {:g} pcsim takes", size, most));
+  }
   if (nodes < c.radicals.size()) {
     xml_.warn(e, fmt::format("attribute radical: {} nodes, of which the topology takes the first {}, as SimGrid does", c.radicals.size(), nodes));
     c.radicals.resize(nodes);

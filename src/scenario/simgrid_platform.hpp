@@ -23,9 +23,10 @@
 // each N of its radical, in that order; for each node a private link <cluster>_link_<N>
 // (halves _UP and _DOWN when SPLITDUPLEX, the cluster default), a <cluster>_link_<N>_limiter
 // if limiter_link is given, a FATPIPE <cluster>_link_<N>_loopback if loopback_bw is given;
-// a <cluster>_backbone if bb_bw is given. Its n(n - 1) routes are not stored: SgCluster
-// computes one on request (SimGrid's star routing), find_route returns it and for_each_route
-// lists them all.
+// a <cluster>_backbone if bb_bw is given; then its router, the zone's gateway. Its n(n - 1)
+// routes are not stored: SgCluster computes one on request (SimGrid's star routing),
+// find_route returns it and for_each_route lists them all. A TORUS, FAT_TREE or DRAGONFLY
+// cluster is expanded and routed as simgrid_topology.hpp says.
 
 #include <pagecache/error.hpp>
 
@@ -188,8 +189,9 @@ struct SgPlatform {
   const SgHost* find_host(std::string_view id) const;
   const SgLink* find_link(std::string_view id) const;
   /// The route from host a to host b, oriented from a to b (src == a, dst == b, links in that
-  /// order), or nullptr: a <route> as written, the reverse of a symmetrical one, or a route
-  /// within a cluster. For a == b, the host's route to itself if the file gives one (a
+  /// order), or nullptr: a <route> as written, the reverse of a symmetrical one, a route
+  /// within a cluster, or SimGrid's route through the zone tree (SgRouteFinder); nullptr also
+  /// when SimGrid's rules find no link (a None zone). For a == b, the host's route to itself if the file gives one (a
   /// <route> from the host to itself, or within a cluster); nullptr means none was declared
   /// (SimGrid would then use its network model's loopback). Routes that are not as written
   /// are built on first request and kept (a few hundred bytes each; an O(1) look-up of about

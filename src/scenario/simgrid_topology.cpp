@@ -147,6 +147,26 @@ std::size_t sg_topology_nodes(SgCluster& c, const std::string& parameters) {
   return product({p[0], p[2], p[4], p[6]}, 0, 4);
 }
 
+double sg_topology_size(const SgCluster& c) {
+  const std::vector<unsigned>& p = c.topology_parameters;
+  const double nodes = static_cast<double>(c.size());
+  if (c.topology == SgTopology::Torus) return nodes * static_cast<double>(p.size());
+  if (c.topology == SgTopology::FatTree) {
+    const unsigned levels = p.at(0);
+    double size = 0;
+    for (unsigned i = 0; i < levels; ++i) {
+      // Level i's nodes (switches above 0) each have up[i] x count[i] links to their parents.
+      double at_level = 1;
+      for (unsigned j = 0; j < levels; ++j) at_level *= j < i ? p[1 + levels + j] : p[1 + j];
+      size += at_level * (1.0 + static_cast<double>(p[1 + levels + i]) * p[1 + 2 * levels + i]);
+    }
+    return size;
+  }
+  const double groups = p.at(0), chassis = p.at(2), blades = p.at(4);
+  const double routers = groups * chassis * blades;
+  return routers + nodes + routers * blades / 2 + routers * chassis / 2 + groups * groups / 2;
+}
+
 std::vector<SgTopologyLink> sg_topology_links(const SgCluster& c) {
   std::vector<SgTopologyLink> links;
   if (c.topology == SgTopology::Torus) {

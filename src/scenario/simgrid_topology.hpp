@@ -63,6 +63,10 @@ struct SgDragonfly {
 /// a message for the attribute) and returns how many nodes the topology has.
 std::size_t sg_topology_nodes(SgCluster& c, const std::string& parameters);
 
+/// How many links, switches and routers the topology makes beside its nodes (a double: a few
+/// numbers ask for more than any memory, which the reader refuses before building).
+double sg_topology_size(const SgCluster& c);
+
 SgFatTree sg_fat_tree(const SgCluster& c);
 SgDragonfly sg_dragonfly(const SgCluster& c);
 

@@ -338,6 +338,10 @@ TEST_CASE("a topology's parameters are checked, naming the attribute", "[scenari
   CHECK_THAT(message_of(cluster + "topology=\"TORUS\" topo_parameters=\"3,0\"/>"), Contains("attribute topo_parameters: '0' is not a whole number"));
   CHECK_THAT(message_of(cluster + "topology=\"TORUS\" topo_parameters=\"3,3\"/>"), Contains("attribute radical: 8 nodes for a topology of 9"));
   CHECK_THAT(message_of(cluster + "topology=\"DRAGONFLY\" topo_parameters=\"1,1;1,1;1\"/>"), Contains("attribute topo_parameters: a dragonfly is"));
+  // A few numbers may ask for 10^12 switches and links: refused before anything is built.
+  CHECK_THAT(message_of(R"(<cluster id="c" prefix="n" suffix="" radical="0-3" speed="1Gf" bw="1GBps" lat="0" topology="FAT_TREE" )"
+                        R"(topo_parameters="2;2,2;1000000,1000000;1000,1"/>)"),
+             Contains("attribute topo_parameters: 2.004e+12 links and switches, more than the 1.6e+06 pcsim takes"));
 }
 
 TEST_CASE("the platform fuzzer's contract holds on the reference platforms and its seeds, which read within its bounds",

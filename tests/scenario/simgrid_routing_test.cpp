@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 using namespace pagecache;
 using namespace pagecache::scenario;
@@ -374,4 +375,27 @@ TEST_CASE("the platform fuzzer's contract holds on the reference platforms and i
   // Broken inputs keep it too: refused with FILE:LINE.
   CHECK(fuzz::check_platform_text("<platform version=\"4.1\"><zone id=\"z\" routing=\"Vivaldi\"/></platform>", "x.xml").empty());
   CHECK(fuzz::check_platform_text("\xff\xfe<", "x.xml").empty());
+}
+
+TEST_CASE("routes through zones are found from several threads at once, each the same as alone", "[scenario][simgrid][routing]") {
+  const SgPlatform p = reference("simgrid/bypassRoute.xml");
+  const SgPlatform q = reference("simgrid/cluster_fat_tree.xml");
+  // Alone first, on copies, which share no routes built: the expected answers.
+  const SgPlatform p_alone = reference("simgrid/bypassRoute.xml");
+  const SgPlatform q_alone = reference("simgrid/cluster_fat_tree.xml");
+  std::vector<std::thread> threads;
+  std::vector<int> wrong(4, 0);
+  for (int t = 0; t < 4; ++t) {
+    threads.emplace_back([&, t] {
+      for (int round = 0; round < 50; ++round) {
+        for (const SgHost& a : p.hosts) {
+          for (const SgHost& b : p.hosts) wrong[t] += route(p, a.id, b.id) != route(p_alone, a.id, b.id);
+        }
+        const std::string a = q.hosts[static_cast<std::size_t>(round + t) % 16].id, b = q.hosts[static_cast<std::size_t>(3 * round) % 16].id;
+        wrong[t] += route(q, a, b) != route(q_alone, a, b);
+      }
+    });
+  }
+  for (std::thread& t : threads) t.join();
+  CHECK(wrong == std::vector<int>(4, 0));
 }

@@ -18,9 +18,11 @@ namespace pagecache::scenario {
 
 namespace {
 
-// `pcsim show` of a platform alone lists at most this many routes (a cluster of N hosts has
-// N (N - 1) / 2).
-constexpr std::size_t kMostShownRoutes = 100'000;
+// `pcsim show` of a platform alone lists every route of a platform of at most this many hosts
+// and routes, and else a summary with a few routes (a cluster of N hosts has N (N - 1) / 2).
+constexpr std::size_t kWholeHosts = 100;
+constexpr std::size_t kWholeRoutes = 5'050;  // SimGrid's cluster of 100 nodes (cluster_backbone.xml), whole
+constexpr std::size_t kExampleRoutes = 10;
 
 // A SimGrid platform: named .xml, or XML inside (a byte-order mark and spaces aside).
 bool is_xml_file(const std::string& path, const std::string& text) {
@@ -96,11 +98,39 @@ void read_platform(TomlReader& r, Scenario& s, const std::string& file, Origins&
   read_network(r, s, file, origins);
 }
 
+namespace {
+
+// A summary keeps the first hosts and links, and those of the routes it shows.
+void keep_examples(Scenario& s) {
+  std::set<std::string> hosts, links;
+  for (const RouteSpec& r : s.routes) {
+    hosts.insert(r.host_a), hosts.insert(r.host_b);
+    links.insert(r.links.begin(), r.links.end());
+  }
+  std::size_t first = 0;
+  std::erase_if(s.hosts, [&](const HostConfig& h) { return first++ >= kExampleRoutes && hosts.count(h.name) == 0; });
+  first = 0;
+  std::erase_if(s.links, [&](const LinkSpec& l) { return first++ >= kExampleRoutes && links.count(l.name) == 0; });
+}
+
+}  // namespace
+
 void add_shown_routes(const PlatformFile& platform, Scenario& s) {
   if (!platform.simgrid) return;
-  const std::size_t more = add_all_simgrid_routes(*platform.simgrid, kMostShownRoutes, s);
-  if (more > 0) s.warnings.push_back(fmt::format("{}: {} more routes not shown (the first {} are)", platform.file, more, kMostShownRoutes));
-  add_link_warnings(*platform.simgrid, s);
+  const SgPlatform& p = *platform.simgrid;
+  // Counted without listing them; a routed platform's only when it is small enough to list.
+  const std::size_t routes = p.route_count(kWholeHosts);
+  if (p.hosts.size() <= kWholeHosts && routes <= kWholeRoutes) {
+    add_all_simgrid_routes(p, s);
+  } else {
+    const std::size_t shown = add_example_simgrid_routes(p, kExampleRoutes, s);
+    const std::string count = routes > 0 ? fmt::format("{} routes", routes) : fmt::format("routes between {} pairs of hosts", p.hosts.size() * (p.hosts.size() - 1) / 2);
+    s.warnings.push_back(fmt::format("{}: a summary: {} hosts, {} links, {}; shown: the first {} hosts and routes, and the hosts and links "
+                                     "those routes cross (`pcsim run` finds the routes it needs)",
+                                     platform.file, p.hosts.size(), p.links.size(), count, std::max(shown, kExampleRoutes)));
+    keep_examples(s);
+  }
+  add_link_warnings(p, s);
 }
 
 // A run on a SimGrid platform keeps what it uses: the hosts that run tasks or store files, the

@@ -6,6 +6,7 @@
 
 #include "scenario/simgrid_radical.hpp"
 #include "scenario/simgrid_text.hpp"
+#include "scenario/simgrid_topology.hpp"
 
 #include <pagecache/error.hpp>
 
@@ -28,11 +29,12 @@ struct SgReader::ClusterLinks {
   double loopback_lat = 0.0;
 };
 
-void SgReader::cluster(const pugi::xml_node& e) {
+void SgReader::cluster(const pugi::xml_node& e, std::size_t parent) {
   xml_.check_attributes(e, {"id", "prefix", "suffix", "radical", "speed", "core", "bw", "lat", "sharing_policy", "topology", "topo_parameters",
                             "bb_bw", "bb_lat", "bb_sharing_policy", "router_id", "limiter_link", "loopback_bw", "loopback_lat"});
-  const std::size_t zone = declare_zone(e);
-  const std::string id = zone_ids_[zone];
+  const std::size_t zone = declare_zone(e, parent, SgRouting::Cluster);
+  platform_.zones[zone].cluster = platform_.clusters.size();
+  const std::string id = platform_.zones[zone].id;
   const int line = xml_.line(e);
   // An empty prefix or suffix is common ("node-" + N + ""): present is enough.
   const auto present = [&](const char* name) {
@@ -42,24 +44,34 @@ void SgReader::cluster(const pugi::xml_node& e) {
   };
   const std::string prefix = present("prefix");
   const std::string suffix = present("suffix");
-  check_cluster_topology(e);
+  const SgTopology topology = cluster_topology(e);
   SgHost node = cluster_node(e, id, line);
   const ClusterLinks links = cluster_links(e, line);
   SgCluster c = cluster_record(e, id, line, links);
+  c.zone = zone;
+  c.topology = topology;
+  if (topology != SgTopology::Flat) {
+    expand_topology(e, c, zone, std::move(node), links, prefix, suffix);
+    platform_.clusters.push_back(std::move(c));
+    return;
+  }
   expand_cluster(e, c, zone, std::move(node), links, prefix, suffix);
+  // SimGrid's gateway of the cluster, after its hosts: router_id, else a name made as its hosts' are.
+  const std::string router_id{sg_trim(xml_.optional(e, "router_id").value_or(""))};
+  c.router = router_id.empty() ? prefix + id + "_router" + suffix : router_id;
+  add_member(zone, {SgNetpoint::Kind::Router, platform_.routers.size()}, c.router, e, router_id.empty() ? "id" : "router_id");
+  platform_.routers.push_back({c.router, zone, line});
   platform_.clusters.push_back(std::move(c));
 }
 
-void SgReader::check_cluster_topology(const pugi::xml_node& e) {
+SgTopology SgReader::cluster_topology(const pugi::xml_node& e) {
   const std::string topology = xml_.optional(e, "topology").value_or("FLAT");
-  if (topology == "TORUS" || topology == "FAT_TREE" || topology == "DRAGONFLY") {
-    xml_.fail_attribute(e, "topology", fmt::format("topology '{}' is not supported (only FLAT)", topology));
-  }
+  if (topology == "TORUS") return SgTopology::Torus;
+  if (topology == "FAT_TREE") return SgTopology::FatTree;
+  if (topology == "DRAGONFLY") return SgTopology::Dragonfly;
   if (topology != "FLAT") xml_.fail_attribute(e, "topology", fmt::format("'{}' is not one of FLAT, TORUS, FAT_TREE, DRAGONFLY", sg_shown(topology)));
   if (!sg_trim(xml_.optional(e, "topo_parameters").value_or("")).empty()) xml_.warn(e, "attribute topo_parameters: ignored by a FLAT cluster");
-  if (!sg_trim(xml_.optional(e, "router_id").value_or("")).empty()) {
-    xml_.warn(e, "attribute router_id: ignored (a cluster's router only matters to routes between zones)");
-  }
+  return SgTopology::Flat;
 }
 
 // What every node of the cluster is, its id aside: speed, cores and the cluster's props.
@@ -68,6 +80,7 @@ SgHost SgReader::cluster_node(const pugi::xml_node& e, const std::string& id, in
   node.cluster = id;
   node.line = line;
   node.speed = speed_list(e).front();
+  if (!(node.speed > 0)) xml_.fail_attribute(e, "speed", "the speed of pstate 0, where the hosts start, must be greater than 0");
   if (const auto text = xml_.optional(e, "core")) node.cores = static_cast<int>(xml_.whole_number(e, "core", *text, 1, kMaxCores));
   std::unordered_set<std::string> prop_ids;
   xml_.for_each_element(e, [&](const pugi::xml_node& child) {
@@ -123,7 +136,7 @@ SgCluster SgReader::cluster_record(const pugi::xml_node& e, const std::string& i
 }
 
 // Links in SimGrid's order of creation: the backbone, then per node loopback, limiter, private link.
-void SgReader::expand_cluster(const pugi::xml_node& e, const SgCluster& c, std::size_t zone, SgHost node, const ClusterLinks& links,
+void SgReader::expand_cluster(const pugi::xml_node& e, SgCluster& c, std::size_t zone, SgHost node, const ClusterLinks& links,
                               const std::string& prefix, const std::string& suffix) {
   const std::string& id = c.id;
   const int line = c.line;
@@ -133,10 +146,19 @@ void SgReader::expand_cluster(const pugi::xml_node& e, const SgCluster& c, std::
              e, "id");
   }
   SgLink link = links.link;
+  // Room made once: a cluster may have 10^5 nodes.
+  const std::size_t per_node = (c.split_duplex ? 2 : 1) + (c.loopback ? 1 : 0) + (c.limiter ? 1 : 0);
+  platform_.hosts.reserve(platform_.hosts.size() + c.size());
+  platform_.links.reserve(platform_.links.size() + per_node * c.size());
+  host_at_.reserve(host_at_.size() + c.size());
+  netpoint_at_.reserve(netpoint_at_.size() + c.size());
+  link_at_.reserve(link_at_.size() + per_node * c.size());
+  if (c.split_duplex) duplex_lines_.reserve(duplex_lines_.size() + c.size());
+  platform_.zones[zone].members.reserve(c.size() + 1);
   for (const int radical : c.radicals) {
     node.id = prefix + std::to_string(radical) + suffix;
     check_new_host(e, "radical", node.id);
-    add_host(node, zone);
+    add_host(node, zone, e, "radical");
     const std::string link_id = id + "_link_" + std::to_string(radical);
     if (c.loopback) {
       add_link(SgLink{link_id + "_loopback", links.loopback_bw, links.loopback_lat, LinkSharing::Fatpipe, DuplexHalf::None, "", {}, line}, e, "id");
@@ -149,6 +171,51 @@ void SgReader::expand_cluster(const pugi::xml_node& e, const SgCluster& c, std::
       add_link(link, e, "id");
     }
   }
+}
+
+// A TORUS, FAT_TREE or DRAGONFLY cluster: its hosts, one per element of the topology, then its
+// links in SimGrid's order (simgrid_topology.hpp). SimGrid makes no router for these.
+void SgReader::expand_topology(const pugi::xml_node& e, SgCluster& c, std::size_t zone, SgHost node, const ClusterLinks& links,
+                               const std::string& prefix, const std::string& suffix) {
+  std::size_t nodes = 0;
+  try {
+    nodes = sg_topology_nodes(c, xml_.optional(e, "topo_parameters").value_or(""));
+  } catch (const ConfigError& error) {
+    xml_.fail_attribute(e, "topo_parameters", error.what());
+  }
+  if (nodes > c.radicals.size()) {
+    xml_.fail_attribute(e, "radical", fmt::format("{} nodes for a topology of {} (SimGrid refuses it too)", c.radicals.size(), nodes));
+  }
+  // Bounded as nodes are: a few numbers could ask for 10^12 switches and links.
+  const double most = 16.0 * static_cast<double>(limits_.max_cluster_hosts);
+  if (const double size = sg_topology_size(c); size > most) {
+    xml_.fail_attribute(e, "topo_parameters", fmt::format("{:g} links and switches, more than the {:g} pcsim takes", size, most));
+  }
+  if (nodes < c.radicals.size()) {
+    xml_.warn(e, fmt::format("attribute radical: {} nodes, of which the topology takes the first {}, as SimGrid does", c.radicals.size(), nodes));
+    c.radicals.resize(nodes);
+  }
+  if (links.bb_bw > 0) xml_.warn(e, "attribute bb_bw: ignored by a cluster with a topology, as SimGrid ignores it");
+  if (!sg_trim(xml_.optional(e, "router_id").value_or("")).empty()) xml_.warn(e, "attribute router_id: ignored (SimGrid makes no router for a cluster with a topology)");
+  if (c.topology == SgTopology::FatTree) c.link_serial = fat_tree_links_, c.position_base = fat_tree_positions_;
+  if (c.topology == SgTopology::Dragonfly) c.link_serial = dragonfly_links_;
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    node.id = prefix + std::to_string(c.radicals[k]) + suffix;
+    check_new_host(e, "radical", node.id);
+    add_host(node, zone, e, "radical");
+  }
+  std::size_t made = 0;
+  const LinkSharing sharing = links.policy == Policy::Fatpipe ? LinkSharing::Fatpipe : LinkSharing::Shared;
+  for (const SgTopologyLink& t : sg_topology_links(c)) {
+    SgLink l{t.id, links.link.bandwidth * t.bandwidth_factor, links.link.latency, sharing, DuplexHalf::None, "", {}, c.line};
+    if (t.kind == SgTopologyLink::Kind::Loopback) l.bandwidth = links.loopback_bw, l.latency = links.loopback_lat, l.sharing = LinkSharing::Fatpipe;
+    if (t.kind == SgTopologyLink::Kind::Limiter) l.bandwidth = links.limiter_bw, l.latency = 0.0, l.sharing = LinkSharing::Shared;
+    made += t.kind == SgTopologyLink::Kind::Private ? 1 : 0;
+    add_link(std::move(l), e, "id");
+  }
+  const std::size_t serials = c.split_duplex ? made / 2 : made;
+  if (c.topology == SgTopology::FatTree) fat_tree_links_ += serials, fat_tree_positions_ += static_cast<long>(c.size());
+  if (c.topology == SgTopology::Dragonfly) dragonfly_links_ += serials;
 }
 
 }  // namespace pagecache::scenario

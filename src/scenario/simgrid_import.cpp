@@ -151,14 +151,24 @@ void add_simgrid_routes(const SgPlatform& p, const std::set<std::pair<std::strin
   }
 }
 
-std::size_t add_all_simgrid_routes(const SgPlatform& p, std::size_t most, Scenario& s) {
-  std::size_t more = 0;
+void add_all_simgrid_routes(const SgPlatform& p, Scenario& s) {
+  std::set<std::pair<std::string, std::string>> added;
   p.for_each_route([&](const SgRoute& route) {
     if (route.src == route.dst) return;  // a loopback: pcsim reads a host's own files without the network
-    if (s.routes.size() < most) s.routes.push_back({route.src, route.dst, route.links});
-    else ++more;
+    // pcsim's routes serve both ways: of a routed platform's two ways, the first listed.
+    if (p.is_routed() && (added.count({route.dst, route.src}) != 0 || !added.emplace(route.src, route.dst).second)) return;
+    s.routes.push_back({route.src, route.dst, route.links});
   });
-  return more;
+}
+
+std::size_t add_example_simgrid_routes(const SgPlatform& p, std::size_t most, Scenario& s) {
+  std::size_t added = 0;
+  for (const SgRoute& route : p.first_routes(2 * most + 1)) {
+    if (route.src == route.dst || added == most) continue;
+    s.routes.push_back({route.src, route.dst, route.links});
+    ++added;
+  }
+  return added;
 }
 
 }  // namespace pagecache::scenario

@@ -24,9 +24,13 @@ void add_simgrid_platform(const SgPlatform& platform, Scenario& s, Origins& orig
 /// direction), once each: the routes a run uses, not the N^2 of a cluster.
 void add_simgrid_routes(const SgPlatform& platform, const std::set<std::pair<std::string, std::string>>& pairs, Scenario& s);
 
-/// Adds every route of the platform between different hosts, up to `most` (`pcsim show` of a
-/// platform alone); returns how many more there are.
-std::size_t add_all_simgrid_routes(const SgPlatform& platform, std::size_t most, Scenario& s);
+/// Adds every route of the platform between different hosts (`pcsim show` of a platform alone),
+/// one per pair of hosts: pcsim's routes serve both ways.
+void add_all_simgrid_routes(const SgPlatform& platform, Scenario& s);
+
+/// Adds the first `most` routes between different hosts (`pcsim show`'s summary of a large
+/// platform); returns how many it added.
+std::size_t add_example_simgrid_routes(const SgPlatform& platform, std::size_t most, Scenario& s);
 
 /// Warns of the links of `s` that the platform gives more than the 1 PB/s pcsim models.
 void add_link_warnings(const SgPlatform& platform, Scenario& s);

@@ -3,6 +3,8 @@
 
 #include "scenario/simgrid_platform.hpp"
 
+#include "scenario/simgrid_routing.hpp"
+
 #include <algorithm>
 #include <cstdint>
 #include <mutex>
@@ -69,7 +71,7 @@ using NameMap = std::unordered_map<std::string, std::size_t, NameHash, std::equa
 struct SgLookup {
   // The tables, written by build_index only.
   bool built = false;
-  std::size_t hosts = 0, links = 0, routes = 0, clusters = 0;  // the sizes they were built for
+  std::size_t hosts = 0, links = 0, routes = 0, clusters = 0, zone_routes = 0;  // the sizes they were built for
   NameMap host_at;
   NameMap link_at;
   struct RouteAt {
@@ -78,6 +80,13 @@ struct SgLookup {
   };
   std::unordered_map<std::uint64_t, RouteAt> route_at;  // by (src, dst) host indices
   std::vector<std::uint32_t> cluster_of;                // per host: its cluster's index + 1, or 0
+  // Routes other than as written or a FLAT cluster's: indexed on first need (a run on a cluster never needs it).
+  std::once_flag finder_made;
+  std::unique_ptr<SgRouteFinder> finder;
+  const SgRouteFinder& finder_of(const SgPlatform& p) {
+    std::call_once(finder_made, [&] { finder = std::make_unique<SgRouteFinder>(p); });
+    return *finder;
+  }
 
   // Routes built on request, by (src, dst) host indices.
   std::mutex mutex;
@@ -126,6 +135,7 @@ void SgPlatform::build_index() {
   lookup->links = links.size();
   lookup->routes = routes.size();
   lookup->clusters = clusters.size();
+  lookup->zone_routes = zone_routes.size() + bypass_routes.size() + zones.size();
   lookup->built = true;
   lookup_ = std::move(lookup);
 }
@@ -134,7 +144,7 @@ namespace {
 
 bool up_to_date(const detail::SgLookup& lookup, const SgPlatform& p) {
   return lookup.built && lookup.hosts == p.hosts.size() && lookup.links == p.links.size() && lookup.routes == p.routes.size() &&
-         lookup.clusters == p.clusters.size();
+         lookup.clusters == p.clusters.size() && lookup.zone_routes == p.zone_routes.size() + p.bypass_routes.size() + p.zones.size();
 }
 
 std::size_t find_in(const detail::NameMap& map, std::string_view id) {
@@ -189,9 +199,16 @@ const SgRoute* SgPlatform::find_route(std::string_view a, std::string_view b) co
       if (it != clusters.end()) cluster = &*it;
     }
   }
+  // A bypass may override a route as written or a cluster's: SimGrid looks for one first.
+  if (!bypass_routes.empty()) written = nullptr, cluster = nullptr;
+  if (cluster != nullptr && cluster->topology != SgTopology::Flat) cluster = nullptr;  // the finder routes topologies
   if (written != nullptr && !reversed) return written;
-  if (written == nullptr && cluster == nullptr) return nullptr;
 
+  std::vector<std::string> found;
+  if (written == nullptr && cluster == nullptr) {
+    const bool routed = indexed ? lookup_->finder_of(*this).host_route(*this, ia, ib, found) : SgRouteFinder(*this).host_route(*this, ia, ib, found);
+    if (!routed) return nullptr;
+  }
   const std::lock_guard<std::mutex> hold(lookup_->mutex);
   std::unique_ptr<SgRoute>& route = lookup_->built_routes[pair_key(ia, ib)];
   // Without an index the hosts may have moved since the route was built: then it is built again.
@@ -209,16 +226,94 @@ const SgRoute* SgPlatform::find_route(std::string_view a, std::string_view b) co
         route->links.push_back(*link);
       }
     }
-  } else {
+  } else if (cluster != nullptr) {
     route->line = cluster->line;
     route->symmetrical = ia != ib;
     route->links = cluster->route_links(ia - cluster->first_host, ib - cluster->first_host);
+  } else {
+    route->line = hosts[ia].line;
+    route->symmetrical = false;
+    route->links = std::move(found);
   }
   return route.get();
 }
 
+bool SgPlatform::is_routed() const {
+  return !zone_routes.empty() || !bypass_routes.empty() || !stars.empty() ||
+         std::any_of(clusters.begin(), clusters.end(), [](const SgCluster& c) { return c.topology != SgTopology::Flat; });
+}
+
+std::size_t SgPlatform::route_count(std::size_t most_hosts) const {
+  if (is_routed()) {
+    if (hosts.size() > most_hosts) return 0;
+    std::size_t n = 0;
+    for_each_route([&](const SgRoute&) { ++n; });
+    return n;
+  }
+  std::size_t n = routes.size();
+  for (const SgCluster& c : clusters) n += c.size() * (c.size() + 1) / 2;
+  return n;
+}
+
+namespace {
+
+// The routes of a routed platform, pair by pair: none kept, so that a listing costs no memory.
+bool for_each_routed(const SgPlatform& p, const SgRouteFinder& finder, const std::function<bool(const SgRoute&)>& visit) {
+  SgRoute there, back;
+  for (std::size_t a = 0; a < p.hosts.size(); ++a) {
+    for (std::size_t b = a; b < p.hosts.size(); ++b) {
+      const bool found = finder.host_route(p, a, b, there.links);
+      const bool found_back = a != b && finder.host_route(p, b, a, back.links);
+      bool reverse = found && found_back && there.links.size() == back.links.size();
+      for (std::size_t i = 0; reverse && i < there.links.size(); ++i) {
+        const SgLink* l = p.find_link(there.links[i]);
+        const std::string& mirror = back.links[back.links.size() - 1 - i];
+        reverse = l != nullptr && (l->half == DuplexHalf::None ? mirror == l->id : mirror == l->duplex_id + (l->half == DuplexHalf::Up ? "_DOWN" : "_UP"));
+      }
+      if (found) {
+        there.src = p.hosts[a].id, there.dst = p.hosts[b].id, there.line = p.hosts[a].line, there.symmetrical = reverse;
+        if (!visit(there)) return false;
+      }
+      if (found_back && !reverse) {
+        back.src = p.hosts[b].id, back.dst = p.hosts[a].id, back.line = p.hosts[b].line, back.symmetrical = false;
+        if (!visit(back)) return false;
+      }
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
 void SgPlatform::for_each_route(const std::function<void(const SgRoute&)>& visit) const {
-  for (const SgRoute& r : routes) visit(r);
+  visit_routes([&](const SgRoute& r) {
+    visit(r);
+    return true;
+  });
+}
+
+std::vector<SgRoute> SgPlatform::first_routes(std::size_t most) const {
+  std::vector<SgRoute> first;
+  if (most == 0) return first;
+  visit_routes([&](const SgRoute& r) {
+    first.push_back(r);
+    return first.size() < most;
+  });
+  return first;
+}
+
+void SgPlatform::visit_routes(const std::function<bool(const SgRoute&)>& visit) const {
+  if (is_routed()) {
+    if (up_to_date(*lookup_, *this)) {
+      for_each_routed(*this, lookup_->finder_of(*this), visit);
+    } else {
+      for_each_routed(*this, SgRouteFinder(*this), visit);
+    }
+    return;
+  }
+  for (const SgRoute& r : routes) {
+    if (!visit(r)) return;
+  }
   SgRoute route;
   for (const SgCluster& cluster : clusters) {
     const std::size_t n = std::min(cluster.size(), hosts.size() - std::min(hosts.size(), cluster.first_host));
@@ -240,7 +335,7 @@ void SgPlatform::for_each_route(const std::function<void(const SgRoute&)>& visit
         } else {
           join_ways(up[i], down[j], route.links);
         }
-        visit(route);
+        if (!visit(route)) return;
       }
     }
   }

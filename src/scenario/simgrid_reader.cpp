@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdint>
 #include <iterator>
 
@@ -33,7 +34,6 @@ constexpr SgRefused kLinkTraces[] = {
 // Host properties of SimGrid's energy plugin: pcsim models no energy.
 constexpr std::string_view kEnergyProps[] = {"wattage_per_state", "wattage_off", "wattage_range"};
 
-std::uint64_t pair_key(std::size_t a, std::size_t b) { return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint64_t>(b); }
 
 }  // namespace
 
@@ -82,12 +82,14 @@ void SgReader::platform(const pugi::xml_node& e) {
       if (top_level) xml_.fail(child, "a second top-level zone: a platform has one, which holds the others");
       top_level = true;
       if (name == "cluster") {
-        cluster(child);
+        cluster(child, kNoZone);
       } else {
-        zone(child, 1);
+        zone(child, 1, kNoZone);
       }
+    } else if (name == "trace") {
+      trace(child);
     } else {
-      xml_.unexpected(child, e, {"config", "zone", "AS", "cluster"});
+      xml_.unexpected(child, e, {"config", "zone", "AS", "cluster", "trace"});
     }
   });
 }
@@ -103,56 +105,117 @@ void SgReader::config(const pugi::xml_node& e) {
   });
 }
 
-void SgReader::zone(const pugi::xml_node& e, int depth) {
+void SgReader::zone(const pugi::xml_node& e, int depth, std::size_t parent) {
   if (depth > kMaxZoneDepth) xml_.fail(e, fmt::format("zones nested more than {} deep", kMaxZoneDepth));
   xml_.check_attributes(e, {"id", "routing"});
-  const std::size_t serial = declare_zone(e);
-  const std::string routing = xml_.required(e, "routing");
-  if (routing != "Full" && routing != "None") {
-    xml_.fail_attribute(e, "routing", fmt::format("routing '{}' is not supported (only Full)", sg_shown(routing)));
-  }
-  // SimGrid's DTD: a zone holds zones and clusters, or hosts and routes (links in both).
-  bool leaf = false;
-  bool inner = false;
-  const auto kind = [&](const pugi::xml_node& child, bool is_leaf) {
-    (is_leaf ? leaf : inner) = true;
-    if (leaf && inner) xml_.fail(child, "a zone holds either hosts and routes, or zones and clusters, not both");
-  };
-  std::unordered_set<std::string> prop_ids;
-  SgProps ignored;
-  xml_.for_each_element(e, [&](const pugi::xml_node& child) {
-    const std::string_view name = child.name();
-    if (name == "prop") {
-      prop(child, ignored, prop_ids);
-      xml_.warn(child, "ignored: a property of a Full zone cannot change a result");
-    } else if (name == "zone" || name == "AS") {
-      kind(child, false);
-      zone(child, depth + 1);
-    } else if (name == "cluster") {
-      kind(child, false);
-      cluster(child);
-    } else if (name == "host") {
-      kind(child, true);
-      host(child, serial);
-    } else if (name == "link") {
-      link(child);
-    } else if (name == "route") {
-      kind(child, true);
-      if (routing == "None") xml_.fail(child, "a zone with routing=\"None\" has no routes");
-      route(child, serial);
-    } else {
-      xml_.unexpected(child, e, {"prop", "zone", "AS", "cluster", "host", "link", "route"});
-    }
-  });
+  const SgRouting routing = routing_of(e);
+  const std::size_t serial = declare_zone(e, parent, routing);
+  StarDraft star;
+  star.cluster = routing == SgRouting::Cluster;
+  xml_.for_each_element(e, [&](const pugi::xml_node& child) { zone_child(child, e, depth, serial, star); });
+  if (star.cluster) finish_star(serial, star);
 }
 
-// Zones and clusters share SimGrid's namespace of netzones; returns the zone's serial.
-std::size_t SgReader::declare_zone(const pugi::xml_node& e) {
+void SgReader::zone_child(const pugi::xml_node& child, const pugi::xml_node& e, int depth, std::size_t zone, StarDraft& star) {
+  const std::string_view name = child.name();
+  const SgRouting routing = platform_.zones[zone].routing;
+  const bool routed = routing != SgRouting::None && routing != SgRouting::Cluster;
+  if (name == "prop") {
+    SgProps ignored;
+    std::unordered_set<std::string> prop_ids;  // SimGrid takes a zone's props one by one, a repeated id overriding
+    prop(child, ignored, prop_ids);
+    xml_.warn(child, "ignored: a property of a zone cannot change a result");
+  } else if (name == "zone" || name == "AS") {
+    this->zone(child, depth + 1, zone);
+  } else if (name == "cluster") {
+    cluster(child, zone);
+  } else if (name == "host") {
+    host(child, zone);
+  } else if (name == "router") {
+    router(child, zone);
+  } else if (name == "link") {
+    link(child);
+  } else if (name == "trace") {
+    trace(child);
+  } else if (name == "host_link" && star.cluster) {
+    host_link(child, zone, star);
+  } else if (name == "backbone" && star.cluster) {
+    backbone(child, star);
+  } else if (name == "cabinet" && star.cluster) {
+    xml_.check_attributes(child, {"id", "prefix", "suffix", "radical", "speed", "bw", "lat"});
+    xml_.check_empty(child);
+    star.cabinets.push_back(child);
+  } else if (name == "host_link" || name == "backbone" || name == "cabinet") {
+    xml_.fail(child, "only a zone with routing=\"Cluster\" takes it");
+  } else if (name == "route" || name == "zoneRoute" || name == "ASroute") {
+    if (routing == SgRouting::None) xml_.fail(child, "a zone with routing=\"None\" has no routes");
+    if (!routed) xml_.fail(child, "a zone with routing=\"Cluster\" routes through its <host_link>s, not routes");
+    if (name == "route") {
+      route(child, zone);
+    } else {
+      zone_route(child, zone, false);
+    }
+  } else if (name == "bypassRoute") {
+    bypass_route(child, zone);
+  } else if (name == "bypassZoneRoute" || name == "bypassASroute") {
+    zone_route(child, zone, true);
+  } else {
+    xml_.unexpected(child, e, {"prop", "zone", "AS", "cluster", "host", "router", "link", "route", "zoneRoute", "bypassRoute", "bypassZoneRoute",
+                               "host_link", "backbone", "cabinet", "trace"});
+  }
+}
+
+// SimGrid's routing kinds; Vivaldi and Wifi model what pcsim cannot (see README, SimGrid platforms).
+SgRouting SgReader::routing_of(const pugi::xml_node& e) {
+  const std::string routing = xml_.required(e, "routing");
+  // SimGrid compares the names without case ("WIFI" is its Wifi).
+  const auto is = [&](std::string_view name) {
+    return routing.size() == name.size() &&
+           std::equal(routing.begin(), routing.end(), name.begin(), [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b)); });
+  };
+  if (is("Full")) return SgRouting::Full;
+  if (is("Floyd")) return SgRouting::Floyd;
+  if (is("Dijkstra")) return SgRouting::Dijkstra;
+  if (is("DijkstraCache")) return SgRouting::DijkstraCache;
+  if (is("Cluster")) return SgRouting::Cluster;
+  if (is("None")) return SgRouting::None;
+  if (is("Vivaldi")) xml_.fail_attribute(e, "routing", "Vivaldi is refused: its latencies come from host coordinates, which pcsim does not model");
+  if (is("Wifi")) xml_.fail_attribute(e, "routing", "Wifi is refused: its hosts share one medium at rates of their own, which pcsim does not model");
+  xml_.fail_attribute(e, "routing", fmt::format("routing '{}' is not one of Full, Floyd, Dijkstra, DijkstraCache, Cluster, None", sg_shown(routing)));
+}
+
+// Zones and clusters share SimGrid's namespace of netpoints with hosts and routers; returns the zone's index.
+std::size_t SgReader::declare_zone(const pugi::xml_node& e, std::size_t parent, SgRouting routing) {
   const std::string id = xml_.required(e, "id");
-  const auto [it, added] = zone_lines_.emplace(id, xml_.line(e));
-  if (!added) xml_.fail_attribute(e, "id", fmt::format("zone '{}' is declared twice (first at line {})", sg_shown(id), it->second));
-  zone_ids_.push_back(id);
-  return zone_ids_.size() - 1;
+  SgZone z;
+  z.id = id;
+  z.routing = routing;
+  z.parent = parent;
+  z.line = xml_.line(e);
+  const std::size_t index = platform_.zones.size();
+  add_member(parent, {SgNetpoint::Kind::Zone, index}, id, e, "id");
+  platform_.zones.push_back(std::move(z));
+  return index;
+}
+
+// A netpoint joins its zone (the root zone has none), its name taken.
+void SgReader::add_member(std::size_t zone, SgNetpoint n, const std::string& id, const pugi::xml_node& e, const char* attribute) {
+  const auto [it, added] = netpoint_at_.emplace(id, n);
+  if (!added) {
+    const SgNetpoint first = it->second;
+    const char* kind = first.kind == SgNetpoint::Kind::Host ? "host" : first.kind == SgNetpoint::Kind::Router ? "router" : "zone";
+    const int line = first.kind == SgNetpoint::Kind::Host     ? platform_.hosts[first.index].line
+                     : first.kind == SgNetpoint::Kind::Router ? platform_.routers[first.index].line
+                                                              : platform_.zones[first.index].line;
+    if (first.kind == n.kind) xml_.fail_attribute(e, attribute, fmt::format("{} '{}' is declared twice (first at line {})", kind, sg_shown(id), line));
+    xml_.fail_attribute(e, attribute, fmt::format("'{}' is already the name of a {} (line {}): hosts, routers and zones share names", sg_shown(id), kind, line));
+  }
+  if (zone != kNoZone) platform_.zones[zone].members.push_back(n);
+}
+
+// A <trace> alone changes nothing: what would apply it (<trace_connect>, a *_file attribute) is refused.
+void SgReader::trace(const pugi::xml_node& e) {
+  xml_.warn(e, "ignored: a profile changes nothing until connected, and what connects one (<trace_connect>, *_file attributes) is refused");
 }
 
 void SgReader::host(const pugi::xml_node& e, std::size_t zone) {
@@ -167,6 +230,8 @@ void SgReader::host(const pugi::xml_node& e, std::size_t zone) {
     pstate = static_cast<std::size_t>(xml_.whole_number(e, "pstate", *text, 0, static_cast<long long>(speeds.size()) - 1));
   }
   h.speed = speeds[pstate];
+  // Other pstates may be 0 (a host switched off, SimGrid's energy examples): pcsim runs at the first.
+  if (!(h.speed > 0)) xml_.fail_attribute(e, "speed", fmt::format("the speed of pstate {}, where the host starts, must be greater than 0", pstate));
   if (const auto text = xml_.optional(e, "core")) h.cores = static_cast<int>(xml_.whole_number(e, "core", *text, 1, kMaxCores));
   if (const auto text = xml_.optional(e, "coordinates"); text && !sg_trim(*text).empty()) {
     xml_.warn(e, "attribute coordinates: ignored (only Vivaldi zones use coordinates)");
@@ -187,7 +252,7 @@ void SgReader::host(const pugi::xml_node& e, std::size_t zone) {
       xml_.unexpected(child, e, {"prop", "disk"});
     }
   });
-  add_host(std::move(h), zone);
+  add_host(std::move(h), zone, e, "id");
 }
 
 SgDisk SgReader::disk(const pugi::xml_node& e) {
@@ -226,7 +291,7 @@ std::vector<double> SgReader::speed_list(const pugi::xml_node& e) {
   std::size_t start = 0;
   while (true) {
     const std::size_t comma = text.find(',', start);
-    speeds.push_back(xml_.quantity(e, "speed", kSgSpeed, std::string_view(text).substr(start, comma - start), false));
+    speeds.push_back(xml_.quantity(e, "speed", kSgSpeed, std::string_view(text).substr(start, comma - start), true));
     if (comma == std::string::npos) break;
     start = comma + 1;
   }
@@ -268,82 +333,6 @@ void SgReader::link(const pugi::xml_node& e) {
   }
 }
 
-void SgReader::route(const pugi::xml_node& e, std::size_t zone) {
-  xml_.check_attributes(e, {"src", "dst", "symmetrical"});
-  SgRoute r;
-  r.src = xml_.required(e, "src");
-  r.dst = xml_.required(e, "dst");
-  r.line = xml_.line(e);
-  const std::size_t src = route_end(e, "src", r.src, zone);
-  const std::size_t dst = route_end(e, "dst", r.dst, zone);
-  if (const auto text = xml_.optional(e, "symmetrical")) {
-    if (*text == "NO" || *text == "no") {
-      r.symmetrical = false;
-    } else if (*text != "YES" && *text != "yes") {
-      xml_.fail_attribute(e, "symmetrical", fmt::format("'{}' is not YES or NO", sg_shown(*text)));
-    }
-  }
-  xml_.for_each_element(e, [&](const pugi::xml_node& child) {
-    if (std::string_view(child.name()) != "link_ctn") xml_.unexpected(child, e, {"link_ctn"});
-    r.links.push_back(link_in_route(child));
-  });
-  if (r.links.empty()) xml_.fail(e, "a route between hosts with no link");
-  // SimGrid's FullZone refuses a second route for a direction, the reverse of a symmetrical one included.
-  const auto taken = [&](std::size_t from, std::size_t to) {
-    const auto it = route_lines_.find(pair_key(from, to));
-    return it == route_lines_.end() ? 0 : it->second;
-  };
-  if (const int first = taken(src, dst)) {
-    xml_.fail(e, fmt::format("a second route from '{}' to '{}' (the first at line {}; routes are symmetrical unless symmetrical=\"NO\")",
-                             sg_shown(r.src), sg_shown(r.dst), first));
-  }
-  if (r.symmetrical && src != dst) {
-    if (const int first = taken(dst, src)) {
-      xml_.fail(e, fmt::format("the route from '{}' to '{}' is declared at line {}: declare this one symmetrical=\"NO\"", sg_shown(r.dst),
-                               sg_shown(r.src), first));
-    }
-    route_lines_.emplace(pair_key(dst, src), r.line);
-  }
-  route_lines_.emplace(pair_key(src, dst), r.line);
-  platform_.routes.push_back(std::move(r));
-}
-
-std::size_t SgReader::route_end(const pugi::xml_node& e, const char* attribute, const std::string& id, std::size_t zone) {
-  const auto it = host_at_.find(id);
-  if (it == host_at_.end()) xml_.fail_attribute(e, attribute, fmt::format("unknown host '{}' (declare hosts before their routes)", sg_shown(id)));
-  if (host_zone_[it->second] != zone) {
-    xml_.fail_attribute(e, attribute, fmt::format("host '{}' is in zone '{}', not in this route's zone '{}' (routes between zones are not supported)",
-                                                  sg_shown(id), sg_shown(zone_ids_[host_zone_[it->second]]), sg_shown(zone_ids_[zone])));
-  }
-  return it->second;
-}
-
-// A <link_ctn>: a link, or with direction="UP" or "DOWN" a half of a SPLITDUPLEX link.
-std::string SgReader::link_in_route(const pugi::xml_node& e) {
-  xml_.check_attributes(e, {"id", "direction"});
-  xml_.check_empty(e);
-  const std::string id = xml_.required(e, "id");
-  const std::string direction = xml_.optional(e, "direction").value_or("NONE");
-  if (direction != "NONE" && direction != "UP" && direction != "DOWN") {
-    xml_.fail_attribute(e, "direction", fmt::format("'{}' is not UP, DOWN or NONE", sg_shown(direction)));
-  }
-  const bool duplex = duplex_lines_.count(id) != 0;
-  const auto plain = link_at_.find(id);
-  if (!duplex && plain == link_at_.end()) xml_.fail_attribute(e, "id", fmt::format("unknown link '{}' (declare links before their routes)", sg_shown(id)));
-  if (direction == "NONE") {
-    if (duplex) xml_.fail_attribute(e, "direction", fmt::format("link '{}' is SPLITDUPLEX: say which half, UP or DOWN", sg_shown(id)));
-    const SgLink& l = platform_.links[plain->second];
-    // SimGrid takes a half named so as a plain link, which its symmetrical routes do not swap: refused, to keep one rule.
-    if (l.half != DuplexHalf::None) {
-      xml_.fail_attribute(e, "id", fmt::format("'{}' is a half of SPLITDUPLEX link '{}': write id=\"{}\" direction=\"{}\"", sg_shown(id),
-                                               sg_shown(l.duplex_id), sg_shown(l.duplex_id), l.half == DuplexHalf::Up ? "UP" : "DOWN"));
-    }
-    return id;
-  }
-  if (!duplex) xml_.fail_attribute(e, "direction", fmt::format("link '{}' is not SPLITDUPLEX: only those have directions", sg_shown(id)));
-  return id + "_" + direction;
-}
-
 void SgReader::check_new_host(const pugi::xml_node& e, const char* attribute, const std::string& id) {
   if (const auto it = host_at_.find(id); it != host_at_.end()) {
     xml_.fail_attribute(e, attribute, fmt::format("host '{}' is declared twice (first at line {})", sg_shown(id), platform_.hosts[it->second].line));
@@ -351,9 +340,10 @@ void SgReader::check_new_host(const pugi::xml_node& e, const char* attribute, co
   if (platform_.hosts.size() >= limits_.max_hosts) xml_.fail(e, fmt::format("more than {} hosts", limits_.max_hosts));
 }
 
-void SgReader::add_host(SgHost h, std::size_t zone) {
+void SgReader::add_host(SgHost h, std::size_t zone, const pugi::xml_node& e, const char* attribute) {
+  h.zone = zone;
+  add_member(zone, {SgNetpoint::Kind::Host, platform_.hosts.size()}, h.id, e, attribute);
   host_at_.emplace(h.id, platform_.hosts.size());
-  host_zone_.push_back(zone);
   platform_.hosts.push_back(std::move(h));
 }
 

@@ -18,21 +18,11 @@ namespace {
 
 // Elements SimGrid knows that pcsim does not read, and why.
 constexpr std::pair<std::string_view, std::string_view> kUnsupported[] = {
-    {"zoneRoute", "not supported: routes between zones (pcsim reads the <route>s between the hosts of Full zones)"},
-    {"ASroute", "not supported: routes between zones (pcsim reads the <route>s between the hosts of Full zones)"},
-    {"bypassRoute", "not supported: bypass routes"},
-    {"bypassASroute", "not supported: bypass routes"},
-    {"bypassZoneRoute", "not supported: bypass routes"},
-    {"trace", "not supported: traces change resources over time"},
-    {"trace_connect", "not supported: traces change resources over time"},
+    {"trace_connect", "not supported: it connects a profile that changes a host or link over time"},
     {"actor", "not supported: a deployment element (the scenario gives the workload)"},
     {"process", "not supported: a deployment element (the scenario gives the workload)"},
     {"argument", "not supported: a deployment element (the scenario gives the workload)"},
     {"peer", "not supported: peers belong to Vivaldi zones"},
-    {"cabinet", "not supported: cabinets belong to Cluster zones"},
-    {"router", "not supported: routers only matter to routes between zones"},
-    {"backbone", "not supported: it belongs to routing=\"Cluster\" zones (a <cluster>'s bb_bw is supported)"},
-    {"host_link", "not supported: it belongs to routing=\"Cluster\" zones"},
     {"storage", "not supported: removed in SimGrid 3.27 (use <disk>)"},
     {"storage_type", "not supported: removed in SimGrid 3.27 (use <disk>)"},
     {"mount", "not supported: removed in SimGrid 3.27 (use <disk>)"},
@@ -40,7 +30,8 @@ constexpr std::pair<std::string_view, std::string_view> kUnsupported[] = {
 };
 
 // Elements pcsim reads, somewhere.
-constexpr std::string_view kRead[] = {"platform", "config", "random", "zone", "AS", "cluster", "host", "disk", "prop", "link", "route", "link_ctn"};
+constexpr std::string_view kRead[] = {"platform", "config", "random", "zone", "AS", "cluster", "host", "disk", "prop", "link", "route", "link_ctn",
+                                      "router", "zoneRoute", "ASroute", "bypassRoute", "bypassZoneRoute", "bypassASroute", "host_link", "backbone", "cabinet", "trace"};
 
 bool blank(const char* s) { return std::strspn(s, " \t\r\n") == std::strlen(s); }
 

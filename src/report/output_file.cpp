@@ -72,17 +72,19 @@ const char* kind_of(mode_t mode) {
   return "is not a regular file, a character device or a FIFO";
 }
 
-// A file replaced whole is written beside it first: its folder must take a new file.
-Destination writable_folder(Destination d, const std::string& path, std::string_view option) {
+// A file replaced whole is written beside it first: its folder must take a new file. `probe`:
+// tried with one made and removed at once (root passes access() on /proc or a read-only mount);
+// an OutputFile needs no probe, its temporary file is one.
+Destination writable_folder(Destination d, const std::string& path, std::string_view option, bool probe) {
   const fs::path folder = folder_of(d.target);
-  const int error = ::access(folder.c_str(), W_OK | X_OK) != 0 ? errno : probe_folder(folder, false);
+  const int error = ::access(folder.c_str(), W_OK | X_OK) != 0 ? errno : probe ? probe_folder(folder, false) : 0;
   if (error != 0) {
     refuse(path, option, fmt::format("pcsim cannot write in the folder {} ({})", folder.string(), std::generic_category().message(error)));
   }
   return d;
 }
 
-Destination destination(const std::string& path, std::string_view option) {
+Destination destination(const std::string& path, std::string_view option, bool probe) {
   if (path.empty()) refuse(path, option, "no file named");
   if (const auto fd = own_descriptor(path)) {
     if (::fcntl(*fd, F_GETFL) == -1) refuse(path, option, fmt::format("descriptor {} is not open", *fd));
@@ -97,7 +99,7 @@ Destination destination(const std::string& path, std::string_view option) {
     if (::stat(folder.c_str(), &dir) != 0 || !S_ISDIR(dir.st_mode)) {
       refuse(path, option, fmt::format("the folder {} does not exist", folder.string()));
     }
-    return writable_folder({Destination::Way::Replace, -1, path}, path, option);
+    return writable_folder({Destination::Way::Replace, -1, path}, path, option, probe);
   }
   struct stat st = link;
   if (S_ISLNK(link.st_mode) && ::stat(path.c_str(), &st) != 0) {
@@ -109,11 +111,11 @@ Destination destination(const std::string& path, std::string_view option) {
     return {Destination::Way::Through, -1, {}};
   }
   if (!S_ISREG(st.st_mode)) refuse(path, option, kind_of(st.st_mode));
-  if (!S_ISLNK(link.st_mode)) return writable_folder({Destination::Way::Replace, -1, path}, path, option);
+  if (!S_ISLNK(link.st_mode)) return writable_folder({Destination::Way::Replace, -1, path}, path, option, probe);
   // A link to a regular file: that file is replaced, the link stays.
   std::unique_ptr<char, decltype(&std::free)> real(::realpath(path.c_str(), nullptr), &std::free);
   if (!real) refuse(path, option, std::generic_category().message(errno));
-  return writable_folder({Destination::Way::Replace, -1, real.get()}, path, option);
+  return writable_folder({Destination::Way::Replace, -1, real.get()}, path, option, probe);
 }
 
 [[noreturn]] void cannot_write(const std::string& path, int error) {
@@ -122,7 +124,7 @@ Destination destination(const std::string& path, std::string_view option) {
 
 }  // namespace
 
-void check_output_file(const std::string& path, std::string_view option) { (void)destination(path, option); }
+void check_output_file(const std::string& path, std::string_view option) { (void)destination(path, option, true); }
 
 void check_not_an_input(const std::string& path, std::string_view option, const std::vector<std::string>& inputs) {
   struct stat out{};
@@ -136,7 +138,7 @@ void check_not_an_input(const std::string& path, std::string_view option, const 
 }
 
 OutputFile::OutputFile(const std::string& path, std::string_view option) : path_(path) {
-  const Destination d = destination(path, option);
+  const Destination d = destination(path, option, false);
   switch (d.way) {
     case Destination::Way::OwnDescriptor:
       fd_ = d.fd;

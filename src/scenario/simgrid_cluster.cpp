@@ -36,14 +36,8 @@ void SgReader::cluster(const pugi::xml_node& e, std::size_t parent) {
   platform_.zones[zone].cluster = platform_.clusters.size();
   const std::string id = platform_.zones[zone].id;
   const int line = xml_.line(e);
-  // An empty prefix or suffix is common ("node-" + N + ""): present is enough.
-  const auto present = [&](const char* name) {
-    auto text = xml_.optional(e, name);
-    if (!text) xml_.fail_attribute(e, name, "missing");
-    return *text;
-  };
-  const std::string prefix = present("prefix");
-  const std::string suffix = present("suffix");
+  const std::string prefix = xml_.present(e, "prefix");
+  const std::string suffix = xml_.present(e, "suffix");
   const SgTopology topology = cluster_topology(e);
   SgHost node = cluster_node(e, id, line);
   const ClusterLinks links = cluster_links(e, line);

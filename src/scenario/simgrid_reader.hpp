@@ -64,6 +64,7 @@ class SgReader {
   void check_gateway(const pugi::xml_node& e, const char* attribute, const std::string& id, std::size_t inside);
   void bypass_route(const pugi::xml_node& e, std::size_t zone);
   std::vector<std::string> links_of(const pugi::xml_node& e);
+  bool symmetrical(const pugi::xml_node& e);
   void check_new_route(const pugi::xml_node& e, const SgRoute& r);
   std::string link_in_route(const pugi::xml_node& e);
   void host_link(const pugi::xml_node& e, std::size_t zone, struct StarDraft& star);

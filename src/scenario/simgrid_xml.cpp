@@ -128,6 +128,12 @@ std::string SgXml::required(const pugi::xml_node& e, const char* name) const {
   return a.value();
 }
 
+std::string SgXml::present(const pugi::xml_node& e, const char* name) const {
+  const pugi::xml_attribute a = e.attribute(name);
+  if (!a) fail_attribute(e, name, "missing");
+  return a.value();
+}
+
 std::optional<std::string> SgXml::optional(const pugi::xml_node& e, const char* name) const {
   const pugi::xml_attribute a = e.attribute(name);
   if (!a) return std::nullopt;

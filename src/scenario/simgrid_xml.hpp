@@ -71,6 +71,9 @@ class SgXml {
 
   /// The attribute's value, which must be present and not empty.
   std::string required(const pugi::xml_node& e, const char* name) const;
+  /// The attribute's value, which must be present but may be empty (a cluster's prefix or
+  /// suffix: "node-" + N + "").
+  std::string present(const pugi::xml_node& e, const char* name) const;
   /// The attribute's value if present (maybe empty).
   std::optional<std::string> optional(const pugi::xml_node& e, const char* name) const;
   /// `text` (attribute `name` of `e`) as quantity `q`, warning as SimGrid does if it has no

@@ -33,6 +33,14 @@ void SgReader::router(const pugi::xml_node& e, std::size_t zone) {
   platform_.routers.push_back(std::move(r));
 }
 
+// A route's symmetrical attribute: YES (SimGrid's default) or NO, in either case.
+bool SgReader::symmetrical(const pugi::xml_node& e) {
+  const auto text = xml_.optional(e, "symmetrical");
+  if (!text || *text == "YES" || *text == "yes") return true;
+  if (*text != "NO" && *text != "no") xml_.fail_attribute(e, "symmetrical", fmt::format("'{}' is not YES or NO", sg_shown(*text)));
+  return false;
+}
+
 void SgReader::route(const pugi::xml_node& e, std::size_t zone) {
   xml_.check_attributes(e, {"src", "dst", "symmetrical"});
   SgRoute r;
@@ -42,13 +50,7 @@ void SgReader::route(const pugi::xml_node& e, std::size_t zone) {
   r.zone = zone;
   const SgNetpoint src = route_end(e, "src", r.src, zone);
   const SgNetpoint dst = route_end(e, "dst", r.dst, zone);
-  if (const auto text = xml_.optional(e, "symmetrical")) {
-    if (*text == "NO" || *text == "no") {
-      r.symmetrical = false;
-    } else if (*text != "YES" && *text != "yes") {
-      xml_.fail_attribute(e, "symmetrical", fmt::format("'{}' is not YES or NO", sg_shown(*text)));
-    }
-  }
+  r.symmetrical = symmetrical(e);
   r.links = links_of(e);
   if (r.links.empty()) xml_.fail(e, "a route between hosts with no link");
   check_new_route(e, r);
@@ -122,13 +124,7 @@ void SgReader::zone_route(const pugi::xml_node& e, std::size_t zone, bool bypass
   check_gateway(e, "gw_src", r.gw_src, zone_end("src", r.src));
   check_gateway(e, "gw_dst", r.gw_dst, zone_end("dst", r.dst));
   if (r.gw_src == r.gw_dst) xml_.fail_attribute(e, "gw_dst", "a route between zones from a gateway to itself");
-  if (const auto text = xml_.optional(e, "symmetrical")) {
-    if (*text == "NO" || *text == "no") {
-      r.symmetrical = false;
-    } else if (*text != "YES" && *text != "yes") {
-      xml_.fail_attribute(e, "symmetrical", fmt::format("'{}' is not YES or NO", sg_shown(*text)));
-    }
-  }
+  r.symmetrical = symmetrical(e);
   r.links = links_of(e);
   if (r.links.empty()) xml_.fail(e, "a route between zones with no link");
   if (bypass) {
@@ -267,13 +263,8 @@ void SgReader::finish_star(std::size_t zone, StarDraft& draft) {
 
 // <cabinet>: hosts prefix + N + suffix, each with links link_<host>_UP and link_<host>_DOWN.
 void SgReader::cabinet(const pugi::xml_node& e, std::size_t zone, StarDraft& star) {
-  const auto present = [&](const char* name) {
-    auto text = xml_.optional(e, name);
-    if (!text) xml_.fail_attribute(e, name, "missing");
-    return *text;
-  };
-  const std::string prefix = present("prefix");
-  const std::string suffix = present("suffix");
+  const std::string prefix = xml_.present(e, "prefix");
+  const std::string suffix = xml_.present(e, "suffix");
   xml_.required(e, "id");
   SgHost node;
   node.line = xml_.line(e);

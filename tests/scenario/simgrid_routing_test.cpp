@@ -6,14 +6,13 @@
 #include "scenario/simgrid_platform.hpp"
 
 #include "import_property.hpp"
+#include "support/files.hpp"
 
 #include <pagecache/error.hpp>
 
 #include <catch2/catch.hpp>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <thread>
 
 using namespace pagecache;
@@ -23,13 +22,13 @@ using Strings = std::vector<std::string>;
 
 namespace {
 
-SgPlatform reference(const std::string& relative) {
-  std::ifstream in(std::string(PAGECACHE_INPUTS_DIR) + "/" + relative, std::ios::binary);
-  REQUIRE(in.good());
-  std::stringstream text;
-  text << in.rdbuf();
-  return read_simgrid_platform(text.str(), relative);
+std::string input_text(const std::string& relative) {
+  const std::filesystem::path path = std::filesystem::path(PAGECACHE_INPUTS_DIR) / relative;
+  REQUIRE(std::filesystem::is_regular_file(path));
+  return pagecache::testing::slurp(path);
 }
+
+SgPlatform reference(const std::string& relative) { return read_simgrid_platform(input_text(relative), relative); }
 
 SgPlatform platform(const std::string& body) { return read_simgrid_platform("<platform version=\"4.1\">\n" + body + "</platform>\n", "p.xml"); }
 
@@ -40,14 +39,6 @@ std::string message_of(const std::string& body) {
     return e.what();
   }
   return "(read without error)";
-}
-
-std::string file_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  REQUIRE(in.good());
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
 }
 
 Strings route(const SgPlatform& p, const std::string& a, const std::string& b) {
@@ -261,10 +252,7 @@ TEST_CASE("routed platforms keep the platform contract: find_route agrees with e
   for (const char* file : {"bypassRoute.xml", "routing_cluster.xml", "meta_cluster.xml", "cluster_multi.xml", "small_platform_with_routers.xml",
                            "cluster_torus.xml", "cluster_fat_tree.xml"}) {
     INFO(file);
-    std::ifstream in(std::string(PAGECACHE_INPUTS_DIR) + "/simgrid/" + file, std::ios::binary);
-    std::stringstream text;
-    text << in.rdbuf();
-    CHECK(fuzz::check_platform_text(text.str(), file).empty());
+    CHECK(fuzz::check_platform_text(input_text(std::string("simgrid/") + file), file).empty());
   }
   CHECK(fuzz::check_platform_text("<platform version=\"4.1\">" + two_ways("Floyd") + "</platform>", "f.xml").empty());
   CHECK(fuzz::check_platform_text("<platform version=\"4.1\">" + two_ways("Dijkstra") + "</platform>", "d.xml").empty());
@@ -359,7 +347,7 @@ TEST_CASE("the platform fuzzer's contract holds on the reference platforms and i
   std::size_t small = 0;
   for (const std::string& path : files) {
     INFO(path);
-    const std::string text = file_text(path);
+    const std::string text = pagecache::testing::slurp(path);
     CHECK(fuzz::check_platform_text(text, path).empty());
     // Under the fuzzer's bounds (30 hosts a cluster, 100 in all) a platform reads, or is
     // refused for its size; one that reads keeps the import contract too (show reads back).

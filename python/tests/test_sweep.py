@@ -119,7 +119,8 @@ def test_ctrl_c_stops_a_sweep(big):
             pcsim.sweep(big, {"pipelines.count": [20000, 20001, 20002, 20003]}, jobs=2)
     finally:
         timer.cancel()
-    assert sent and time.monotonic() - sent[0] < 5.0
+    # Within a few tenths of a second in a release build; ASan makes each step ten times slower.
+    assert sent and time.monotonic() - sent[0] < 3.0
 
 
 def test_errors_name_the_axis_before_anything_runs(tmp_path):

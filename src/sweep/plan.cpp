@@ -93,9 +93,11 @@ std::string run_id(const std::vector<Override>& overrides) {
   return hex16(h);
 }
 
-Plan Plan::load(const std::string& path, bool force) { return parse(scenario::read_text_file(path, "sweep file"), path, force); }
+Plan Plan::load(const std::string& path, bool force, const std::function<void()>& checkpoint) {
+  return parse(scenario::read_text_file(path, "sweep file"), path, force, {}, checkpoint);
+}
 
-Plan Plan::parse(const std::string& text, const std::string& path, bool force, const PlanLimits& limits) {
+Plan Plan::parse(const std::string& text, const std::string& path, bool force, const PlanLimits& limits, const std::function<void()>& checkpoint) {
   Plan plan;
   plan.file_ = fs::absolute(path).lexically_normal().string();
   const toml::table root = parse_toml(text, path);
@@ -123,8 +125,9 @@ Plan Plan::parse(const std::string& text, const std::string& path, bool force, c
     for (const auto& values : plan.axes_) size *= values.size();
   }
   plan.size_ = size;
-  plan.check_values(to_check, limits.scenario);
+  plan.check_values(to_check, limits.scenario, checkpoint);
   for (std::size_t i = 0; i < plan.points_.size(); ++i) {
+    if (checkpoint) checkpoint();
     try {
       std::vector<std::pair<std::string, std::string>> overrides;
       for (const Override& o : plan.points_[i])
@@ -149,7 +152,8 @@ std::size_t Plan::values_held() const noexcept {
 // Each value of each axis on the base alone, so that a value of the wrong type for its key is
 // refused before any run, naming its axis. A range's values share one type: its ends stand
 // for it.
-void Plan::check_values(const std::vector<std::pair<std::size_t, std::string>>& where, const ScenarioLimits& limits) const {
+void Plan::check_values(const std::vector<std::pair<std::size_t, std::string>>& where, const ScenarioLimits& limits,
+                        const std::function<void()>& checkpoint) const {
   for (const auto& [axis, name] : where) {
     const std::vector<Override>& values = axes_[axis];
     std::vector<const Override*> tried;
@@ -159,6 +163,7 @@ void Plan::check_values(const std::vector<std::pair<std::size_t, std::string>>& 
       tried = {&values.front(), &values.back()};
     }
     for (const Override* v : tried) {
+      if (checkpoint) checkpoint();
       try {
         load_base({{v->key, v->toml}}, limits);
       } catch (const ConfigError& e) {

@@ -23,6 +23,7 @@
 #include <pagecache/scenario_file.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -67,10 +68,14 @@ class Plan {
   /// value of the wrong type for its key (each axis value is tried on the base scenario), an
   /// axis of more than kMaxAxisValues values, more than kMaxRuns runs without `force`. Axis
   /// lengths and the grid's size are computed, and checked, before any value is made.
-  static Plan load(const std::string& path, bool force = false);
+  /// `checkpoint`, if set, is called before each value or point is tried on the base (a large
+  /// base takes a while to resolve): what it throws passes through, which is how a caller
+  /// stops a long check.
+  static Plan load(const std::string& path, bool force = false, const std::function<void()>& checkpoint = {});
   /// The same from the sweep file's text; `path` places the files it names and is named in
   /// messages.
-  static Plan parse(const std::string& text, const std::string& path, bool force = false, const PlanLimits& limits = {});
+  static Plan parse(const std::string& text, const std::string& path, bool force = false, const PlanLimits& limits = {},
+                    const std::function<void()>& checkpoint = {});
   /// The plan json() wrote (`origin` names it in errors). Throws ConfigError if it is not one,
   /// or is one of an earlier pcsim, which recorded no fingerprint of its base.
   static Plan from_json(const std::string& text, const std::string& origin);
@@ -96,7 +101,8 @@ class Plan {
 
  private:
   Scenario load_base(const std::vector<std::pair<std::string, std::string>>& overrides, const ScenarioLimits& limits = {}) const;
-  void check_values(const std::vector<std::pair<std::size_t, std::string>>& where, const ScenarioLimits& limits) const;
+  void check_values(const std::vector<std::pair<std::size_t, std::string>>& where, const ScenarioLimits& limits,
+                    const std::function<void()>& checkpoint) const;
 
   std::string file_;
   std::string scenario_;       // absolute path, or empty

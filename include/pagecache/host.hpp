@@ -59,6 +59,12 @@ struct FileRef {
   friend bool operator==(FileRef, FileRef) = default;
 };
 
+/// A part of a file: `length` bytes from `offset`.
+struct ByteRange {
+  std::int64_t offset = 0;
+  std::int64_t length = 0;
+};
+
 /// What an I/O phase moved and when.
 struct IoResult {
   double start = 0.0;
@@ -102,6 +108,15 @@ class Host {
   /// call for a file unknown here or a chunk size <= 0; SimulationError from the task when the
   /// read cannot proceed.
   Task<IoResult> read_file(FileRef file, std::int64_t chunk_size, bool direct = false, GroupRef group = {});
+  /// Reads parts of a local file: the requests `next` yields (it fills its argument and
+  /// returns true, or returns false when there are no more), one after the other, into a
+  /// buffer of `buffer` bytes the read holds meanwhile and then releases. Each request reads
+  /// the pages it touches: what is cached of them is a hit, the rest one device request. No
+  /// readahead. From its start the file's page cache is held by byte range: which parts are
+  /// cached counts from then on (whole-file reads and writes only count how much). Throws
+  /// ConfigError at the call for a remote file or a buffer <= 0; SimulationError from the
+  /// task for a request not within the file or when the read cannot proceed.
+  Task<IoResult> read_ranges(FileRef file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupRef group = {});
   /// Writes the file's whole size in chunks of `chunk_size` bytes. `direct`: O_DIRECT (on an
   /// NFS mount the same as without: there is no client write cache). Errors as read_file's.
   Task<IoResult> write_file(FileRef file, std::int64_t chunk_size, bool direct = false, GroupRef group = {});

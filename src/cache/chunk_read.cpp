@@ -1,5 +1,7 @@
 #include "cache/chunk_read.hpp"
 
+#include "engine/check.hpp"
+
 namespace pagecache::cache {
 
 std::int64_t evict_for_chunk(PageCache& cache, const ReadRequest& request, ReadPlan* needs) {
@@ -20,6 +22,12 @@ bool evict_to_fit(PageCache& cache, std::int64_t required, FileId spared) {
 
 ReadCursor start_chunk(PageCache& cache, const ReadRequest& request, std::int64_t from_disk, ReadCursor from, GroupId group, double now) {
   cache.charge_file(request.file, group);
+  if (request.offset != ReadRequest::kWholeFile) {
+    const std::int64_t missing = cache.read_range(request.file, request.offset, request.bytes, now);
+    PC_ASSERT(missing == from_disk);
+    if (request.anonymous > 0) cache.allocate_anonymous(request.anonymous, group);
+    return from;
+  }
   cache.add_read(request.file, from_disk, now);
   const ReadCursor next = cache.reaccess(request.file, request.bytes - from_disk, now, from);
   if (request.anonymous > 0) cache.allocate_anonymous(request.anonymous, group);

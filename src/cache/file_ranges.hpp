@@ -38,6 +38,8 @@ class FileRanges {
   BlockId ceiling(FileId file, std::int64_t offset) const noexcept;
   /// The block of `file` with the least offset, or kNoBlock.
   BlockId first(FileId file) const noexcept { return ceiling(file, kLowest); }
+  /// The block of `file` with the greatest offset, or kNoBlock.
+  BlockId last(FileId file) const noexcept { return floor(file, std::numeric_limits<std::int64_t>::max()); }
   /// The block after `block` by offset in its file, or kNoBlock.
   BlockId next(FileId file, BlockId block) const noexcept;
   bool empty(FileId file) const noexcept { return root(file) == kNoBlock; }

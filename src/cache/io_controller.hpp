@@ -22,6 +22,7 @@
 #include <pagecache/simulator.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -62,6 +63,14 @@ class IoController {
   /// that writes the file (throttled or not).
   /// `group`: the writer's memory group, which the file is charged to if no group has it.
   Task<IoResult> write_file(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool direct = false, GroupId group = kRootGroup);
+  /// Reads parts of a local file, the requests `next` yields one after the other (ranges
+  /// within the file), into one buffer of `buffer` bytes held meanwhile. Each request reads
+  /// the pages it touches as a chunk of read_file does (Algorithm 2 on its range: the cached
+  /// parts re-accessed, the holes from the device, one device request each); no readahead.
+  /// From its start the file's page cache is held by range (PageCache::track_ranges).
+  /// Throws ConfigError at the call for a remote file or a buffer <= 0, SimulationError from
+  /// the task for a request outside the file or when the read cannot proceed.
+  Task<IoResult> read_ranges(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group = kRootGroup);
   /// Takes `bytes` of application memory (a task's working memory), writing back and
   /// evicting cached data to make room. Throws SimulationError when nothing can free enough.
   Task<void> hold_memory(std::int64_t bytes, GroupId group = kRootGroup);
@@ -111,6 +120,8 @@ class IoController {
   /// Reads `bytes` of a remote file from its server into this host's fresh memory;
   /// `server_cursor` as serve_read's.
   Task<void> serve_remote(FileId file, std::int64_t bytes, ReadCursor* server_cursor);
+  /// read_ranges once checked.
+  Task<IoResult> read_ranges_of(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group);
   /// A local file's read (read_file).
   Task<IoResult> read_whole_file(FileId file, std::int64_t chunk_size, bool direct, GroupId group);
   /// A remote file's read (read_file): from this host's cache and the server.
@@ -152,7 +163,7 @@ class IoController {
   /// the part of the chunk to read from the device. A coroutine only for these: most chunk
   /// reads need no more than evict_for_chunk, and a chunk read is the most frequent operation.
   /// Errors name `verb` (e.g. "reading") and the file.
-  Task<std::int64_t> room_for_chunk(FileId file, std::int64_t file_size, std::int64_t bytes, std::int64_t buffer, GroupId group, const char* verb);
+  Task<std::int64_t> room_for_chunk(ReadRequest request, GroupId group, const char* verb);
   /// Waits until memory held by transfers in flight may have been released.
   Task<void> wait_for_progress();
 

@@ -44,7 +44,9 @@ FileId spared_by_read(const PageCache& cache, FileId file) noexcept {
 bool nothing_can_be_freed(const PageCache& cache) noexcept { return cache.writeback() == 0 && cache.reserved() == 0; }
 
 ReadPlan plan_read(const PageCache& cache, const ReadRequest& request) noexcept {
-  const std::int64_t from_disk = std::clamp<std::int64_t>(request.file_size - cache.cached(request.file), 0, request.bytes);
+  const std::int64_t from_disk = request.offset == ReadRequest::kWholeFile
+                                     ? std::clamp<std::int64_t>(request.file_size - cache.cached(request.file), 0, request.bytes)
+                                     : request.bytes - cache.cached_in(request.file, request.offset, request.bytes);
   const std::int64_t required = request.anonymous + from_disk;
   return ReadPlan{.from_disk = from_disk,
                   .from_cache = request.bytes - from_disk,

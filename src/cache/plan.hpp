@@ -63,6 +63,10 @@ struct ReadRequest {
   std::int64_t file_size = 0;  ///< the caller's copy: the file's record may be out of cache
   std::int64_t bytes = 0;      ///< the chunk
   std::int64_t anonymous = 0;  ///< application memory the read takes besides the new cache data
+  /// Where the chunk starts in a file held by range (PageCache::track_ranges); kWholeFile: a
+  /// chunk of a whole-file read, which reads what is not cached whatever its place.
+  std::int64_t offset = kWholeFile;
+  static constexpr std::int64_t kWholeFile = -1;
 };
 struct ReadPlan {
   std::int64_t from_disk = 0;   ///< the part not cached: read from the device, then new cache data

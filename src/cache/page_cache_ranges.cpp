@@ -1,0 +1,169 @@
+// PageCache: files held by byte range — which parts of a file are cached, for reads of parts
+// of files (access patterns).
+
+#include "cache/page_cache.hpp"
+
+#include "engine/check.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace pagecache::cache {
+
+void PageCache::track_ranges(FileId file) {
+  if (ranged(file)) return;
+  if (file >= ranged_.size()) ranged_.resize(static_cast<std::size_t>(file) + 1, 0);
+  ranged_[file] = 1;
+  FileEntry& entry = file_entry(file);
+  std::int64_t offset = 0;
+  for (FileOrder* flist : {&entry.inactive, &entry.active}) {
+    for (BlockId id = flist->front(); id != kNoBlock; id = FileOrder::next(blocks_, id)) {
+      blocks_[id].ranged = true;
+      ranges_.insert(file, id, offset);
+      offset += blocks_[id].size;
+    }
+  }
+  if (checking_) check_invariants();
+}
+
+std::int64_t PageCache::ranged_end(FileId file) const noexcept {
+  const BlockId last = ranges_.last(file);
+  return last == kNoBlock ? 0 : ranges_.offset(last) + blocks_[last].size;
+}
+
+BlockId PageCache::block_at_or_after(FileId file, std::int64_t offset) const noexcept {
+  const BlockId below = ranges_.floor(file, offset);
+  if (below != kNoBlock && ranges_.offset(below) + blocks_[below].size > offset) return below;
+  return below == kNoBlock ? ranges_.first(file) : ranges_.next(file, below);
+}
+
+std::int64_t PageCache::cached_in(FileId file, std::int64_t offset, std::int64_t bytes) const noexcept {
+  PC_ASSERT(ranged(file) && offset >= 0 && bytes >= 0);
+  const std::int64_t end = offset + bytes;
+  std::int64_t cached = 0;
+  for (BlockId id = block_at_or_after(file, offset); id != kNoBlock; id = ranges_.next(file, id)) {
+    const std::int64_t start = ranges_.offset(id);
+    if (start >= end) break;
+    cached += std::min(end, start + blocks_[id].size) - std::max(offset, start);
+  }
+  return cached;
+}
+
+BlockId PageCache::new_ranged_block(FileId file, std::int64_t offset, std::int64_t size, BlockState state, double now) {
+  const BlockId id = new_block(file, size, state, now);
+  blocks_[id].ranged = true;
+  ranges_.insert(file, id, offset);
+  return id;
+}
+
+BlockId PageCache::cut_before(BlockId id, std::int64_t offset) {
+  const std::int64_t head = offset - ranges_.offset(id);
+  PC_ASSERT(head >= 0 && head < blocks_[id].size);
+  if (head == 0) return id;
+  const FileId file = blocks_[id].file;
+  split_front(id, head);
+  return ranges_.next(file, id);
+}
+
+void PageCache::move_ranged(BlockId id, ListKind to) {
+  Block& block = blocks_[id];
+  unlink(id);
+  block.referenced = false;
+  const BlockId tail_id = list_of(to).back();
+  if (block.state == BlockState::Clean && tail_id != kNoBlock) {
+    const Block& tail = blocks_[tail_id];
+    if (tail.file == block.file && tail.ranged && tail.state == BlockState::Clean && !tail.referenced &&
+        ranges_.offset(tail_id) + tail.size == ranges_.offset(id)) {
+      // Contiguous clean data of the file, one after the other at the MRU end: one block.
+      const std::int64_t size = block.size;
+      block.size = 0;
+      ranges_.erase(block.file, id);
+      blocks_.give_back(id);
+      list_of(to).resize(tail_id, tail.size + size);
+      FileEntry& entry = files_[tail.file];
+      (to == ListKind::Inactive ? entry.inactive_bytes : entry.active_bytes) += size;
+      charge(tail.file, size);
+      return;
+    }
+  }
+  append(id, to);
+}
+
+void PageCache::add_ranged(FileId file, std::int64_t offset, std::int64_t bytes, double now, bool referenced) {
+  LruList& list = list_of(ListKind::Inactive);
+  const BlockId tail_id = list.back();
+  if (tail_id != kNoBlock) {
+    const Block& tail = blocks_[tail_id];
+    if (tail.file == file && tail.ranged && tail.state == BlockState::Clean && tail.referenced == referenced &&
+        ranges_.offset(tail_id) + tail.size == offset) {
+      list.resize(tail_id, tail.size + bytes);
+      files_[file].inactive_bytes += bytes;
+      charge(file, bytes);
+      return;
+    }
+  }
+  const BlockId id = new_ranged_block(file, offset, bytes, BlockState::Clean, now);
+  blocks_[id].referenced = referenced;
+  append(id, ListKind::Inactive);
+}
+
+std::int64_t PageCache::read_range(FileId file, std::int64_t offset, std::int64_t bytes, double now) {
+  PC_ASSERT(ranged(file) && offset >= 0 && bytes >= 0);
+  const std::int64_t end = offset + bytes;
+  // The cached parts, by offset, each block cut to the part read; then the holes between them.
+  std::int64_t at = offset;
+  for (BlockId id = block_at_or_after(file, offset); id != kNoBlock && ranges_.offset(id) < end;) {
+    id = cut_before(id, std::max(at, ranges_.offset(id)));
+    if (ranges_.offset(id) + blocks_[id].size > end) split_front(id, end - ranges_.offset(id));
+    at = ranges_.offset(id) + blocks_[id].size;
+    const BlockId next = ranges_.next(file, id);
+    Block& block = blocks_[id];
+    if (block.list == ListKind::Active) {
+      move_ranged(id, ListKind::Active);
+    } else {
+      switch (policy_->reread(block)) {
+        case Policy::Reread::Mark: block.referenced = true; break;
+        case Policy::Reread::Activate: move_ranged(id, ListKind::Active); break;
+        case Policy::Reread::Refresh: move_ranged(id, ListKind::Inactive); break;
+      }
+    }
+    id = next;
+  }
+  const std::int64_t missing = bytes - cached_in(file, offset, bytes);
+  if (missing > free()) throw SimulationError(fmt::format("cannot cache {} bytes: only {} free", missing, free()));
+  at = offset;
+  while (at < end) {
+    const BlockId id = block_at_or_after(file, at);
+    const std::int64_t hole_end = id == kNoBlock ? end : std::min(end, ranges_.offset(id));
+    if (hole_end > at) add_ranged(file, at, hole_end - at, now, first_touch_);
+    at = id == kNoBlock ? end : ranges_.offset(id) + blocks_[id].size;
+  }
+  if (missing > 0) policy_->missed(*this, file, missing);
+  balance();  // after every read, under every policy
+  settle();
+  return missing;
+}
+
+void PageCache::check_ranges(std::size_t f, std::size_t most) const {
+  const auto file = static_cast<FileId>(f);
+  const FileEntry& entry = files_[f];
+  if (!ranged(file)) {
+    PC_ASSERT_MSG(ranges_.empty(file), fmt::format("file {}: offsets indexed for a file not held by range", f));
+    for (const FileOrder* flist : {&entry.inactive, &entry.active}) {
+      for (const Block& block : flist->range(blocks_)) PC_ASSERT_MSG(!block.ranged, fmt::format("file {}: a ranged block", f));
+    }
+    return;
+  }
+  const std::size_t indexed = ranges_.check(file, most);
+  PC_ASSERT_MSG(indexed == entry.blocks, fmt::format("file {}: {} blocks indexed by offset, {} in its lists", f, indexed, entry.blocks));
+  std::int64_t end = 0;
+  ranges_.for_each(file, [&](BlockId id) {
+    const Block& block = blocks_[id];
+    PC_ASSERT_MSG(block.ranged && block.file == file && block.size > 0, fmt::format("file {}: block {} indexed wrongly", f, id));
+    PC_ASSERT_MSG(ranges_.offset(id) >= end, fmt::format("file {}: block {} overlaps the one before", f, id));
+    end = ranges_.offset(id) + block.size;
+  });
+}
+
+}  // namespace pagecache::cache

@@ -1,0 +1,141 @@
+// Files held by byte range, rule by rule: reads hit exactly what is cached, a partial re-read
+// refreshes only what it touches, sequential reads stay a few blocks, eviction takes the
+// least recently used bytes; and Host::read_ranges in a simulation (times derived in comments).
+#include "cache/page_cache.hpp"
+
+#include <pagecache/error.hpp>
+#include <pagecache/host.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cstdint>
+#include <vector>
+
+using namespace pagecache;
+using namespace pagecache::cache;
+
+namespace {
+
+constexpr std::int64_t MB = 1'000'000;
+
+CacheSettings lru() {
+  CacheSettings settings = CacheSettings::kernel();
+  settings.policy = "lru";
+  return settings;
+}
+
+// The file's cached ranges, merged where contiguous, by offset.
+std::vector<std::pair<std::int64_t, std::int64_t>> held(const PageCache& cache, FileId file) {
+  std::vector<std::pair<std::int64_t, std::int64_t>> runs;
+  cache.ranges().for_each(file, [&](BlockId id) {
+    const std::int64_t offset = cache.ranges().offset(id);
+    const std::int64_t end = offset + cache.block(id).size;
+    if (!runs.empty() && runs.back().second == offset) runs.back().second = end;
+    else runs.emplace_back(offset, end);
+  });
+  return runs;
+}
+
+using Runs = std::vector<std::pair<std::int64_t, std::int64_t>>;
+
+}  // namespace
+
+TEST_CASE("a read of a range hits exactly what is cached of it", "[page_cache][ranges]") {
+  PageCache cache(1000, lru());
+  cache.set_checking(true);
+  cache.track_ranges(0);
+  CHECK(cache.read_range(0, 100, 100, 0.0) == 100);  // [100, 200) from the device
+  CHECK(cache.cached_in(0, 0, 1000) == 100);
+  CHECK(cache.cached_in(0, 150, 100) == 50);
+  CHECK(cache.read_range(0, 150, 100, 1.0) == 50);  // [150, 200) hits, [200, 250) misses
+  CHECK(cache.read_range(0, 0, 300, 2.0) == 150);   // [0, 100) and [250, 300) miss
+  CHECK(held(cache, 0) == Runs{{0, 300}});
+  CHECK(cache.cached(0) == 300);
+  CHECK(cache.read_range(0, 0, 300, 3.0) == 0);
+}
+
+TEST_CASE("a partial re-read refreshes only the part it touches", "[page_cache][ranges]") {
+  PageCache cache(1000, lru());
+  cache.set_checking(true);
+  cache.track_ranges(0);
+  cache.read_range(0, 0, 100, 0.0);
+  cache.read_range(0, 20, 10, 1.0);  // [20, 30) to the MRU end
+  // Eviction takes the least recently used bytes: [0, 20), then [30, 100), then [20, 30).
+  CHECK(cache.evict(20, kNoFile) == 20);
+  CHECK(held(cache, 0) == Runs{{20, 100}});
+  CHECK(cache.evict(70, kNoFile) == 70);
+  CHECK(held(cache, 0) == Runs{{20, 30}});
+}
+
+TEST_CASE("a file read in order in small requests stays one block", "[page_cache][ranges]") {
+  PageCache cache(100 * MB, CacheSettings::kernel());
+  cache.set_checking(false);
+  cache.track_ranges(0);
+  for (std::int64_t offset = 0; offset < 10 * MB; offset += 4096) cache.read_range(0, offset, std::min<std::int64_t>(4096, 10 * MB - offset), 0.0);
+  CHECK(cache.cached(0) == 10 * MB);
+  CHECK(cache.list(ListKind::Inactive).size() + cache.list(ListKind::Active).size() == 1);
+  cache.check_invariants();
+}
+
+TEST_CASE("data cached whole before a file is held by range takes offsets from 0, least recently used first", "[page_cache][ranges]") {
+  PageCache cache(1000, lru());
+  cache.set_checking(true);
+  cache.add_read(0, 100, 0.0);
+  cache.add_read(1, 50, 0.0);
+  cache.add_read(0, 20, 1.0);
+  cache.track_ranges(0);
+  CHECK(held(cache, 0) == Runs{{0, 120}});
+  CHECK_FALSE(cache.ranged(1));
+  CHECK(cache.read_range(0, 100, 50, 2.0) == 30);
+}
+
+TEST_CASE("random reads of a file: each a device request for its missing pages, then hits", "[host][ranges]") {
+  // 1 GB of memory, a disk of 100 MB/s with 10 ms per request, memory copies at 1000 MB/s.
+  // Reads of 4 KiB at 100 distinct page-aligned offsets: each misses and pays 10 ms +
+  // 4096 B / 100 MB/s = 10.04096 ms; the same 100 again hit, 4096 B / 1000 MB/s each.
+  Simulator sim;
+  FairShare share(sim);
+  Host host(sim, share,
+            HostSpec{.name = "h", .cores = 1, .memory = 1000 * MB, .memory_bandwidth = MemoryBandwidth::shared_channel(1000e6), .cache = lru()});
+  DiskBandwidth disk{.read = 100e6, .write = 100e6, .request_latency = 0.01};
+  const FileRef file = host.add_file("data", 100 * MB, host.add_disk("d", disk));
+  std::vector<ByteRange> requests;
+  for (int i = 0; i < 100; ++i) requests.push_back({.offset = (i * 7919 % 24000) * 4096, .length = 4096});
+  IoResult first, second;
+  auto reader = [&]() -> Task<void> {
+    for (IoResult* result : {&first, &second}) {
+      std::size_t next = 0;
+      *result = co_await host.read_ranges(file, [&](ByteRange& r) { return next < requests.size() && (r = requests[next++], true); }, 4096);
+    }
+  };
+  sim.spawn(reader());
+  sim.run();
+  CHECK(first.disk_bytes == 100 * 4096);
+  CHECK(first.cache_bytes == 0);
+  CHECK(first.end - first.start == Approx(100 * (0.01 + 4096 / 100e6)));
+  CHECK(second.disk_bytes == 0);
+  CHECK(second.cache_bytes == 100 * 4096);
+  CHECK(second.end - second.start == Approx(100 * 4096 / 1000e6));
+  CHECK(host.cached(file) == 100 * 4096);
+  CHECK(host.memory().anonymous == 0);  // the buffer is given back
+}
+
+TEST_CASE("a read of part of a page reads the whole page; requests outside the file are refused", "[host][ranges]") {
+  Simulator sim;
+  FairShare share(sim);
+  Host host(sim, share, HostSpec{.name = "h", .cores = 1, .memory = 1000 * MB, .memory_bandwidth = MemoryBandwidth::shared_channel(1000e6)});
+  const FileRef file = host.add_file("data", 10'000, host.add_disk("d", 100e6, 100e6));
+  IoResult result;
+  auto reader = [&](ByteRange only) -> Task<void> {
+    bool given = false;
+    result = co_await host.read_ranges(file, [&](ByteRange& r) { return !given && (r = only, given = true); }, 100);
+  };
+  sim.spawn(reader({.offset = 9000, .length = 100}));  // the last page: [8192, 10000)
+  sim.run();
+  CHECK(result.bytes == 100);
+  CHECK(result.disk_bytes == 10'000 - 8192);
+  CHECK(host.cached(file) == 10'000 - 8192);
+  sim.spawn(reader({.offset = 9950, .length = 100}));
+  CHECK_THROWS_AS(sim.run(), SimulationError);
+  CHECK_THROWS_AS(host.read_ranges(file, [](ByteRange&) { return false; }, 0), ConfigError);
+}

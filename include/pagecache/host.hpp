@@ -63,6 +63,7 @@ struct FileRef {
 struct ByteRange {
   std::int64_t offset = 0;
   std::int64_t length = 0;
+  friend bool operator==(const ByteRange&, const ByteRange&) = default;
 };
 
 /// What an I/O phase moved and when.

@@ -87,6 +87,20 @@ BlockId FileRanges::floor(FileId file, std::int64_t offset) const noexcept {
   return found;
 }
 
+FileRanges::Around FileRanges::around(FileId file, std::int64_t offset) const noexcept {
+  Around found;
+  for (BlockId t = root(file); t != kNoBlock;) {
+    if (nodes_[t].offset <= offset) {
+      found.floor = t;
+      t = nodes_[t].right;
+    } else {
+      found.above = t;
+      t = nodes_[t].left;
+    }
+  }
+  return found;
+}
+
 BlockId FileRanges::ceiling(FileId file, std::int64_t offset) const noexcept {
   BlockId found = kNoBlock;
   for (BlockId t = root(file); t != kNoBlock;) {

@@ -34,6 +34,12 @@ class FileRanges {
   /// The block of `file` with the greatest offset <= `offset` (the one that holds `offset`, if
   /// any does), or kNoBlock.
   BlockId floor(FileId file, std::int64_t offset) const noexcept;
+  /// floor(file, offset) and the block after it (the least offset > `offset`), in one descent.
+  struct Around {
+    BlockId floor = kNoBlock;
+    BlockId above = kNoBlock;
+  };
+  Around around(FileId file, std::int64_t offset) const noexcept;
   /// The block of `file` with the least offset >= `offset`, or kNoBlock.
   BlockId ceiling(FileId file, std::int64_t offset) const noexcept;
   /// The block of `file` with the least offset, or kNoBlock.

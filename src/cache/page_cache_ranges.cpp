@@ -33,19 +33,24 @@ std::int64_t PageCache::ranged_end(FileId file) const noexcept {
 }
 
 BlockId PageCache::block_at_or_after(FileId file, std::int64_t offset) const noexcept {
-  const BlockId below = ranges_.floor(file, offset);
-  if (below != kNoBlock && ranges_.offset(below) + blocks_[below].size > offset) return below;
-  return below == kNoBlock ? ranges_.first(file) : ranges_.next(file, below);
+  const FileRanges::Around at = ranges_.around(file, offset);
+  if (at.floor != kNoBlock && ranges_.offset(at.floor) + blocks_[at.floor].size > offset) return at.floor;
+  return at.above;
 }
 
 std::int64_t PageCache::cached_in(FileId file, std::int64_t offset, std::int64_t bytes) const noexcept {
   PC_ASSERT(ranged(file) && offset >= 0 && bytes >= 0);
   const std::int64_t end = offset + bytes;
   std::int64_t cached = 0;
-  for (BlockId id = block_at_or_after(file, offset); id != kNoBlock; id = ranges_.next(file, id)) {
+  // Each step down the index is a few cache misses under random access: the next block is
+  // looked up only when the range goes past this one.
+  for (BlockId id = block_at_or_after(file, offset); id != kNoBlock;) {
     const std::int64_t start = ranges_.offset(id);
     if (start >= end) break;
-    cached += std::min(end, start + blocks_[id].size) - std::max(offset, start);
+    const std::int64_t stop = start + blocks_[id].size;
+    cached += std::min(end, stop) - std::max(offset, start);
+    if (stop >= end) break;
+    id = ranges_.next(file, id);
   }
   return cached;
 }
@@ -117,7 +122,7 @@ std::int64_t PageCache::read_range(FileId file, std::int64_t offset, std::int64_
     id = cut_before(id, std::max(at, ranges_.offset(id)));
     if (ranges_.offset(id) + blocks_[id].size > end) split_front(id, end - ranges_.offset(id));
     at = ranges_.offset(id) + blocks_[id].size;
-    const BlockId next = ranges_.next(file, id);
+    const BlockId next = at < end ? ranges_.next(file, id) : kNoBlock;
     Block& block = blocks_[id];
     if (block.list == ListKind::Active) {
       move_ranged(id, ListKind::Active);
@@ -130,13 +135,16 @@ std::int64_t PageCache::read_range(FileId file, std::int64_t offset, std::int64_
     }
     id = next;
   }
-  const std::int64_t missing = bytes - cached_in(file, offset, bytes);
-  if (missing > free()) throw SimulationError(fmt::format("cannot cache {} bytes: only {} free", missing, free()));
+  std::int64_t missing = 0;
   at = offset;
   while (at < end) {
     const BlockId id = block_at_or_after(file, at);
     const std::int64_t hole_end = id == kNoBlock ? end : std::min(end, ranges_.offset(id));
-    if (hole_end > at) add_ranged(file, at, hole_end - at, now, first_touch_);
+    if (hole_end > at) {
+      if (hole_end - at > free()) throw SimulationError(fmt::format("cannot cache {} bytes: only {} free", hole_end - at, free()));
+      add_ranged(file, at, hole_end - at, now, first_touch_);
+      missing += hole_end - at;
+    }
     at = id == kNoBlock ? end : ranges_.offset(id) + blocks_[id].size;
   }
   if (missing > 0) policy_->missed(*this, file, missing);

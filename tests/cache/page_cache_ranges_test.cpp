@@ -123,7 +123,7 @@ TEST_CASE("random reads of a file: each a device request for its missing pages, 
 TEST_CASE("a read of part of a page reads the whole page; requests outside the file are refused", "[host][ranges]") {
   Simulator sim;
   FairShare share(sim);
-  Host host(sim, share, HostSpec{.name = "h", .cores = 1, .memory = 1000 * MB, .memory_bandwidth = MemoryBandwidth::shared_channel(1000e6)});
+  Host host(sim, share, HostSpec{.name = "h", .cores = 1, .memory = 1000 * MB, .memory_bandwidth = MemoryBandwidth::shared_channel(1000e6), .cache = CacheSettings::kernel()});
   const FileRef file = host.add_file("data", 10'000, host.add_disk("d", 100e6, 100e6));
   IoResult result;
   auto reader = [&](ByteRange only) -> Task<void> {

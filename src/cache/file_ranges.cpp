@@ -8,146 +8,213 @@
 
 namespace pagecache::cache {
 
-void FileRanges::split(BlockId t, std::int64_t offset, BlockId& less, BlockId& rest) noexcept {
-  // Down one path: each node goes to the side of `offset` it is on, keeping the other subtree.
-  BlockId* less_hole = &less;
-  BlockId* rest_hole = &rest;
-  while (t != kNoBlock) {
-    Node& n = nodes_[t];
-    if (n.offset < offset) {
-      *less_hole = t;
-      less_hole = &n.right;
-      t = n.right;
-    } else {
-      *rest_hole = t;
-      rest_hole = &n.left;
-      t = n.left;
-    }
-  }
-  *less_hole = kNoBlock;
-  *rest_hole = kNoBlock;
+int FileRanges::child_for(const Node& n, std::int64_t key) const noexcept {
+  // The last child whose least key is <= key; child 0 takes everything below keys[1].
+  return static_cast<int>(std::upper_bound(n.keys + 1, n.keys + n.count, key) - (n.keys + 1));
 }
 
-BlockId FileRanges::merge(BlockId a, BlockId b) noexcept {
-  BlockId joined = kNoBlock;
-  BlockId* hole = &joined;
-  while (a != kNoBlock && b != kNoBlock) {
-    if (above(a, b)) {
-      *hole = a;
-      hole = &nodes_[a].right;
-      a = nodes_[a].right;
-    } else {
-      *hole = b;
-      hole = &nodes_[b].left;
-      b = nodes_[b].left;
-    }
-  }
-  *hole = a != kNoBlock ? a : b;
-  return joined;
-}
-
-void FileRanges::insert(FileId file, BlockId block, std::int64_t offset) {
-  if (block >= nodes_.size()) nodes_.resize(std::max<std::size_t>(2 * nodes_.size(), std::size_t{block} + 1));
-  if (file >= roots_.size()) roots_.resize(std::max<std::size_t>(2 * roots_.size(), std::size_t{file} + 1), kNoBlock);
-  Node& node = nodes_[block];
-  node.offset = offset;
-  // Down to the first node the new one ranks above; the subtree there splits under it.
-  BlockId* link = &roots_[file];
-  while (*link != kNoBlock && above(*link, block)) {
-    Node& n = nodes_[*link];
-    PC_ASSERT_MSG(n.offset != offset, fmt::format("file {}: two blocks at offset {}", file, offset));
-    link = offset < n.offset ? &n.left : &n.right;
-  }
-  split(*link, offset, node.left, node.right);  // a duplicate below here: check() finds it
-  *link = block;
-}
-
-void FileRanges::erase(FileId file, BlockId block) {
-  const std::int64_t offset = nodes_[block].offset;
-  BlockId* link = &roots_[file];
-  while (*link != block) {
-    PC_ASSERT_MSG(*link != kNoBlock, fmt::format("file {}: block {} is not indexed", file, block));
-    link = offset < nodes_[*link].offset ? &nodes_[*link].left : &nodes_[*link].right;
-  }
-  Node& node = nodes_[block];
-  *link = merge(node.left, node.right);
-  node.left = node.right = kNoBlock;
-}
-
-BlockId FileRanges::floor(FileId file, std::int64_t offset) const noexcept {
-  BlockId found = kNoBlock;
-  for (BlockId t = root(file); t != kNoBlock;) {
-    if (nodes_[t].offset <= offset) {
-      found = t;
-      t = nodes_[t].right;
-    } else {
-      t = nodes_[t].left;
-    }
-  }
-  return found;
+FileRanges::NodeId FileRanges::edge_leaf(FileId file, bool rightmost) const noexcept {
+  NodeId n = tree(file).root;
+  while (n != kNoNode && !nodes_[n].leaf) n = nodes_[n].ids[rightmost ? nodes_[n].count - 1 : 0];
+  return n;
 }
 
 FileRanges::Around FileRanges::around(FileId file, std::int64_t offset) const noexcept {
+  NodeId n = tree(file).root;
+  if (n == kNoNode) return {};
+  while (!nodes_[n].leaf) n = nodes_[n].ids[child_for(nodes_[n], offset)];
+  const Node& leaf = nodes_[n];
+  const int pos = static_cast<int>(std::upper_bound(leaf.keys, leaf.keys + leaf.count, offset) - leaf.keys);
   Around found;
-  for (BlockId t = root(file); t != kNoBlock;) {
-    if (nodes_[t].offset <= offset) {
-      found.floor = t;
-      t = nodes_[t].right;
-    } else {
-      found.above = t;
-      t = nodes_[t].left;
-    }
-  }
+  // A leaf's least key may be above `offset` (its lower entries erased): the floor is then the
+  // previous leaf's last entry; likewise the next leaf's first is the one above.
+  if (pos > 0) found.floor = leaf.ids[pos - 1];
+  else if (leaf.prev != kNoNode) found.floor = nodes_[leaf.prev].ids[nodes_[leaf.prev].count - 1];
+  if (pos < leaf.count) found.above = leaf.ids[pos];
+  else if (leaf.next != kNoNode) found.above = nodes_[leaf.next].ids[0];
   return found;
 }
 
 BlockId FileRanges::ceiling(FileId file, std::int64_t offset) const noexcept {
-  BlockId found = kNoBlock;
-  for (BlockId t = root(file); t != kNoBlock;) {
-    if (nodes_[t].offset >= offset) {
-      found = t;
-      t = nodes_[t].left;
-    } else {
-      t = nodes_[t].right;
-    }
-  }
-  return found;
+  const Around at = around(file, offset);
+  return at.floor != kNoBlock && offsets_[at.floor] == offset ? at.floor : at.above;
 }
 
-BlockId FileRanges::next(FileId file, BlockId block) const noexcept {
-  const std::int64_t offset = nodes_[block].offset;
-  // No parent links: the successor is the last node left of on the way down, or the leftmost
-  // node of the right subtree.
-  if (BlockId t = nodes_[block].right; t != kNoBlock) {
-    while (nodes_[t].left != kNoBlock) t = nodes_[t].left;
-    return t;
+BlockId FileRanges::first(FileId file) const noexcept {
+  const NodeId n = edge_leaf(file, false);
+  return n == kNoNode ? kNoBlock : nodes_[n].ids[0];
+}
+
+BlockId FileRanges::last(FileId file) const noexcept {
+  const NodeId n = edge_leaf(file, true);
+  return n == kNoNode ? kNoBlock : nodes_[n].ids[nodes_[n].count - 1];
+}
+
+FileRanges::NodeId FileRanges::new_node(bool leaf) {
+  NodeId id;
+  if (!free_nodes_.empty()) {
+    id = free_nodes_.back();
+    free_nodes_.pop_back();
+  } else {
+    id = static_cast<NodeId>(nodes_.size());
+    nodes_.emplace_back();
   }
-  BlockId found = kNoBlock;
-  for (BlockId t = root(file); t != block && t != kNoBlock;) {
-    if (offset < nodes_[t].offset) {
-      found = t;
-      t = nodes_[t].left;
-    } else {
-      t = nodes_[t].right;
+  nodes_[id] = Node{};
+  nodes_[id].leaf = leaf;
+  return id;
+}
+
+FileRanges::Split FileRanges::split_node(NodeId n) {
+  const NodeId right = new_node(nodes_[n].leaf);  // may move nodes_: no reference held across it
+  Node& l = nodes_[n];
+  Node& r = nodes_[right];
+  const int keep = l.count / 2;
+  r.count = static_cast<std::uint16_t>(l.count - keep);
+  std::copy(l.keys + keep, l.keys + l.count, r.keys);
+  std::copy(l.ids + keep, l.ids + l.count, r.ids);
+  l.count = static_cast<std::uint16_t>(keep);
+  if (l.leaf) {
+    r.prev = n;
+    r.next = l.next;
+    if (l.next != kNoNode) nodes_[l.next].prev = right;
+    l.next = right;
+  }
+  return {r.keys[0], right};
+}
+
+FileRanges::Split FileRanges::insert_below(NodeId n, int level, std::int64_t key, BlockId block) {
+  int pos = 0;
+  std::uint32_t id = block;
+  if (level == 0) {
+    const Node& leaf = nodes_[n];
+    pos = static_cast<int>(std::lower_bound(leaf.keys, leaf.keys + leaf.count, key) - leaf.keys);
+    PC_ASSERT_MSG(pos == leaf.count || leaf.keys[pos] != key, fmt::format("two blocks at offset {}", key));
+  } else {
+    const int child = child_for(nodes_[n], key);
+    const Split below = insert_below(nodes_[n].ids[child], level - 1, key, block);
+    if (below.node == kNoNode) return {};
+    key = below.key;
+    id = below.node;
+    pos = child + 1;
+  }
+  Split split;
+  if (nodes_[n].count == kFan) {
+    split = split_node(n);
+    if (pos > nodes_[n].count) {
+      pos -= nodes_[n].count;
+      n = split.node;
     }
   }
-  return found;
+  Node& node = nodes_[n];
+  std::copy_backward(node.keys + pos, node.keys + node.count, node.keys + node.count + 1);
+  std::copy_backward(node.ids + pos, node.ids + node.count, node.ids + node.count + 1);
+  node.keys[pos] = key;
+  node.ids[pos] = id;
+  ++node.count;
+  // An entry put first in the right half is that half's least key.
+  if (split.node == n && pos == 0) split.key = key;
+  return split;
+}
+
+void FileRanges::insert(FileId file, BlockId block, std::int64_t offset) {
+  if (block >= offsets_.size()) offsets_.resize(std::max<std::size_t>(2 * offsets_.size(), std::size_t{block} + 1));
+  if (file >= trees_.size()) trees_.resize(std::max<std::size_t>(2 * trees_.size(), std::size_t{file} + 1));
+  offsets_[block] = offset;
+  Tree& t = trees_[file];
+  if (t.root == kNoNode) {
+    t.root = new_node(true);
+    t.height = 1;
+  }
+  const Split split = insert_below(t.root, t.height - 1, offset, block);
+  if (split.node == kNoNode) return;
+  // The root split: a new root above both halves.
+  const NodeId root = new_node(false);
+  Node& r = nodes_[root];
+  r.ids[0] = trees_[file].root;
+  r.ids[1] = split.node;
+  r.keys[1] = split.key;
+  r.count = 2;
+  trees_[file].root = root;
+  ++trees_[file].height;
+}
+
+bool FileRanges::erase_below(NodeId n, int level, std::int64_t key, BlockId block, bool is_root) {
+  int pos = 0;
+  if (level == 0) {
+    const Node& leaf = nodes_[n];
+    pos = static_cast<int>(std::lower_bound(leaf.keys, leaf.keys + leaf.count, key) - leaf.keys);
+    PC_ASSERT_MSG(pos < leaf.count && leaf.ids[pos] == block, fmt::format("block {} is not indexed at offset {}", block, key));
+  } else {
+    pos = child_for(nodes_[n], key);
+    if (!erase_below(nodes_[n].ids[pos], level - 1, key, block, false)) return false;
+  }
+  Node& node = nodes_[n];
+  std::copy(node.keys + pos + 1, node.keys + node.count, node.keys + pos);
+  std::copy(node.ids + pos + 1, node.ids + node.count, node.ids + pos);
+  --node.count;
+  if (node.count > 0 || is_root) return node.count == 0;
+  if (node.leaf) {
+    if (node.prev != kNoNode) nodes_[node.prev].next = node.next;
+    if (node.next != kNoNode) nodes_[node.next].prev = node.prev;
+  }
+  free_nodes_.push_back(n);
+  return true;
+}
+
+void FileRanges::erase(FileId file, BlockId block) {
+  Tree& t = trees_[file];
+  PC_ASSERT_MSG(t.root != kNoNode, fmt::format("file {}: block {} is not indexed", file, block));
+  if (erase_below(t.root, t.height - 1, offsets_[block], block, true)) {
+    free_nodes_.push_back(t.root);
+    t = Tree{};
+    return;
+  }
+  // A root with one child gives way to it.
+  while (t.height > 1 && nodes_[t.root].count == 1) {
+    free_nodes_.push_back(t.root);
+    t.root = nodes_[t.root].ids[0];
+    --t.height;
+  }
 }
 
 std::size_t FileRanges::check(FileId file, std::size_t most) const {
+  const Tree& t = tree(file);
+  if (t.root == kNoNode) return 0;
   std::size_t seen = 0;
-  return check_subtree(root(file), kLowest, std::numeric_limits<std::int64_t>::max(), most, seen);
+  std::vector<NodeId> leaves;
+  const std::size_t entries =
+      check_node(t.root, t.height - 1, std::numeric_limits<std::int64_t>::min(), std::numeric_limits<std::int64_t>::max(), most, seen, leaves);
+  // The leaves' links follow the tree's order.
+  for (std::size_t i = 0; i < leaves.size(); ++i) {
+    PC_ASSERT_MSG(nodes_[leaves[i]].prev == (i == 0 ? kNoNode : leaves[i - 1]), fmt::format("file {}: leaf links out of order", file));
+    PC_ASSERT_MSG(nodes_[leaves[i]].next == (i + 1 == leaves.size() ? kNoNode : leaves[i + 1]), fmt::format("file {}: leaf links out of order", file));
+  }
+  return entries;
 }
 
-std::size_t FileRanges::check_subtree(BlockId t, std::int64_t low, std::int64_t high, std::size_t most, std::size_t& seen) const {
-  if (t == kNoBlock) return 0;
-  PC_ASSERT_MSG(++seen <= most, "a file's offset index holds more nodes than there are blocks (a cycle?)");
-  const Node& n = nodes_[t];
-  PC_ASSERT_MSG(n.offset >= low && n.offset <= high, fmt::format("block {}: offset {} out of order", t, n.offset));
-  PC_ASSERT_MSG(n.left == kNoBlock || above(t, n.left), "offset index out of heap order");
-  PC_ASSERT_MSG(n.right == kNoBlock || above(t, n.right), "offset index out of heap order");
-  const std::size_t left = check_subtree(n.left, low, n.offset - 1, most, seen);
-  return left + 1 + check_subtree(n.right, n.offset + 1, high, most, seen);
+std::size_t FileRanges::check_node(NodeId n, int level, std::int64_t low, std::int64_t high, std::size_t most, std::size_t& seen,
+                                   std::vector<NodeId>& leaves) const {
+  const Node& node = nodes_[n];
+  PC_ASSERT_MSG(node.count > 0 && node.count <= kFan, fmt::format("offset index node {} holds {} entries", n, node.count));
+  PC_ASSERT_MSG(node.leaf == (level == 0), "offset index out of balance");
+  if (node.leaf) {
+    leaves.push_back(n);
+    for (int i = 0; i < node.count; ++i) {
+      PC_ASSERT_MSG(++seen <= most, "a file's offset index holds more entries than there are blocks (a cycle?)");
+      PC_ASSERT_MSG(node.keys[i] >= low && node.keys[i] < high && (i == 0 || node.keys[i - 1] < node.keys[i]),
+                    fmt::format("offset index: offset {} out of order", node.keys[i]));
+      PC_ASSERT_MSG(offsets_[node.ids[i]] == node.keys[i], fmt::format("block {}: offset {} indexed at {}", node.ids[i], offsets_[node.ids[i]], node.keys[i]));
+    }
+    return node.count;
+  }
+  std::size_t entries = 0;
+  for (int i = 0; i < node.count; ++i) {
+    const std::int64_t child_low = i == 0 ? low : node.keys[i];
+    const std::int64_t child_high = i + 1 < node.count ? node.keys[i + 1] : high;
+    PC_ASSERT_MSG(child_low >= low && child_high <= high && child_low < child_high, "offset index: inner keys out of order");
+    entries += check_node(node.ids[i], level - 1, child_low, child_high, most, seen, leaves);
+  }
+  return entries;
 }
 
 }  // namespace pagecache::cache

@@ -3,14 +3,14 @@
 // file finds the blocks it touches (issue 38). The blocks themselves stay in recency order on
 // their lists; this is a second order over the same ids.
 //
-// An intrusive treap per file: a node per BlockId in one side array (a block is a full cache
-// line, so its offset and two links live here, 16 bytes, indexed as the pool is), keyed by
-// offset, heap-ordered by a hash of the id (no stored priority; ids are unique among live
-// blocks). Chosen over a std::map per file (a 48-byte allocation per block, pointer chasing
-// across the heap) and a sorted vector per file (O(n) inserts under random access). A file's
-// blocks hold disjoint ranges of non-zero size, so their offsets are distinct: the index
-// asserts it. Queries cost O(log blocks of the file), expected; sequential files stay a few
-// blocks. tests/cache/file_ranges_test.cpp checks it against std::map.
+// A B+ tree per file, keyed by offset, of up to 32 entries per node (an offset and a BlockId
+// each), its leaves linked both ways; each block's offset also in a side array by BlockId, so
+// that offset() costs one load. Chosen over a treap (16 bytes per block, but some 28 levels,
+// each a cache miss, under 10^6 blocks read at random: most of the time of such a run) and a
+// std::map (a 48-byte allocation per block, as deep). A file's blocks hold disjoint ranges of
+// non-zero size, so their offsets are distinct: the index asserts it. Nodes emptied by erases
+// are freed; nodes left part-full are not merged (the depth only grows with the entries a file
+// has held at once). tests/cache/file_ranges_test.cpp checks it against std::map.
 
 #include "cache/block.hpp"
 
@@ -29,11 +29,11 @@ class FileRanges {
   /// Takes `block` (indexed under `file`) out of the index.
   void erase(FileId file, BlockId block);
   /// Where `block` starts in its file (as last inserted).
-  std::int64_t offset(BlockId block) const noexcept { return nodes_[block].offset; }
+  std::int64_t offset(BlockId block) const noexcept { return offsets_[block]; }
 
   /// The block of `file` with the greatest offset <= `offset` (the one that holds `offset`, if
   /// any does), or kNoBlock.
-  BlockId floor(FileId file, std::int64_t offset) const noexcept;
+  BlockId floor(FileId file, std::int64_t offset) const noexcept { return around(file, offset).floor; }
   /// floor(file, offset) and the block after it (the least offset > `offset`), in one descent.
   struct Around {
     BlockId floor = kNoBlock;
@@ -43,61 +43,71 @@ class FileRanges {
   /// The block of `file` with the least offset >= `offset`, or kNoBlock.
   BlockId ceiling(FileId file, std::int64_t offset) const noexcept;
   /// The block of `file` with the least offset, or kNoBlock.
-  BlockId first(FileId file) const noexcept { return ceiling(file, kLowest); }
+  BlockId first(FileId file) const noexcept;
   /// The block of `file` with the greatest offset, or kNoBlock.
-  BlockId last(FileId file) const noexcept { return floor(file, std::numeric_limits<std::int64_t>::max()); }
+  BlockId last(FileId file) const noexcept;
   /// The block after `block` by offset in its file, or kNoBlock.
-  BlockId next(FileId file, BlockId block) const noexcept;
-  bool empty(FileId file) const noexcept { return root(file) == kNoBlock; }
+  BlockId next(FileId file, BlockId block) const noexcept { return around(file, offsets_[block]).above; }
+  bool empty(FileId file) const noexcept { return tree(file).root == kNoNode; }
 
   /// Calls `visit(block)` for every block of `file`, by offset (invariant checks, tests).
   template <class Visit>
   void for_each(FileId file, Visit&& visit) const {
-    walk(root(file), visit);
+    for (NodeId n = edge_leaf(file, false); n != kNoNode; n = nodes_[n].next) {
+      for (int i = 0; i < nodes_[n].count; ++i) visit(static_cast<BlockId>(nodes_[n].ids[i]));
+    }
   }
-  /// Throws InvariantError unless the file's tree is ordered by offset and by priority and
-  /// holds at most `most` nodes (more is a cycle); returns how many it holds.
+  /// Throws InvariantError unless the file's tree is ordered, balanced and linked, its
+  /// entries' offsets are the side array's, and it holds at most `most` entries (more is a
+  /// cycle); returns how many it holds.
   std::size_t check(FileId file, std::size_t most) const;
 
  private:
+  using NodeId = std::uint32_t;
+  static constexpr NodeId kNoNode = std::numeric_limits<NodeId>::max();
+  static constexpr int kFan = 32;
   struct Node {
-    std::int64_t offset = 0;
-    BlockId left = kNoBlock;
-    BlockId right = kNoBlock;
+    // Leaf: its blocks' offsets, ascending, and their ids. Inner: keys[i] (i >= 1) is the least
+    // offset child i may hold, every offset of child i - 1 below it; keys[0] is unused.
+    std::int64_t keys[kFan];
+    std::uint32_t ids[kFan];
+    NodeId prev = kNoNode;  // leaves: the file's leaves in order
+    NodeId next = kNoNode;
+    std::uint16_t count = 0;
+    bool leaf = true;
   };
-  static constexpr std::int64_t kLowest = std::numeric_limits<std::int64_t>::min();
+  struct Tree {
+    NodeId root = kNoNode;
+    int height = 0;  // 1: the root is a leaf
+  };
+  // A node split off by an insert, for its parent to take: its least key and its id.
+  struct Split {
+    std::int64_t key = 0;
+    NodeId node = kNoNode;
+  };
 
-  /// The heap order: a well-mixed hash of the id, ties (never for distinct ids) by id.
-  static std::uint32_t priority(BlockId id) noexcept {
-    std::uint32_t h = id * 0x9E3779B1u;  // murmur3's finaliser after a multiplicative spread
-    h ^= h >> 16;
-    h *= 0x85EBCA6Bu;
-    h ^= h >> 13;
-    h *= 0xC2B2AE35u;
-    return h ^ (h >> 16);
+  const Tree& tree(FileId file) const noexcept {
+    static const Tree none;
+    return file < trees_.size() ? trees_[file] : none;
   }
-  static bool above(BlockId a, BlockId b) noexcept {
-    const std::uint32_t pa = priority(a);
-    const std::uint32_t pb = priority(b);
-    return pa != pb ? pa > pb : a > b;
-  }
-  BlockId root(FileId file) const noexcept { return file < roots_.size() ? roots_[file] : kNoBlock; }
-  /// Splits the tree at `t` into offsets < `offset` (into `less`) and >= it (into `rest`).
-  void split(BlockId t, std::int64_t offset, BlockId& less, BlockId& rest) noexcept;
-  /// Joins two trees, every offset of `a` below every offset of `b`.
-  BlockId merge(BlockId a, BlockId b) noexcept;
-  template <class Visit>
-  void walk(BlockId t, Visit& visit) const {
-    while (t != kNoBlock) {  // right children iteratively: recursion only as deep as left links
-      walk(nodes_[t].left, visit);
-      visit(t);
-      t = nodes_[t].right;
-    }
-  }
-  std::size_t check_subtree(BlockId t, std::int64_t low, std::int64_t high, std::size_t most, std::size_t& seen) const;
+  /// The child of inner node `n` whose range holds `key`.
+  int child_for(const Node& n, std::int64_t key) const noexcept;
+  /// The leftmost (or rightmost) leaf of the file's tree, or kNoNode.
+  NodeId edge_leaf(FileId file, bool rightmost) const noexcept;
+  NodeId new_node(bool leaf);
+  /// Inserts under node `n`, `level` levels above the leaves; returns the node split off, if any.
+  Split insert_below(NodeId n, int level, std::int64_t key, BlockId block);
+  /// Moves the upper half of full node `n` into a new node, returned with its least key.
+  Split split_node(NodeId n);
+  /// Erases `key` under node `n`; returns whether `n` is now empty (and was freed, unless root).
+  bool erase_below(NodeId n, int level, std::int64_t key, BlockId block, bool is_root);
+  std::size_t check_node(NodeId n, int level, std::int64_t low, std::int64_t high, std::size_t most, std::size_t& seen,
+                         std::vector<NodeId>& leaves) const;
 
-  std::vector<Node> nodes_;    // by BlockId; grown to the highest id inserted
-  std::vector<BlockId> roots_;  // by FileId
+  std::vector<Node> nodes_;
+  std::vector<NodeId> free_nodes_;
+  std::vector<std::int64_t> offsets_;  // by BlockId
+  std::vector<Tree> trees_;            // by FileId
 };
 
 }  // namespace pagecache::cache

@@ -118,9 +118,13 @@ std::int64_t PageCache::read_range(FileId file, std::int64_t offset, std::int64_
   const std::int64_t end = offset + bytes;
   // The cached parts, by offset, each block cut to the part read; then the holes between them.
   std::int64_t at = offset;
-  for (BlockId id = block_at_or_after(file, offset); id != kNoBlock && ranges_.offset(id) < end;) {
+  const BlockId first = block_at_or_after(file, offset);
+  const bool none_cached = first == kNoBlock || ranges_.offset(first) >= end;
+  std::int64_t held_to = offset;  // [offset, held_to) cached without a hole
+  for (BlockId id = first; !none_cached && id != kNoBlock && ranges_.offset(id) < end;) {
     id = cut_before(id, std::max(at, ranges_.offset(id)));
     if (ranges_.offset(id) + blocks_[id].size > end) split_front(id, end - ranges_.offset(id));
+    if (ranges_.offset(id) == held_to) held_to += blocks_[id].size;
     at = ranges_.offset(id) + blocks_[id].size;
     const BlockId next = at < end ? ranges_.next(file, id) : kNoBlock;
     Block& block = blocks_[id];
@@ -136,9 +140,10 @@ std::int64_t PageCache::read_range(FileId file, std::int64_t offset, std::int64_
     id = next;
   }
   std::int64_t missing = 0;
-  at = offset;
-  while (at < end) {
-    const BlockId id = block_at_or_after(file, at);
+  at = held_to;
+  for (bool again = false; at < end; again = true) {
+    // Nothing cached in the range: the index is as the first look-up found it.
+    const BlockId id = !again && none_cached ? first : block_at_or_after(file, at);  // none_cached: at == offset
     const std::int64_t hole_end = id == kNoBlock ? end : std::min(end, ranges_.offset(id));
     if (hole_end > at) {
       if (hole_end - at > free()) throw SimulationError(fmt::format("cannot cache {} bytes: only {} free", hole_end - at, free()));

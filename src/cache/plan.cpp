@@ -55,6 +55,13 @@ ReadPlan plan_read(const PageCache& cache, const ReadRequest& request) noexcept 
                   .spared = spared_by_read(cache, request.file)};
 }
 
+ReadPlan replan_room(const PageCache& cache, const ReadPlan& plan, const ReadRequest& request) noexcept {
+  ReadPlan again = plan;
+  again.room = plan_room(cache, plan.required);
+  again.spared = spared_by_read(cache, request.file);
+  return again;
+}
+
 WriteStart plan_write_start(const PageCache& cache, std::int64_t chunk) noexcept {
   const std::int64_t remain_dirty = room_under_dirty_threshold(cache);
   if (remain_dirty <= 0) return WriteStart{};

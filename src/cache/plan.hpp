@@ -79,6 +79,9 @@ struct ReadPlan {
 /// within the chunk) comes from the device and needs room beside the application's copy.
 /// Evicting may take the file's own data, and then more of the chunk is not cached: plan again.
 ReadPlan plan_read(const PageCache& cache, const ReadRequest& request) noexcept;
+/// `plan` for `request` with its room planned again: the same parts from the device and the
+/// cache (the caller knows they are), the room as memory is now.
+ReadPlan replan_room(const PageCache& cache, const ReadPlan& plan, const ReadRequest& request) noexcept;
 
 // --- Algorithm 3: a chunk write in writeback mode, not throttled ------------------------------
 

@@ -1,4 +1,4 @@
-// FileRanges, the per-file index of blocks by offset: hand cases, then random inserts, erases,
+// FileRanges, the per-file index of blocks by offset (a B+ tree per file): hand cases, then random inserts, erases,
 // splits (a block cut in two: the tail indexed at head offset + head size) and look-ups over
 // several files and seeds, checked against a std::map per file; ids recycled as the pool does.
 #include "cache/file_ranges.hpp"
@@ -161,6 +161,9 @@ TEST_CASE("Random inserts, erases, splits and look-ups agree with std::map") {
       default: {  // look-ups
         REQUIRE(index.floor(file, at) == floor_of(ref, at));
         REQUIRE(index.ceiling(file, at) == ceiling_of(ref, at));
+        const auto above = ref.upper_bound(at);
+        REQUIRE(index.around(file, at).above == (above == ref.end() ? kNoBlock : above->second.id));
+        REQUIRE(index.around(file, at).floor == floor_of(ref, at));
         if (!ref.empty()) {
           const auto it = pick(ref);
           REQUIRE(index.offset(it->second.id) == it->first);

@@ -143,9 +143,9 @@ Task<void> IoController::make_group_room(GroupId group, std::int64_t bytes, File
   }
 }
 
-Task<std::int64_t> IoController::room_for_chunk(ReadRequest request, GroupId group, const char* verb) {
-  const FileId file = request.file;
-  const std::int64_t buffer = request.anonymous;
+Task<std::int64_t> IoController::room_for_chunk(FileId file, std::int64_t file_size, std::int64_t bytes, std::int64_t buffer, std::int64_t offset,
+                                                GroupId group, const char* verb) {
+  const ReadRequest request{.file = file, .file_size = file_size, .bytes = bytes, .anonymous = buffer, .offset = offset};
   const bool in_group = group != kRootGroup;
   if (in_group) cache_->charge_file(file, group);
   // The group is charged with the buffer, and with the new cache data if the file is its own.
@@ -321,14 +321,16 @@ Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_siz
     // application's buffer is fresh memory: the reader faults in and zeroes each page it
     // copies into; from the disk that overlaps the device's transfer (readahead), from the
     // cache it adds to the copy.
-    // A file another task reads by range is held by range: this chunk is its part of it.
-    const ReadRequest request{.file = file, .file_size = size, .bytes = chunk, .anonymous = chunk,
-                              .offset = cache_->ranged(file) ? offset : ReadRequest::kWholeFile};
-    std::int64_t disk_read = group == kRootGroup ? evict_for_chunk(*cache_, request) : -1;
-    if (disk_read < 0) disk_read = co_await room_for_chunk(request, group, "reading");
+    // A file another task reads by range is held by range: this chunk is its part of it. (The
+    // request is made at each use: one kept across the wait would enlarge every reader's frame.)
+    const std::int64_t at = cache_->ranged(file) ? offset : ReadRequest::kWholeFile;
+    std::int64_t disk_read =
+        group == kRootGroup ? evict_for_chunk(*cache_, {.file = file, .file_size = size, .bytes = chunk, .anonymous = chunk, .offset = at}) : -1;
+    if (disk_read < 0) disk_read = co_await room_for_chunk(file, size, chunk, chunk, at, group, "reading");
     const std::int64_t cache_read = chunk - disk_read;
     const std::int64_t cold = cold_taken();
-    cursor = start_chunk(*cache_, request, disk_read, cursor, group, sim_->now());
+    cursor = start_chunk(*cache_, {.file = file, .file_size = size, .bytes = chunk, .anonymous = chunk, .offset = at}, disk_read, cursor, group,
+                         sim_->now());
     // Taken back by the host: new cache pages (the device's transfer fills them) and the
     // buffer (the reader's first touch), their faults one after the other (measured: a cold
     // read goes at about 1 / (2 / cold_fault) where both are cold), per byte of the chunk.

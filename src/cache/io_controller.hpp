@@ -163,7 +163,9 @@ class IoController {
   /// the part of the chunk to read from the device. A coroutine only for these: most chunk
   /// reads need no more than evict_for_chunk, and a chunk read is the most frequent operation.
   /// Errors name `verb` (e.g. "reading") and the file.
-  Task<std::int64_t> room_for_chunk(ReadRequest request, GroupId group, const char* verb);
+  /// `offset`: as ReadRequest's.
+  Task<std::int64_t> room_for_chunk(FileId file, std::int64_t file_size, std::int64_t bytes, std::int64_t buffer, std::int64_t offset, GroupId group,
+                                    const char* verb);
   /// Waits until memory held by transfers in flight may have been released.
   Task<void> wait_for_progress();
 

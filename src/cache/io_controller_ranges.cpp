@@ -35,7 +35,7 @@ Task<IoResult> IoController::read_ranges_of(FileId file, std::function<bool(Byte
     const std::int64_t end = std::min(size, (r.offset + r.length + kPageSize - 1) / kPageSize * kPageSize);
     const ReadRequest request{.file = file, .file_size = size, .bytes = end - first, .anonymous = 0, .offset = first};
     std::int64_t disk_read = group == kRootGroup ? evict_for_chunk(*cache_, request) : -1;
-    if (disk_read < 0) disk_read = co_await room_for_chunk(request, group, "reading");
+    if (disk_read < 0) disk_read = co_await room_for_chunk(file, size, request.bytes, 0, first, group, "reading");
     const std::int64_t cold = cold_taken();
     start_chunk(*cache_, request, disk_read, {}, group, sim_->now());
     // One device request for the pages missing (into new cache pages), then the copy of the

@@ -118,7 +118,14 @@ class Host {
   /// ConfigError at the call for a remote file or a buffer <= 0; SimulationError from the
   /// task for a request not within the file or when the read cannot proceed.
   Task<IoResult> read_ranges(FileRef file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupRef group = {});
-  /// Writes the file's whole size in chunks of `chunk_size` bytes. `direct`: O_DIRECT (on an
+  /// Writes parts of a local file: the requests `next` yields, one after the other. Each writes
+  /// the pages it touches: where they are not cached, new dirty data (as write_file's chunks,
+  /// under the same dirty throttling); where they are, in place (clean pages become dirty,
+  /// dirty pages stay so). An append is a write past what was written before: the file's size
+  /// is what it ends at. Errors as read_ranges'.
+  Task<IoResult> write_ranges(FileRef file, std::function<bool(ByteRange&)> next, GroupRef group = {});
+  /// Writes the file's whole size in chunks of `chunk_size` bytes. A file held by range (see
+  /// read_ranges) is written in place from its start. `direct`: O_DIRECT (on an
   /// NFS mount the same as without: there is no client write cache). Errors as read_file's.
   Task<IoResult> write_file(FileRef file, std::int64_t chunk_size, bool direct = false, GroupRef group = {});
   /// fsync(2): returns when every dirty byte of the file is on its disk.

@@ -120,6 +120,10 @@ Task<IoResult> Host::read_ranges(FileRef file, std::function<bool(ByteRange&)> n
   return impl_->io.read_ranges(impl_->id(file), std::move(next), buffer, impl_->group(group));
 }
 
+Task<IoResult> Host::write_ranges(FileRef file, std::function<bool(ByteRange&)> next, GroupRef group) {
+  return impl_->io.write_ranges(impl_->id(file), std::move(next), impl_->group(group));
+}
+
 Task<IoResult> Host::write_file(FileRef file, std::int64_t chunk_size, bool direct, GroupRef group) {
   const cache::FileId id = impl_->id(file);
   return impl_->io.write_file(id, impl_->files[id].size, chunk_size, direct, impl_->group(group));

@@ -9,6 +9,23 @@
 
 namespace pagecache::cache {
 
+namespace {
+
+// The pages a request touches (the file's last page ends with the file).
+ByteRange pages_of(const ByteRange& r, std::int64_t size) noexcept {
+  const std::int64_t first = r.offset / kPageSize * kPageSize;
+  return {.offset = first, .length = std::min(size, (r.offset + r.length + kPageSize - 1) / kPageSize * kPageSize) - first};
+}
+
+void check_within(const FileInfo& info, const ByteRange& r, const char* verb) {
+  if (r.offset < 0 || r.length <= 0 || r.offset > info.size - r.length) {
+    throw SimulationError(fmt::format("'{}' ({} bytes): a {} of {} bytes at offset {} is not within the file", info.name, info.size, verb, r.length,
+                                      r.offset));
+  }
+}
+
+}  // namespace
+
 Task<IoResult> IoController::read_ranges(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group) {
   const FileInfo& info = (*files_)[file];
   if (buffer <= 0) throw ConfigError(fmt::format("'{}': a read's buffer must be > 0 bytes, got {}", info.name, buffer));
@@ -25,17 +42,12 @@ Task<IoResult> IoController::read_ranges_of(FileId file, std::function<bool(Byte
   cache_->track_ranges(file);
   IoResult result{.start = start};
   for (ByteRange r; next(r);) {
-    if (r.offset < 0 || r.length <= 0 || r.offset > size - r.length) {
-      throw SimulationError(fmt::format("'{}' ({} bytes): a read of {} bytes at offset {} is not within the file", info.name, size, r.length,
-                                        r.offset));
-    }
+    check_within(info, r, "read");
     ++chunks_;
-    // The pages the request touches (the file's last page ends with the file).
-    const std::int64_t first = r.offset / kPageSize * kPageSize;
-    const std::int64_t end = std::min(size, (r.offset + r.length + kPageSize - 1) / kPageSize * kPageSize);
-    const ReadRequest request{.file = file, .file_size = size, .bytes = end - first, .anonymous = 0, .offset = first};
+    const ByteRange pages = pages_of(r, size);
+    const ReadRequest request{.file = file, .file_size = size, .bytes = pages.length, .anonymous = 0, .offset = pages.offset};
     std::int64_t disk_read = group == kRootGroup ? evict_for_chunk(*cache_, request) : -1;
-    if (disk_read < 0) disk_read = co_await room_for_chunk(file, size, request.bytes, 0, first, group, "reading");
+    if (disk_read < 0) disk_read = co_await room_for_chunk(file, size, request.bytes, 0, request.offset, group, "reading");
     const std::int64_t cold = cold_taken();
     start_chunk(*cache_, request, disk_read, {}, group, sim_->now());
     // One device request for the pages missing (into new cache pages), then the copy of the
@@ -51,6 +63,36 @@ Task<IoResult> IoController::read_ranges_of(FileId file, std::function<bool(Byte
     result.disk_bytes += disk_read;
   }
   cache_->release_anonymous(buffer, group);
+  result.end = sim_->now();
+  co_return result;
+}
+
+
+Task<IoResult> IoController::write_ranges(FileId file, std::function<bool(ByteRange&)> next, GroupId group) {
+  const FileInfo& info = (*files_)[file];
+  if (info.is_remote()) throw ConfigError(fmt::format("'{}': writes of parts of a file are of local files only", info.name));
+  return write_ranges_of(file, std::move(next), group);
+}
+
+Task<IoResult> IoController::write_ranges_of(FileId file, std::function<bool(ByteRange&)> next, GroupId group) {
+  const double start = sim_->now();
+  const FileInfo& info = (*files_)[file];
+  cache_->charge_file(file, group);
+  cache_->track_ranges(file);
+  cache_->set_being_written(file, true);
+  IoResult result{.start = start};
+  for (ByteRange r; next(r);) {
+    check_within(info, r, "write");
+    ++chunks_;
+    // A write of part of a page copies and dirties the page (the kernel would read it first
+    // if it is not cached: not modelled).
+    const ByteRange pages = pages_of(r, info.size);
+    const IoTally t = co_await write_chunk(file, pages.length, pages.offset);
+    result.bytes += r.length;
+    result.cache_bytes += t.cache_bytes;
+    result.disk_bytes += t.disk_bytes;
+  }
+  cache_->set_being_written(file, false);
   result.end = sim_->now();
   co_return result;
 }

@@ -198,6 +198,16 @@ class PageCache {
   /// the file that ends up contiguous on one list stays one block. Returns the bytes read
   /// from the device.
   std::int64_t read_range(FileId file, std::int64_t offset, std::int64_t bytes, double now);
+  /// A write of [offset, offset + bytes) of a ranged file, its copy done: the holes become new
+  /// dirty data (free memory), cached clean data and data being written back become dirty
+  /// again (a new entry time `now`; the write in flight ends for the rest of its data only),
+  /// and dirty data stays dirty with its entry time (the kernel keeps an inode's dirtied_when).
+  /// What becomes dirty goes to the MRU end of the inactive list, in offset order. Returns the
+  /// bytes that were not cached.
+  std::int64_t write_range(FileId file, std::int64_t offset, std::int64_t bytes, double now);
+  /// commit_dirty for a ranged file: the reservation of `bytes` ends, and they are written at
+  /// `offset` (write_range).
+  void commit_dirty_at(FileId file, std::int64_t offset, std::int64_t bytes, double now);
   /// Each ranged file's blocks by offset.
   const FileRanges& ranges() const noexcept { return ranges_; }
   const Block& block(BlockId id) const noexcept { return blocks_[id]; }
@@ -316,9 +326,10 @@ class PageCache {
   /// Moves a ranged block to the MRU end of `to`, merged into the tail there if that is clean
   /// data of the same file ending where it starts (in the same state and referenced mark).
   void move_ranged(BlockId block, ListKind to);
-  /// New clean data of a ranged file, [offset, offset + bytes), at the MRU end of the
-  /// inactive list.
-  void add_ranged(FileId file, std::int64_t offset, std::int64_t bytes, double now, bool referenced);
+  /// New data of a ranged file, [offset, offset + bytes), at the MRU end of the inactive list:
+  /// clean (marked `referenced`) or dirty (entered at `now`). Merged into the tail there if
+  /// that is the file's data ending at `offset` in the same state, mark and entry time.
+  void add_ranged(FileId file, std::int64_t offset, std::int64_t bytes, BlockState state, double now, bool referenced);
   /// Puts one dirty block in writeback under a new token.
   Flushed take_for_writeback(BlockId block);
   /// A dirty block goes into writeback as part of the write `token` (held, while it is

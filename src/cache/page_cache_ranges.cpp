@@ -95,22 +95,28 @@ void PageCache::move_ranged(BlockId id, ListKind to) {
   append(id, to);
 }
 
-void PageCache::add_ranged(FileId file, std::int64_t offset, std::int64_t bytes, double now, bool referenced) {
+void PageCache::add_ranged(FileId file, std::int64_t offset, std::int64_t bytes, BlockState state, double now, bool referenced) {
   LruList& list = list_of(ListKind::Inactive);
   const BlockId tail_id = list.back();
   if (tail_id != kNoBlock) {
     const Block& tail = blocks_[tail_id];
-    if (tail.file == file && tail.ranged && tail.state == BlockState::Clean && tail.referenced == referenced &&
-        ranges_.offset(tail_id) + tail.size == offset) {
+    if (tail.file == file && tail.ranged && tail.state == state && tail.referenced == referenced &&
+        (state == BlockState::Clean || tail.entry_time == now) && ranges_.offset(tail_id) + tail.size == offset) {
       list.resize(tail_id, tail.size + bytes);
-      files_[file].inactive_bytes += bytes;
+      FileEntry& entry = files_[file];
+      entry.inactive_bytes += bytes;
       charge(file, bytes);
+      if (state == BlockState::Dirty) {
+        entry.dirty_bytes += bytes;
+        charge_dirty(file, bytes);
+      }
       return;
     }
   }
-  const BlockId id = new_ranged_block(file, offset, bytes, BlockState::Clean, now);
+  const BlockId id = new_ranged_block(file, offset, bytes, state, now);
   blocks_[id].referenced = referenced;
   append(id, ListKind::Inactive);
+  if (state == BlockState::Dirty) dirty_by_age_.push_back(blocks_, id);  // time only goes forward: the newest
 }
 
 std::int64_t PageCache::read_range(FileId file, std::int64_t offset, std::int64_t bytes, double now) {
@@ -147,7 +153,7 @@ std::int64_t PageCache::read_range(FileId file, std::int64_t offset, std::int64_
     const std::int64_t hole_end = id == kNoBlock ? end : std::min(end, ranges_.offset(id));
     if (hole_end > at) {
       if (hole_end - at > free()) throw SimulationError(fmt::format("cannot cache {} bytes: only {} free", hole_end - at, free()));
-      add_ranged(file, at, hole_end - at, now, first_touch_);
+      add_ranged(file, at, hole_end - at, BlockState::Clean, now, first_touch_);
       missing += hole_end - at;
     }
     at = id == kNoBlock ? end : ranges_.offset(id) + blocks_[id].size;
@@ -156,6 +162,43 @@ std::int64_t PageCache::read_range(FileId file, std::int64_t offset, std::int64_
   balance();  // after every read, under every policy
   settle();
   return missing;
+}
+
+std::int64_t PageCache::write_range(FileId file, std::int64_t offset, std::int64_t bytes, double now) {
+  PC_ASSERT(ranged(file) && offset >= 0 && bytes >= 0);
+  const std::int64_t end = offset + bytes;
+  std::int64_t missing = 0;
+  for (std::int64_t at = offset; at < end;) {
+    BlockId id = block_at_or_after(file, at);
+    const std::int64_t hole_end = id == kNoBlock ? end : std::min(end, ranges_.offset(id));
+    if (hole_end > at) {
+      if (hole_end - at > free()) throw SimulationError(fmt::format("cannot cache {} bytes: only {} free", hole_end - at, free()));
+      add_ranged(file, at, hole_end - at, BlockState::Dirty, now, false);
+      missing += hole_end - at;
+      at = hole_end;
+      continue;
+    }
+    // A cached part: cut to what the write covers.
+    id = cut_before(id, at);
+    if (ranges_.offset(id) + blocks_[id].size > end) split_front(id, end - ranges_.offset(id));
+    const std::int64_t size = blocks_[id].size;
+    if (blocks_[id].state != BlockState::Dirty) {
+      // Its pages are written anew: the same memory, now dirty data entered now.
+      destroy(id);
+      add_ranged(file, at, size, BlockState::Dirty, now, false);
+    }
+    at += size;
+  }
+  peak_dirty_ = std::max(peak_dirty_, dirty());
+  settle();
+  return missing;
+}
+
+void PageCache::commit_dirty_at(FileId file, std::int64_t offset, std::int64_t bytes, double now) {
+  PC_ASSERT(bytes >= 0 && bytes <= reserved_);
+  reserved_ -= bytes;
+  write_range(file, offset, bytes, now);
+  if (progress_hook_) progress_hook_();
 }
 
 void PageCache::check_ranges(std::size_t f, std::size_t most) const {

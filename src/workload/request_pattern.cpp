@@ -67,15 +67,15 @@ RequestStream::RequestStream(RequestPattern pattern) : pattern_(std::move(patter
       break;
   }
   half_bits_ = permutation_half_bits(static_cast<std::uint64_t>(std::max<std::int64_t>(slots_, 1)));
-  start_epoch();
+  start_epoch(0);
 }
 
-void RequestStream::start_epoch() {
+void RequestStream::start_epoch(std::int64_t epoch) {
   index_ = 0;
   range_ = 0;
   within_ = 0;
   // Each epoch its own order: keys and draws from the seed and the epoch alone.
-  key_ = mix(pattern_.seed ^ mix(static_cast<std::uint64_t>(epoch_) + 0x5851F42D4C957F2Dull));
+  key_ = mix(pattern_.seed ^ mix(static_cast<std::uint64_t>(epoch) + 0x5851F42D4C957F2Dull));
   random_ = key_;
 }
 
@@ -110,11 +110,7 @@ ByteRange RequestStream::request(std::int64_t i) {
 }
 
 bool RequestStream::next(ByteRange& out) {
-  if (per_epoch_ == 0) return false;
-  if (index_ == per_epoch_) {
-    if (++epoch_ >= pattern_.repeat) return false;
-    start_epoch();
-  }
+  if (index_ == per_epoch_) return false;
   out = request(index_++);
   return true;
 }

@@ -29,34 +29,31 @@ struct RequestPattern {
   /// Random: draws with replacement (a slot may come twice in an epoch), else each at most once.
   bool replacement = false;
   std::uint64_t seed = 0;
-  /// Epochs: the pattern again, each random epoch in a new order.
-  std::int64_t repeat = 1;
   /// Ranges: each read in requests of `request` bytes (0: as one request), in this order.
   std::vector<ByteRange> ranges = {};
 };
 
-/// The requests of `pattern`, in order. The pattern must be valid (the loader checks it).
+/// The requests of `pattern`, epoch by epoch (a pass over it; random epochs each in an order
+/// of their own). The pattern must be valid (the loader checks it).
 class RequestStream {
  public:
   explicit RequestStream(RequestPattern pattern);
-  /// The next request, or false when every epoch is done.
+  /// Starts epoch `epoch` (0, 1, ...): next() gives its requests from the first.
+  void start_epoch(std::int64_t epoch);
+  /// The epoch's next request, or false when it is done.
   bool next(ByteRange& out);
   /// Requests per epoch.
   std::int64_t per_epoch() const noexcept { return per_epoch_; }
-  /// Every request of every epoch.
-  std::int64_t total() const noexcept { return per_epoch_ * pattern_.repeat; }
 
  private:
   /// Slot `i` of the region as a request.
   ByteRange slot(std::int64_t i) const noexcept;
   /// Request `i` of the current epoch.
   ByteRange request(std::int64_t i);
-  void start_epoch();
 
   RequestPattern pattern_;
   std::int64_t slots_ = 0;      // Random, Sequential: slots of the region
   std::int64_t per_epoch_ = 0;
-  std::int64_t epoch_ = 0;
   std::int64_t index_ = 0;      // next request of the epoch
   std::uint64_t random_ = 0;    // splitmix64 state (draws with replacement)
   std::uint64_t key_ = 0;       // this epoch's permutation key

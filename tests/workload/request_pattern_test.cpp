@@ -13,11 +13,15 @@ using namespace pagecache::workload;
 
 namespace {
 
-std::vector<ByteRange> all(const RequestPattern& pattern) {
+// Every request of `epochs` epochs.
+std::vector<ByteRange> all(const RequestPattern& pattern, std::int64_t epochs = 1) {
   RequestStream stream(pattern);
   std::vector<ByteRange> out;
-  for (ByteRange r; stream.next(r);) out.push_back(r);
-  CHECK(static_cast<std::int64_t>(out.size()) == stream.total());
+  for (std::int64_t e = 0; e < epochs; ++e) {
+    stream.start_epoch(e);
+    for (ByteRange r; stream.next(r);) out.push_back(r);
+    CHECK(static_cast<std::int64_t>(out.size()) == (e + 1) * stream.per_epoch());
+  }
   return out;
 }
 
@@ -46,7 +50,7 @@ TEST_CASE("the permutation behind random orders is one, for any count and key", 
 }
 
 TEST_CASE("sequential requests cut the region in order, the last one shorter, once per epoch", "[workload][pattern]") {
-  const auto requests = all({.kind = RequestPattern::Kind::Sequential, .offset = 100, .length = 1000, .request = 300, .repeat = 2});
+  const auto requests = all({.kind = RequestPattern::Kind::Sequential, .offset = 100, .length = 1000, .request = 300}, 2);
   REQUIRE(requests.size() == 8);
   CHECK(requests[0] == ByteRange{100, 300});
   CHECK(requests[3] == ByteRange{1000, 100});
@@ -54,8 +58,8 @@ TEST_CASE("sequential requests cut the region in order, the last one shorter, on
 }
 
 TEST_CASE("random requests without replacement: every slot once per epoch, each epoch its own order", "[workload][pattern]") {
-  const RequestPattern pattern{.kind = RequestPattern::Kind::Random, .offset = 0, .length = 1000 * 4096, .request = 4096, .seed = 7, .repeat = 3};
-  const auto requests = all(pattern);
+  const RequestPattern pattern{.kind = RequestPattern::Kind::Random, .offset = 0, .length = 1000 * 4096, .request = 4096, .seed = 7};
+  const auto requests = all(pattern, 3);
   REQUIRE(requests.size() == 3000);
   for (std::size_t epoch = 0; epoch < 3; ++epoch) {
     auto got = offsets(requests, epoch * 1000, (epoch + 1) * 1000);
@@ -68,7 +72,7 @@ TEST_CASE("random requests without replacement: every slot once per epoch, each 
   for (std::int64_t i = 0; i < 1000; ++i) in_place += requests[static_cast<std::size_t>(i)].offset == i * 4096;
   CHECK(in_place < 20);
   // The same seed, the same requests; another seed, others.
-  CHECK(offsets(all(pattern), 0, 3000) == offsets(requests, 0, 3000));
+  CHECK(offsets(all(pattern, 3), 0, 3000) == offsets(requests, 0, 3000));
   RequestPattern other = pattern;
   other.seed = 8;
   CHECK(offsets(all(other), 0, 1000) != offsets(requests, 0, 1000));

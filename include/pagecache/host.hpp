@@ -66,6 +66,13 @@ struct ByteRange {
   friend bool operator==(const ByteRange&, const ByteRange&) = default;
 };
 
+/// posix_fadvise advice for a read of parts of a file (Host::read_ranges).
+enum class ReadAdvice : std::uint8_t {
+  Normal,      ///< the kernel's readahead for sequential requests
+  Sequential,  ///< POSIX_FADV_SEQUENTIAL: readahead windows up to twice as large
+  Random,      ///< POSIX_FADV_RANDOM: no readahead
+};
+
 /// What an I/O phase moved and when.
 struct IoResult {
   double start = 0.0;
@@ -112,12 +119,16 @@ class Host {
   /// Reads parts of a local file: the requests `next` yields (it fills its argument and
   /// returns true, or returns false when there are no more), one after the other, into a
   /// buffer of `buffer` bytes the read holds meanwhile and then releases. Each request reads
-  /// the pages it touches: what is cached of them is a hit, the rest one device request. No
-  /// readahead. From its start the file's page cache is held by byte range: which parts are
+  /// the pages it touches: what is cached of them is a hit, the rest one device request. From
+  /// its start the file's page cache is held by byte range: which parts are
   /// cached counts from then on (whole-file reads and writes only count how much). Throws
   /// ConfigError at the call for a remote file or a buffer <= 0; SimulationError from the
   /// task for a request not within the file or when the read cannot proceed.
-  Task<IoResult> read_ranges(FileRef file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupRef group = {});
+  /// Sequential requests (each starting where the one before ended, the first at 0) are read
+  /// ahead as the kernel does, in windows up to the disk's read_ahead, as `advice` allows;
+  /// readahead pages go to the inactive list untouched.
+  Task<IoResult> read_ranges(FileRef file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupRef group = {},
+                             ReadAdvice advice = ReadAdvice::Normal);
   /// Writes parts of a local file: the requests `next` yields, one after the other. Each writes
   /// the pages it touches: where they are not cached, new dirty data (as write_file's chunks,
   /// under the same dirty throttling); where they are, in place (clean pages become dirty,

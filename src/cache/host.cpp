@@ -116,8 +116,8 @@ Task<IoResult> Host::read_file(FileRef file, std::int64_t chunk_size, bool direc
   return impl_->io.read_file(impl_->id(file), chunk_size, direct, impl_->group(group));
 }
 
-Task<IoResult> Host::read_ranges(FileRef file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupRef group) {
-  return impl_->io.read_ranges(impl_->id(file), std::move(next), buffer, impl_->group(group));
+Task<IoResult> Host::read_ranges(FileRef file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupRef group, ReadAdvice advice) {
+  return impl_->io.read_ranges(impl_->id(file), std::move(next), buffer, impl_->group(group), advice);
 }
 
 Task<IoResult> Host::write_ranges(FileRef file, std::function<bool(ByteRange&)> next, GroupRef group) {

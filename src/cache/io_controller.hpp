@@ -68,11 +68,13 @@ class IoController {
   /// Reads parts of a local file, the requests `next` yields one after the other (ranges
   /// within the file), into one buffer of `buffer` bytes held meanwhile. Each request reads
   /// the pages it touches as a chunk of read_file does (Algorithm 2 on its range: the cached
-  /// parts re-accessed, the holes from the device, one device request each); no readahead.
+  /// parts re-accessed, the holes from the device, one device request each), sequential ones
+  /// read ahead (RangeReadahead).
   /// From its start the file's page cache is held by range (PageCache::track_ranges).
   /// Throws ConfigError at the call for a remote file or a buffer <= 0, SimulationError from
   /// the task for a request outside the file or when the read cannot proceed.
-  Task<IoResult> read_ranges(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group = kRootGroup);
+  Task<IoResult> read_ranges(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group = kRootGroup,
+                             ReadAdvice advice = ReadAdvice::Normal);
   /// Writes parts of a local file, the requests `next` yields one after the other, each the
   /// pages it touches as a chunk of write_file (Algorithm 3, dirty throttling): holes become
   /// new dirty data, cached parts are written in place (PageCache::write_range). The file is
@@ -128,7 +130,7 @@ class IoController {
   /// `server_cursor` as serve_read's.
   Task<void> serve_remote(FileId file, std::int64_t bytes, ReadCursor* server_cursor);
   /// read_ranges once checked.
-  Task<IoResult> read_ranges_of(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group);
+  Task<IoResult> read_ranges_of(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group, ReadAdvice advice);
   Task<IoResult> write_ranges_of(FileId file, std::function<bool(ByteRange&)> next, GroupId group);
   /// A local file's read (read_file).
   Task<IoResult> read_whole_file(FileId file, std::int64_t chunk_size, bool direct, GroupId group);

@@ -2,6 +2,9 @@
 
 #include "cache/chunk_read.hpp"
 #include "cache/io_controller.hpp"
+#include "cache/range_readahead.hpp"
+
+#include "engine/check.hpp"
 
 #include <fmt/format.h>
 
@@ -26,35 +29,43 @@ void check_within(const FileInfo& info, const ByteRange& r, const char* verb) {
 
 }  // namespace
 
-Task<IoResult> IoController::read_ranges(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group) {
+Task<IoResult> IoController::read_ranges(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group, ReadAdvice advice) {
   const FileInfo& info = (*files_)[file];
   if (buffer <= 0) throw ConfigError(fmt::format("'{}': a read's buffer must be > 0 bytes, got {}", info.name, buffer));
   if (info.is_remote()) throw ConfigError(fmt::format("'{}': reads of parts of a file are of local files only", info.name));
-  return read_ranges_of(file, std::move(next), buffer, group);
+  return read_ranges_of(file, std::move(next), buffer, group, advice);
 }
 
-Task<IoResult> IoController::read_ranges_of(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group) {
+Task<IoResult> IoController::read_ranges_of(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group,
+                                            ReadAdvice advice) {
   const double start = sim_->now();
   const FileInfo& info = (*files_)[file];
   const std::int64_t size = info.size;
   const Disk* const disk = info.disk;
   co_await take_buffer(buffer, group, file, "reading");
   cache_->track_ranges(file);
+  RangeReadahead readahead(*disk, advice);
   IoResult result{.start = start};
   for (ByteRange r; next(r);) {
     check_within(info, r, "read");
     ++chunks_;
     const ByteRange pages = pages_of(r, size);
-    const ReadRequest request{.file = file, .file_size = size, .bytes = pages.length, .anonymous = 0, .offset = pages.offset};
+    // Room for what the device reads: the request's holes, and a readahead window's.
+    const ByteRange window = readahead.window(pages, size);
+    const ReadRequest request{.file = file, .file_size = size, .bytes = window.length, .anonymous = 0, .offset = window.offset};
     std::int64_t disk_read = group == kRootGroup ? evict_for_chunk(*cache_, request) : -1;
     if (disk_read < 0) disk_read = co_await room_for_chunk(file, size, request.bytes, 0, request.offset, group, "reading");
     const std::int64_t cold = cold_taken();
-    start_chunk(*cache_, request, disk_read, {}, group, sim_->now());
-    // One device request for the pages missing (into new cache pages), then the copy of the
-    // cached part into the buffer, which is warm after the first request.
-    const std::int64_t copied = std::max<std::int64_t>(r.length - disk_read, 0);
+    // The request's pages are read (the cached ones touched); the rest of the window only fills.
+    cache_->charge_file(file, group);
+    const std::int64_t missed = cache_->read_range(file, pages.offset, pages.length, sim_->now());
+    const std::int64_t ahead = cache_->read_ahead(file, pages.offset + pages.length, window.length - pages.length, sim_->now());
+    PC_ASSERT(missed + ahead == disk_read);
+    // One device request for what was missing (into new cache pages), then the copy of the
+    // cached part of the request into the buffer, which is warm after the first request.
+    const std::int64_t copied = std::max<std::int64_t>(r.length - missed, 0);
     if (disk_read > 0) {
-      const double cold_share = disk_read > 0 ? static_cast<double>(cold_taken() - cold) / static_cast<double>(disk_read) : 0.0;
+      const double cold_share = static_cast<double>(cold_taken() - cold) / static_cast<double>(disk_read);
       co_await disk->read(disk_read, memory_->fresh_copy_rate(cold_share), disk_read);
     }
     if (copied > 0) co_await memory_->read(copied);
@@ -66,7 +77,6 @@ Task<IoResult> IoController::read_ranges_of(FileId file, std::function<bool(Byte
   result.end = sim_->now();
   co_return result;
 }
-
 
 Task<IoResult> IoController::write_ranges(FileId file, std::function<bool(ByteRange&)> next, GroupId group) {
   const FileInfo& info = (*files_)[file];

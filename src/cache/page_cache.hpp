@@ -198,6 +198,11 @@ class PageCache {
   /// the file that ends up contiguous on one list stays one block. Returns the bytes read
   /// from the device.
   std::int64_t read_range(FileId file, std::int64_t offset, std::int64_t bytes, double now);
+  /// Readahead into a ranged file: the holes of [offset, offset + bytes) become new clean data
+  /// at the MRU end of the inactive list, not yet touched by any read (as the kernel adds
+  /// readahead pages: unreferenced, on the inactive list, evicted as any other). Returns the
+  /// bytes added.
+  std::int64_t read_ahead(FileId file, std::int64_t offset, std::int64_t bytes, double now);
   /// A write of [offset, offset + bytes) of a ranged file, its copy done: the holes become new
   /// dirty data (free memory), cached clean data and data being written back become dirty
   /// again (a new entry time `now`; the write in flight ends for the rest of its data only),

@@ -164,6 +164,24 @@ std::int64_t PageCache::read_range(FileId file, std::int64_t offset, std::int64_
   return missing;
 }
 
+std::int64_t PageCache::read_ahead(FileId file, std::int64_t offset, std::int64_t bytes, double now) {
+  PC_ASSERT(ranged(file) && offset >= 0 && bytes >= 0);
+  const std::int64_t end = offset + bytes;
+  std::int64_t added = 0;
+  for (std::int64_t at = offset; at < end;) {
+    const BlockId id = block_at_or_after(file, at);
+    const std::int64_t hole_end = id == kNoBlock ? end : std::min(end, ranges_.offset(id));
+    if (hole_end > at) {
+      if (hole_end - at > free()) throw SimulationError(fmt::format("cannot cache {} bytes: only {} free", hole_end - at, free()));
+      add_ranged(file, at, hole_end - at, BlockState::Clean, now, false);
+      added += hole_end - at;
+    }
+    at = id == kNoBlock ? end : ranges_.offset(id) + blocks_[id].size;
+  }
+  if (added > 0) settle();
+  return added;
+}
+
 std::int64_t PageCache::write_range(FileId file, std::int64_t offset, std::int64_t bytes, double now) {
   PC_ASSERT(ranged(file) && offset >= 0 && bytes >= 0);
   const std::int64_t end = offset + bytes;

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <string_view>
 #include <unordered_map>
 #include <utility>
@@ -82,6 +83,13 @@ class Estimator {
       place_.push_back({h, static_cast<std::size_t>(d)});
       file_index_.emplace(s.files[f].name, f);
     }
+    for (std::size_t f = 0; f < s.file_sets.size(); ++f) {
+      const std::size_t h = host_index_.at(s.file_sets[f].host);
+      const auto& disks = s.hosts[h].disks;
+      const auto d = std::find_if(disks.begin(), disks.end(), [&](const DiskSpec& x) { return x.name == s.file_sets[f].disk; }) - disks.begin();
+      set_place_.push_back({h, static_cast<std::size_t>(d)});
+      set_index_.emplace(s.file_sets[f].name, f);
+    }
   }
 
   RunEstimate run() {
@@ -122,45 +130,77 @@ class Estimator {
   // What one task does on host `h`, added to the hosts' loads and to the events. `latency` gets
   // the seconds it waits for its routes' latencies, `slowest` the link of highest latency it
   // crosses.
-  TaskCost add_task(std::size_t h, const TaskSpec& t, StreamWrites& writes, double& latency, std::size_t& slowest) {
+  TaskCost add_task(std::size_t h, const TaskSpec& t, StreamWrites& writes, double& latency, std::size_t& slowest, TaskAt at) {
     double operations = 0.0;
     double read_bytes = 0.0;
     const auto chunks = [&](double bytes) { return std::ceil(bytes / static_cast<double>(t.chunk_size)); };
+    // A file read or written (or a file set's samples): `bytes` in `ops` chunks, stored at (fh, fd).
+    const auto move = [&](std::size_t fh, std::size_t fd, double bytes, double ops, bool writing) {
+      HostLoad& server = loads_[fh];
+      (writing ? server.disk_write : server.disk_read)[fd] += bytes;
+      (writing ? loads_[h].memory_write : loads_[h].memory_read) += bytes;
+      const bool remote = fh != h;
+      // The server's cache takes what is written to it, unless a local write bypasses it.
+      const bool dirties = writing && s_.hosts[fh].cache.write_mode == WriteMode::Writeback && (remote || !t.direct_io);
+      if (remote) {
+        const Route& route = route_of(h, fh);
+        for (const std::size_t l : route.links) link_bytes_[l] += bytes;
+        if (route.latency > 0.0) {
+          if (latency == 0.0 || s_.links[route.slowest].latency > s_.links[slowest].latency) slowest = route.slowest;
+          latency += ops * route.latency;
+        }
+        e_.transfer_events += ops * (kRemoteEvents + (route.latency > 0.0 ? 1.0 : 0.0));
+        if (dirties) e_.transfer_events += ops * kCachedWriteEvents;
+      } else if (!writing) {
+        e_.transfer_events += ops * kLocalReadEvents;
+      } else {
+        e_.transfer_events += ops * (dirties ? kCachedWriteEvents : kDeviceWriteEvents);
+      }
+      if (dirties) {
+        server.dirtied[fd] += bytes;
+        server.dirtied_ops += ops;
+        writes.bytes[fh] += bytes;
+        writes.ops[fh] += ops;
+      }
+      operations += ops;
+    };
     for (int writing = 0; writing < 2; ++writing) {
       for (const std::string& name : writing ? t.writes : t.reads) {
         const std::size_t f = file_index_.at(name);
         const double bytes = static_cast<double>(s_.files[f].size);
-        const double ops = chunks(bytes);
-        const auto [fh, fd] = place_[f];
-        HostLoad& server = loads_[fh];
-        (writing ? server.disk_write : server.disk_read)[fd] += bytes;
-        (writing ? loads_[h].memory_write : loads_[h].memory_read) += bytes;
         if (!writing) read_bytes += bytes;
-        const bool remote = fh != h;
-        // The server's cache takes what is written to it, unless a local write bypasses it.
-        const bool dirties = writing && s_.hosts[fh].cache.write_mode == WriteMode::Writeback && (remote || !t.direct_io);
-        if (remote) {
-          const Route& route = route_of(h, fh);
-          for (const std::size_t l : route.links) link_bytes_[l] += bytes;
-          if (route.latency > 0.0) {
-            if (latency == 0.0 || s_.links[route.slowest].latency > s_.links[slowest].latency) slowest = route.slowest;
-            latency += ops * route.latency;
-          }
-          e_.transfer_events += ops * (kRemoteEvents + (route.latency > 0.0 ? 1.0 : 0.0));
-          if (dirties) e_.transfer_events += ops * kCachedWriteEvents;
-        } else if (!writing) {
-          e_.transfer_events += ops * kLocalReadEvents;
-        } else {
-          e_.transfer_events += ops * (dirties ? kCachedWriteEvents : kDeviceWriteEvents);
-        }
-        if (dirties) {
-          server.dirtied[fd] += bytes;
-          server.dirtied_ops += ops;
-          writes.bytes[fh] += bytes;
-          writes.ops[fh] += ops;
-        }
-        operations += ops;
+        move(place_[f].first, place_[f].second, bytes, chunks(bytes), writing != 0);
       }
+    }
+    // Its accesses: every sample a read of a whole file of the set, at least an event each.
+    const double before_accesses = operations;
+    double most_access_ops = -1.0;
+    std::optional<std::size_t> busiest;
+    double largest_sample = 0.0;
+    for (std::size_t i = 0; i < t.accesses.size(); ++i) {
+      const AccessSpec& a = t.accesses[i];
+      const std::size_t set = set_index_.at(a.file_set);
+      const FileSetSpec& spec = s_.file_sets[set];
+      const double samples = static_cast<double>(a.count > 0 ? a.count : spec.count) * static_cast<double>(a.repeat);
+      const double size = static_cast<double>(spec.size);
+      const double ops_before = operations;
+      move(set_place_[set].first, set_place_[set].second, samples * size, samples * std::max(1.0, chunks(size)), false);
+      e_.transfer_events += samples;  // each sample's start
+      if (operations - ops_before > most_access_ops) {
+        most_access_ops = operations - ops_before;
+        busiest = i;
+      }
+      largest_sample = std::max(largest_sample, size);
+      e_.timeline_rows += static_cast<double>(a.repeat);
+      if (static_cast<double>(a.repeat) > most_epochs_) {
+        most_epochs_ = static_cast<double>(a.repeat);
+        e_.most_epochs_access = i;
+        e_.most_epochs = at;
+      }
+    }
+    e_.timeline_rows += 3.0;
+    if (operations > most_ops_) {
+      access_of_most_ops_ = operations - before_accesses > before_accesses ? busiest : std::nullopt;
     }
     // One write phase per host whose cache it writes into.
     std::map<std::size_t, bool> written;
@@ -174,7 +214,7 @@ class Estimator {
     if (t.fsync) e_.transfer_events += kFlowEvents * static_cast<double>(t.writes.size());
     e_.transfer_events += static_cast<double>(t.deletes.size());
     loads_[h].cpu += t.compute * static_cast<double>(t.cores);
-    return {operations, std::max(static_cast<double>(t.memory), read_bytes)};
+    return {operations, std::max(static_cast<double>(t.memory), read_bytes + largest_sample)};
   }
 
   void note_operations(double ops, TaskAt at) {
@@ -182,6 +222,7 @@ class Estimator {
     if (ops > most_ops_) {
       most_ops_ = ops;
       e_.most_operations = at;
+      e_.most_operations_access = access_of_most_ops_;
     }
   }
 
@@ -193,7 +234,7 @@ class Estimator {
     double compute = 0.0, latency = 0.0, longest_compute = -1.0, most_memory = 0.0;
     std::size_t slowest = 0, longest_task = 0;
     for (std::size_t t = 0; t < app.tasks.size(); ++t) {
-      const TaskCost cost = add_task(h, app.tasks[t], writes, latency, slowest);
+      const TaskCost cost = add_task(h, app.tasks[t], writes, latency, slowest, {false, a, t});
       note_operations(cost.operations, {false, a, t});
       most_memory = std::max(most_memory, cost.memory);
       compute += app.tasks[t].compute;
@@ -246,7 +287,7 @@ class Estimator {
     for (std::size_t t = 0; t < flow.tasks.size(); ++t) {
       const TaskSpec& task = flow.tasks[t];
       const std::size_t h = task.host.empty() ? next_shared() : host_index_.at(task.host);
-      const TaskCost cost = add_task(h, task, writes, latency, slowest);
+      const TaskCost cost = add_task(h, task, writes, latency, slowest, {true, w, t});
       note_operations(cost.operations, {true, w, t});
       memory[h] += cost.memory;
       placed[h] += 1.0;
@@ -394,9 +435,13 @@ class Estimator {
   std::unordered_map<std::string_view, std::size_t> host_index_;  // a cluster's 10^5 hosts: no scan per name
   std::unordered_map<std::string_view, std::size_t> file_index_;
   std::vector<std::pair<std::size_t, std::size_t>> place_;  // per file: its host and disk
+  std::unordered_map<std::string_view, std::size_t> set_index_;
+  std::vector<std::pair<std::size_t, std::size_t>> set_place_;  // per file set: its host and disk
   std::map<std::pair<std::size_t, std::size_t>, Route> routes_;
   RouteIndex route_index_{s_};
   double most_ops_ = -1.0;
+  std::optional<std::size_t> access_of_most_ops_;  // of the task add_task saw last
+  double most_epochs_ = 0.0;
 };
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstddef>
 #include <limits>
 #include <string_view>
 #include <utility>
@@ -43,6 +44,18 @@ std::pair<const Origin*, const char*> chunk_key(const Origin& task, const Origin
   if (task.has("chunk_size")) return {&task, "chunk_size"};
   if (owner.has("chunk_size")) return {&owner, "chunk_size"};
   return {&task, "chunk_size"};
+}
+
+// A task's access (its [[...access]] table number `i`), where it is written; the task's table
+// for a task not read from TOML.
+Origin access_origin(const Origin& task, std::size_t i) {
+  const toml::array* list = task.table != nullptr ? task.table->get_as<toml::array>("access") : nullptr;
+  if (list == nullptr || i >= list->size() || !list->get(i)->is_table()) return task;
+  return Origin{list->get(i)->as_table(), fmt::format("{}.access[{}]", task.path, i), task.file};
+}
+
+const Origin& task_origin(const Origins& o, const TaskAt& t) {
+  return t.workflow ? o.workflow_tasks[t.owner][t.task] : o.app_task(t.owner, t.task);
 }
 
 // The key that sets the longest stretch, where it is written.
@@ -88,8 +101,16 @@ void check_limits(const Scenario& s, const Origins& o, const ScenarioLimits& lim
   if (static_cast<double>(tasks) > static_cast<double>(limits.max_tasks)) {
     o.root.fail_table(fmt::format("{} tasks, more than the {} a run may have{}", tasks, limits.max_tasks, hint));
   }
-  if (static_cast<double>(s.files.size()) > static_cast<double>(limits.max_files)) {
-    o.root.fail_table(fmt::format("{} files, more than the {} a run may have{}", s.files.size(), limits.max_files, hint));
+  double files = static_cast<double>(s.files.size());
+  for (const FileSetSpec& set : s.file_sets) files += static_cast<double>(set.count);
+  if (files > static_cast<double>(limits.max_files)) {
+    // Most likely a file set's count: blame the largest.
+    const auto set = std::max_element(s.file_sets.begin(), s.file_sets.end(), [](const FileSetSpec& a, const FileSetSpec& b) { return a.count < b.count; });
+    const std::string message = fmt::format("{:.0f} files, more than the {} a run may have{}", files, limits.max_files, hint);
+    if (set != s.file_sets.end() && static_cast<double>(set->count) > files / 2) {
+      o.file_sets[static_cast<std::size_t>(set - s.file_sets.begin())].fail("count", message);
+    }
+    o.root.fail_table(message);
   }
   if (static_cast<double>(s.hosts.size()) > static_cast<double>(limits.max_hosts)) {
     // Most likely a host group's count: blame it.
@@ -101,6 +122,13 @@ void check_limits(const Scenario& s, const Origins& o, const ScenarioLimits& lim
   }
 
   const RunEstimate e = estimate_run(s);
+  // Timeline rows, held in memory until written: an access adds one per epoch.
+  if (e.timeline_rows > 3.0 * static_cast<double>(limits.max_tasks) && e.most_epochs_access) {
+    access_origin(task_origin(o, e.most_epochs), *e.most_epochs_access)
+        .fail("repeat", fmt::format("the timeline would hold {:.3g} rows (three per task, one per access and epoch), more than the {} a run "
+                                    "may have{}",
+                                    e.timeline_rows, 3 * limits.max_tasks, hint));
+  }
   const double simulated = e.longest.seconds;
   if (simulated > limits.max_simulated_time) {
     const auto [origin, key] = stretch_key(e.longest, o);
@@ -115,6 +143,15 @@ void check_limits(const Scenario& s, const Origins& o, const ScenarioLimits& lim
     const double largest = std::max({e.transfer_events, e.throttle_events, e.flusher_events, e.sampler_events});
     if (largest == e.transfer_events) {
       const TaskAt& t = e.most_operations;
+      if (e.most_operations_access) {
+        // Epochs over a file set: their count and repeat make the operations.
+        const Origin access = access_origin(task_origin(o, t), *e.most_operations_access);
+        access.fail(access.has("repeat") || !access.has("count") ? "repeat" : "count",
+                    fmt::format("the run would take about {:.3g} events, {:.3g} of them for {:.3g} chunk operations (each file's bytes over "
+                                "its task's chunk size, for every read and write, and every file an access reads in each epoch), more "
+                                "than the {:.3g} a run may take{}: fewer epochs or files per epoch make fewer",
+                                events, e.transfer_events, e.chunk_operations, limits.max_events, hint));
+      }
       const auto [origin, key] = t.workflow ? chunk_key(o.workflow_tasks[t.owner][t.task], o.workflows[t.owner])
                                             : chunk_key(o.app_task(t.owner, t.task), o.app(t.owner));
       origin->fail(key, fmt::format("the run would take about {:.3g} events, {:.3g} of them for {:.3g} chunk operations (each file's "

@@ -3,6 +3,8 @@
 
 #include "scenario/loader_sections.hpp"
 
+#include "scenario/limits.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -36,7 +38,7 @@ void read_files(TomlReader& r, const std::string& file, Scenario& s, Origins& or
   }
 }
 
-void read_file_sets(TomlReader& r, const std::string& file, Scenario& s, Origins& origins) {
+void read_file_sets(TomlReader& r, const std::string& file, const ScenarioLimits& limits, Scenario& s, Origins& origins) {
   const auto sets = r.tables("file_sets");
   for (std::size_t i = 0; i < sets.size(); ++i) {
     TomlReader f(*sets[i], r.child_path("file_sets", i), file);
@@ -46,6 +48,13 @@ void read_file_sets(TomlReader& r, const std::string& file, Scenario& s, Origins
     // The run's file limit (check_limits) refuses a large count before any file is made.
     spec.count = f.required_integer("count");
     if (spec.count < 1) f.fail("count", fmt::format("must be >= 1, got {}", spec.count));
+    // Before any check that sums its files (check_limits counts the run's files again, all made).
+    double files = static_cast<double>(s.files.size());
+    for (const FileSetSpec& other : s.file_sets) files += static_cast<double>(other.count);
+    if (files + static_cast<double>(spec.count) > static_cast<double>(limits.max_files)) {
+      f.fail("count", fmt::format("{:.0f} files, more than the {} a run may have{}", files + static_cast<double>(spec.count), limits.max_files,
+                                  limits_hint(limits)));
+    }
     spec.size = f.required_size("size");
     spec.host = f.name("host", s.hosts.front().name);
     spec.disk = f.name("disk", "");

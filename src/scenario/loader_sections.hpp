@@ -91,7 +91,7 @@ void read_network(TomlReader& r, Scenario& s, const std::string& file, Origins& 
 /// The [[files]] tables.
 void read_files(TomlReader& r, const std::string& file, Scenario& s, Origins& origins);
 /// The [[file_sets]] tables (after the hosts).
-void read_file_sets(TomlReader& r, const std::string& file, Scenario& s, Origins& origins);
+void read_file_sets(TomlReader& r, const std::string& file, const ScenarioLimits& limits, Scenario& s, Origins& origins);
 /// Each file of `s` named once and on a disk of its host that it fits; returns them by name.
 std::map<std::string, const FileSpec*> check_files(const Scenario& s, const Origins& origins);
 /// The files on each disk fit its capacity at the start and at the end of the run.

@@ -73,21 +73,21 @@ class Estimator {
       host_index_.emplace(s.hosts[h].name, h);
       throttles_.push_back(s.hosts[h].cache.write_mode == WriteMode::Writeback && cache::make_policy(s.hosts[h].cache)->throttles_writers());
     }
-    // Where each file is, found once: a scenario may have 10^6 of them.
+    // Where each file and file set is, found once: a scenario may have 10^6 files.
+    const auto place = [&](const std::string& host, const std::string& disk) {
+      const std::size_t h = host_index_.at(host);
+      const auto& disks = s.hosts[h].disks;
+      const auto d = std::find_if(disks.begin(), disks.end(), [&](const DiskSpec& x) { return x.name == disk; }) - disks.begin();
+      return std::make_pair(h, static_cast<std::size_t>(d));
+    };
     place_.reserve(s.files.size());
     file_index_.reserve(s.files.size());
     for (std::size_t f = 0; f < s.files.size(); ++f) {
-      const std::size_t h = host_index_.at(s.files[f].host);
-      const auto& disks = s.hosts[h].disks;
-      const auto d = std::find_if(disks.begin(), disks.end(), [&](const DiskSpec& x) { return x.name == s.files[f].disk; }) - disks.begin();
-      place_.push_back({h, static_cast<std::size_t>(d)});
+      place_.push_back(place(s.files[f].host, s.files[f].disk));
       file_index_.emplace(s.files[f].name, f);
     }
     for (std::size_t f = 0; f < s.file_sets.size(); ++f) {
-      const std::size_t h = host_index_.at(s.file_sets[f].host);
-      const auto& disks = s.hosts[h].disks;
-      const auto d = std::find_if(disks.begin(), disks.end(), [&](const DiskSpec& x) { return x.name == s.file_sets[f].disk; }) - disks.begin();
-      set_place_.push_back({h, static_cast<std::size_t>(d)});
+      set_place_.push_back(place(s.file_sets[f].host, s.file_sets[f].disk));
       set_index_.emplace(s.file_sets[f].name, f);
     }
   }
@@ -130,7 +130,7 @@ class Estimator {
   // What one task does on host `h`, added to the hosts' loads and to the events. `latency` gets
   // the seconds it waits for its routes' latencies, `slowest` the link of highest latency it
   // crosses.
-  TaskCost add_task(std::size_t h, const TaskSpec& t, StreamWrites& writes, double& latency, std::size_t& slowest, TaskAt at) {
+  TaskCost add_task(std::size_t h, const TaskSpec& t, StreamWrites& writes, double& latency, std::size_t& slowest) {
     double operations = 0.0;
     double read_bytes = 0.0;
     const auto chunks = [&](double bytes) { return std::ceil(bytes / static_cast<double>(t.chunk_size)); };
@@ -172,36 +172,7 @@ class Estimator {
         move(place_[f].first, place_[f].second, bytes, chunks(bytes), writing != 0);
       }
     }
-    // Its accesses: every sample a read of a whole file of the set, at least an event each.
-    const double before_accesses = operations;
-    double most_access_ops = -1.0;
-    std::optional<std::size_t> busiest;
-    double largest_sample = 0.0;
-    for (std::size_t i = 0; i < t.accesses.size(); ++i) {
-      const AccessSpec& a = t.accesses[i];
-      const std::size_t set = set_index_.at(a.file_set);
-      const FileSetSpec& spec = s_.file_sets[set];
-      const double samples = static_cast<double>(a.count > 0 ? a.count : spec.count) * static_cast<double>(a.repeat);
-      const double size = static_cast<double>(spec.size);
-      const double ops_before = operations;
-      move(set_place_[set].first, set_place_[set].second, samples * size, samples * std::max(1.0, chunks(size)), false);
-      e_.transfer_events += samples;  // each sample's start
-      if (operations - ops_before > most_access_ops) {
-        most_access_ops = operations - ops_before;
-        busiest = i;
-      }
-      largest_sample = std::max(largest_sample, size);
-      e_.timeline_rows += static_cast<double>(a.repeat);
-      if (static_cast<double>(a.repeat) > most_epochs_) {
-        most_epochs_ = static_cast<double>(a.repeat);
-        e_.most_epochs_access = i;
-        e_.most_epochs = at;
-      }
-    }
-    e_.timeline_rows += 3.0;
-    if (operations > most_ops_) {
-      access_of_most_ops_ = operations - before_accesses > before_accesses ? busiest : std::nullopt;
-    }
+    const double largest_sample = add_accesses(t, move, operations);
     // One write phase per host whose cache it writes into.
     std::map<std::size_t, bool> written;
     for (const std::string& name : t.writes) {
@@ -215,6 +186,30 @@ class Estimator {
     e_.transfer_events += static_cast<double>(t.deletes.size());
     loads_[h].cpu += t.compute * static_cast<double>(t.cores);
     return {operations, std::max(static_cast<double>(t.memory), read_bytes + largest_sample)};
+  }
+
+  // A task's accesses: each sample a read of a whole file of its set (`move`, add_task's) and an
+  // event at least. Returns the largest sample.
+  template <typename Move>
+  double add_accesses(const TaskSpec& t, const Move& move, double& operations) {
+    const double before = operations;
+    double most = -1.0, largest = 0.0;
+    std::optional<std::size_t> busiest;
+    for (std::size_t i = 0; i < t.accesses.size(); ++i) {
+      const AccessSpec& a = t.accesses[i];
+      const std::size_t set = set_index_.at(a.file_set);
+      const double samples = static_cast<double>(a.count > 0 ? a.count : s_.file_sets[set].count) * static_cast<double>(a.repeat);
+      const double size = static_cast<double>(s_.file_sets[set].size), ops_before = operations;
+      move(set_place_[set].first, set_place_[set].second, samples * size, samples * std::max(1.0, std::ceil(size / static_cast<double>(t.chunk_size))), false);
+      e_.transfer_events += samples;  // each sample's start
+      if (operations - ops_before > most) {
+        most = operations - ops_before;
+        busiest = i;
+      }
+      largest = std::max(largest, size);
+    }
+    if (operations > most_ops_) access_of_most_ops_ = operations - before > before ? busiest : std::nullopt;
+    return largest;
   }
 
   void note_operations(double ops, TaskAt at) {
@@ -234,7 +229,7 @@ class Estimator {
     double compute = 0.0, latency = 0.0, longest_compute = -1.0, most_memory = 0.0;
     std::size_t slowest = 0, longest_task = 0;
     for (std::size_t t = 0; t < app.tasks.size(); ++t) {
-      const TaskCost cost = add_task(h, app.tasks[t], writes, latency, slowest, {false, a, t});
+      const TaskCost cost = add_task(h, app.tasks[t], writes, latency, slowest);
       note_operations(cost.operations, {false, a, t});
       most_memory = std::max(most_memory, cost.memory);
       compute += app.tasks[t].compute;
@@ -287,7 +282,7 @@ class Estimator {
     for (std::size_t t = 0; t < flow.tasks.size(); ++t) {
       const TaskSpec& task = flow.tasks[t];
       const std::size_t h = task.host.empty() ? next_shared() : host_index_.at(task.host);
-      const TaskCost cost = add_task(h, task, writes, latency, slowest, {true, w, t});
+      const TaskCost cost = add_task(h, task, writes, latency, slowest);
       note_operations(cost.operations, {true, w, t});
       memory[h] += cost.memory;
       placed[h] += 1.0;
@@ -441,7 +436,6 @@ class Estimator {
   RouteIndex route_index_{s_};
   double most_ops_ = -1.0;
   std::optional<std::size_t> access_of_most_ops_;  // of the task add_task saw last
-  double most_epochs_ = 0.0;
 };
 
 }  // namespace

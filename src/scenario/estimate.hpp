@@ -51,11 +51,6 @@ struct RunEstimate {
   TaskAt most_operations;  ///< the task with the most
   /// Its access (AccessSpec, by index) with the most, if its accesses make most of them.
   std::optional<std::size_t> most_operations_access;
-  /// Timeline rows: three per task and one per access and epoch; the access with the most
-  /// epochs (if any) and its task.
-  double timeline_rows = 0.0;
-  std::optional<std::size_t> most_epochs_access;
-  TaskAt most_epochs;
 
   /// Events, by source:
   /// - each chunk's transfers (device, memory, route and its latency) and the writeback of the

@@ -85,6 +85,41 @@ struct FileSpec {
   bool cached = false;  ///< in its host's page cache (clean) at time 0
 };
 
+/// Many files of one size stored together, e.g. a training data set: `count` files named
+/// `name/0` ... `name/{count-1}`, made when the run starts (never a FileSpec each: a set of 10^6
+/// is one entry). Tasks read its files through AccessSpec only.
+struct FileSetSpec {
+  std::string name;
+  std::int64_t count = 0;  ///< files, >= 1
+  std::int64_t size = 0;   ///< bytes of each
+  std::string host;        ///< where they are stored
+  std::string disk;
+  bool cached = false;  ///< all in their host's page cache (clean) at time 0
+};
+
+/// The order in which an access visits its files.
+enum class AccessPattern {
+  Sequential,  ///< files 0, 1, ... in order, the same every epoch
+  Random,      ///< a seeded draw, new each epoch (AccessSpec::replacement)
+};
+
+const char* to_string(AccessPattern pattern);
+
+/// A task's reads over a file set, in epochs (a training job's passes over its data set): each
+/// epoch reads `count` files of the set, each whole in the task's chunks (as a `read` of that
+/// file), and frees each file's buffer once it is read (a data loader keeps no sample).
+struct AccessSpec {
+  std::string file_set;  ///< FileSetSpec::name
+  AccessPattern pattern = AccessPattern::Sequential;
+  /// Random: the generator's seed; the same seed gives the same orders.
+  std::uint64_t seed = 0;
+  /// Random: false, each file at most once per epoch (a new shuffle each epoch); true, `count`
+  /// independent draws.
+  bool replacement = false;
+  std::int64_t count = 0;   ///< files per epoch; 0: the set's count (without replacement, at most it)
+  std::int64_t repeat = 1;  ///< epochs, >= 1
+};
+
 /// One task: read files, compute, write files, then release its buffers.
 /// A memory group's limits (a cgroup's memory.max and memory.high; 0: none).
 struct MemoryLimits {
@@ -102,6 +137,8 @@ struct TaskSpec {
   /// included: a task reading more holds what it reads (bytes; 0: only its buffers).
   std::int64_t memory = 0;
   std::vector<std::string> reads;
+  /// After `reads` and before computing, in order; a timeline row per access and epoch.
+  std::vector<AccessSpec> accesses;
   double compute = 0.0;  ///< CPU seconds (on one core)
   std::vector<std::string> writes;
   std::int64_t chunk_size = 0;
@@ -155,6 +192,7 @@ struct Scenario {
   std::vector<LinkSpec> links;
   std::vector<RouteSpec> routes;
   std::vector<FileSpec> files;
+  std::vector<FileSetSpec> file_sets;  ///< names distinct from the files'
   std::vector<AppSpec> apps;
   std::vector<WorkflowSpec> workflows;
   /// What the inputs hold that pcsim read but does not model, and what it took in place of a

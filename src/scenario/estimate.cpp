@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <string_view>
 #include <unordered_map>
 #include <utility>
@@ -72,15 +73,22 @@ class Estimator {
       host_index_.emplace(s.hosts[h].name, h);
       throttles_.push_back(s.hosts[h].cache.write_mode == WriteMode::Writeback && cache::make_policy(s.hosts[h].cache)->throttles_writers());
     }
-    // Where each file is, found once: a scenario may have 10^6 of them.
+    // Where each file and file set is, found once: a scenario may have 10^6 files.
+    const auto place = [&](const std::string& host, const std::string& disk) {
+      const std::size_t h = host_index_.at(host);
+      const auto& disks = s.hosts[h].disks;
+      const auto d = std::find_if(disks.begin(), disks.end(), [&](const DiskSpec& x) { return x.name == disk; }) - disks.begin();
+      return std::make_pair(h, static_cast<std::size_t>(d));
+    };
     place_.reserve(s.files.size());
     file_index_.reserve(s.files.size());
     for (std::size_t f = 0; f < s.files.size(); ++f) {
-      const std::size_t h = host_index_.at(s.files[f].host);
-      const auto& disks = s.hosts[h].disks;
-      const auto d = std::find_if(disks.begin(), disks.end(), [&](const DiskSpec& x) { return x.name == s.files[f].disk; }) - disks.begin();
-      place_.push_back({h, static_cast<std::size_t>(d)});
+      place_.push_back(place(s.files[f].host, s.files[f].disk));
       file_index_.emplace(s.files[f].name, f);
+    }
+    for (std::size_t f = 0; f < s.file_sets.size(); ++f) {
+      set_place_.push_back(place(s.file_sets[f].host, s.file_sets[f].disk));
+      set_index_.emplace(s.file_sets[f].name, f);
     }
   }
 
@@ -126,42 +134,45 @@ class Estimator {
     double operations = 0.0;
     double read_bytes = 0.0;
     const auto chunks = [&](double bytes) { return std::ceil(bytes / static_cast<double>(t.chunk_size)); };
+    // A file read or written (or a file set's samples): `bytes` in `ops` chunks, stored at (fh, fd).
+    const auto move = [&](std::size_t fh, std::size_t fd, double bytes, double ops, bool writing) {
+      HostLoad& server = loads_[fh];
+      (writing ? server.disk_write : server.disk_read)[fd] += bytes;
+      (writing ? loads_[h].memory_write : loads_[h].memory_read) += bytes;
+      const bool remote = fh != h;
+      // The server's cache takes what is written to it, unless a local write bypasses it.
+      const bool dirties = writing && s_.hosts[fh].cache.write_mode == WriteMode::Writeback && (remote || !t.direct_io);
+      if (remote) {
+        const Route& route = route_of(h, fh);
+        for (const std::size_t l : route.links) link_bytes_[l] += bytes;
+        if (route.latency > 0.0) {
+          if (latency == 0.0 || s_.links[route.slowest].latency > s_.links[slowest].latency) slowest = route.slowest;
+          latency += ops * route.latency;
+        }
+        e_.transfer_events += ops * (kRemoteEvents + (route.latency > 0.0 ? 1.0 : 0.0));
+        if (dirties) e_.transfer_events += ops * kCachedWriteEvents;
+      } else if (!writing) {
+        e_.transfer_events += ops * kLocalReadEvents;
+      } else {
+        e_.transfer_events += ops * (dirties ? kCachedWriteEvents : kDeviceWriteEvents);
+      }
+      if (dirties) {
+        server.dirtied[fd] += bytes;
+        server.dirtied_ops += ops;
+        writes.bytes[fh] += bytes;
+        writes.ops[fh] += ops;
+      }
+      operations += ops;
+    };
     for (int writing = 0; writing < 2; ++writing) {
       for (const std::string& name : writing ? t.writes : t.reads) {
         const std::size_t f = file_index_.at(name);
         const double bytes = static_cast<double>(s_.files[f].size);
-        const double ops = chunks(bytes);
-        const auto [fh, fd] = place_[f];
-        HostLoad& server = loads_[fh];
-        (writing ? server.disk_write : server.disk_read)[fd] += bytes;
-        (writing ? loads_[h].memory_write : loads_[h].memory_read) += bytes;
         if (!writing) read_bytes += bytes;
-        const bool remote = fh != h;
-        // The server's cache takes what is written to it, unless a local write bypasses it.
-        const bool dirties = writing && s_.hosts[fh].cache.write_mode == WriteMode::Writeback && (remote || !t.direct_io);
-        if (remote) {
-          const Route& route = route_of(h, fh);
-          for (const std::size_t l : route.links) link_bytes_[l] += bytes;
-          if (route.latency > 0.0) {
-            if (latency == 0.0 || s_.links[route.slowest].latency > s_.links[slowest].latency) slowest = route.slowest;
-            latency += ops * route.latency;
-          }
-          e_.transfer_events += ops * (kRemoteEvents + (route.latency > 0.0 ? 1.0 : 0.0));
-          if (dirties) e_.transfer_events += ops * kCachedWriteEvents;
-        } else if (!writing) {
-          e_.transfer_events += ops * kLocalReadEvents;
-        } else {
-          e_.transfer_events += ops * (dirties ? kCachedWriteEvents : kDeviceWriteEvents);
-        }
-        if (dirties) {
-          server.dirtied[fd] += bytes;
-          server.dirtied_ops += ops;
-          writes.bytes[fh] += bytes;
-          writes.ops[fh] += ops;
-        }
-        operations += ops;
+        move(place_[f].first, place_[f].second, bytes, chunks(bytes), writing != 0);
       }
     }
+    const double largest_sample = add_accesses(t, move, operations);
     // One write phase per host whose cache it writes into.
     std::map<std::size_t, bool> written;
     for (const std::string& name : t.writes) {
@@ -174,7 +185,31 @@ class Estimator {
     if (t.fsync) e_.transfer_events += kFlowEvents * static_cast<double>(t.writes.size());
     e_.transfer_events += static_cast<double>(t.deletes.size());
     loads_[h].cpu += t.compute * static_cast<double>(t.cores);
-    return {operations, std::max(static_cast<double>(t.memory), read_bytes)};
+    return {operations, std::max(static_cast<double>(t.memory), read_bytes + largest_sample)};
+  }
+
+  // A task's accesses: each sample a read of a whole file of its set (`move`, add_task's) and an
+  // event at least. Returns the largest sample.
+  template <typename Move>
+  double add_accesses(const TaskSpec& t, const Move& move, double& operations) {
+    const double before = operations;
+    double most = -1.0, largest = 0.0;
+    std::optional<std::size_t> busiest;
+    for (std::size_t i = 0; i < t.accesses.size(); ++i) {
+      const AccessSpec& a = t.accesses[i];
+      const std::size_t set = set_index_.at(a.file_set);
+      const double samples = static_cast<double>(a.count > 0 ? a.count : s_.file_sets[set].count) * static_cast<double>(a.repeat);
+      const double size = static_cast<double>(s_.file_sets[set].size), ops_before = operations;
+      move(set_place_[set].first, set_place_[set].second, samples * size, samples * std::max(1.0, std::ceil(size / static_cast<double>(t.chunk_size))), false);
+      e_.transfer_events += samples;  // each sample's start
+      if (operations - ops_before > most) {
+        most = operations - ops_before;
+        busiest = i;
+      }
+      largest = std::max(largest, size);
+    }
+    if (operations > most_ops_) access_of_most_ops_ = operations - before > before ? busiest : std::nullopt;
+    return largest;
   }
 
   void note_operations(double ops, TaskAt at) {
@@ -182,6 +217,7 @@ class Estimator {
     if (ops > most_ops_) {
       most_ops_ = ops;
       e_.most_operations = at;
+      e_.most_operations_access = access_of_most_ops_;
     }
   }
 
@@ -394,9 +430,12 @@ class Estimator {
   std::unordered_map<std::string_view, std::size_t> host_index_;  // a cluster's 10^5 hosts: no scan per name
   std::unordered_map<std::string_view, std::size_t> file_index_;
   std::vector<std::pair<std::size_t, std::size_t>> place_;  // per file: its host and disk
+  std::unordered_map<std::string_view, std::size_t> set_index_;
+  std::vector<std::pair<std::size_t, std::size_t>> set_place_;  // per file set: its host and disk
   std::map<std::pair<std::size_t, std::size_t>, Route> routes_;
   RouteIndex route_index_{s_};
   double most_ops_ = -1.0;
+  std::optional<std::size_t> access_of_most_ops_;  // of the task add_task saw last
 };
 
 }  // namespace

@@ -25,7 +25,7 @@ MemoryLimits read_memory_limits(TomlReader& r, const char* whose, MemoryLimits i
 }
 
 TaskSpec read_task(const toml::table& table, std::string path, std::size_t index, std::int64_t default_chunk, const std::string& file,
-                   bool in_workflow, MemoryLimits workflow_limits) {
+                   const std::vector<FileSetSpec>& sets, bool in_workflow, MemoryLimits workflow_limits) {
   TomlReader r(table, std::move(path), file);
   TaskSpec t;
   t.name = r.name("name", std::to_string(index + 1));
@@ -35,6 +35,7 @@ TaskSpec read_task(const toml::table& table, std::string path, std::size_t index
   }
   t.memory = r.optional_size("memory").value_or(0);
   t.reads = r.names("read");
+  t.accesses = read_accesses(r, sets);
   t.compute = r.optional_duration("compute").value_or(0.0);
   t.writes = r.names("write");
   t.chunk_size = r.optional_size("chunk_size").value_or(default_chunk);
@@ -150,7 +151,7 @@ void read_apps(TomlReader& r, const std::string& file, Scenario& s, Origins& ori
     if (tasks.empty()) a.fail_table("an application needs at least one [[" + a.path() + ".tasks]]");
     for (std::size_t t = 0; t < tasks.size(); ++t) {
       task_origins.push_back({tasks[t], a.child_path("tasks", t), &file});
-      app.tasks.push_back(read_task(*tasks[t], a.child_path("tasks", t), t, chunk, file, false));
+      app.tasks.push_back(read_task(*tasks[t], a.child_path("tasks", t), t, chunk, file, s.file_sets, false));
     }
     a.finish();
     s.apps.push_back(std::move(app));

@@ -21,6 +21,7 @@ class ReachCheck {
  public:
   ReachCheck(const Scenario& s, const std::map<std::string, const FileSpec*>& files) : routes_(s), files_(files) {
     for (const HostConfig& h : s.hosts) host_names_.insert(h.name);
+    for (const FileSetSpec& set : s.file_sets) set_hosts_.emplace(set.name, &set.host);
   }
 
   // The tasks of `owner` (an application or a workflow), which may run on any of `hosts`.
@@ -44,6 +45,12 @@ class ReachCheck {
           if (!t.host.empty()) reach(where, owner, t.name, name, t.host, server);
           else servers.try_emplace(server, &t.name, &it->first);
         }
+      }
+      for (const AccessSpec& a : t.accesses) {
+        const auto it = set_hosts_.find(a.file_set);
+        if (it == set_hosts_.end()) throw ConfigError(fmt::format("{}: {}, task '{}': unknown file set '{}'", where, owner, t.name, a.file_set));
+        if (!t.host.empty()) reach(where, owner, t.name, a.file_set, t.host, *it->second);
+        else servers.try_emplace(*it->second, &t.name, &it->first);
       }
     }
     for (const auto& [server, first] : servers) {
@@ -72,6 +79,7 @@ class ReachCheck {
   const RouteIndex routes_;
   const std::map<std::string, const FileSpec*>& files_;
   std::set<std::string> host_names_;
+  std::map<std::string, const std::string*> set_hosts_;  // file set -> the host storing it
   std::set<std::pair<std::string, std::string>> reachable_;  // (host, server) pairs already checked
 };
 

@@ -47,6 +47,11 @@ void write_task(std::string& out, const std::string& table, const TaskSpec& t, b
   if (in_workflow) out += fmt::format("after = {}\n", list(t.after));
   if (t.memory_limits.max > 0) out += fmt::format("memory_max = {}\n", quoted(units::format_size(t.memory_limits.max)));
   if (t.memory_limits.high > 0) out += fmt::format("memory_high = {}\n", quoted(units::format_size(t.memory_limits.high)));
+  for (const AccessSpec& a : t.accesses) {
+    out += fmt::format("\n[[{}.access]]\nfiles = {}\npattern = {}\n", table, quoted(a.file_set), quoted(to_string(a.pattern)));
+    if (a.pattern == AccessPattern::Random) out += fmt::format("seed = {}\nreplacement = {}\n", a.seed, a.replacement);
+    out += fmt::format("count = {}\nrepeat = {}\n", a.count, a.repeat);
+  }
 }
 
 // A platform file shown alone may not give what a run needs (load_platform): the key is left
@@ -153,6 +158,11 @@ std::string to_toml(const Scenario& s) {
   write_network(out, s);
   for (const FileSpec& f : s.files) {
     out += fmt::format("\n[[files]]\nname = {}\nsize = {}\nhost = {}\ndisk = {}\ncached = {}\n", quoted(f.name),
+                       quoted(units::format_size(f.size)), quoted(f.host), quoted(f.disk), f.cached);
+  }
+  // A set is one table, whatever its count: 10^6 files are not listed.
+  for (const FileSetSpec& f : s.file_sets) {
+    out += fmt::format("\n[[file_sets]]\nname = {}\ncount = {}\nsize = {}\nhost = {}\ndisk = {}\ncached = {}\n", quoted(f.name), f.count,
                        quoted(units::format_size(f.size)), quoted(f.host), quoted(f.disk), f.cached);
   }
   write_work(out, s);

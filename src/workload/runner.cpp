@@ -84,7 +84,7 @@ Runner::Runner(const Scenario& scenario, const RunOptions& options, Scenario* ow
 }
 
 RunResult Runner::run() {
-  trace_.emplace(options_, share_, platform_, plans_.task_count());
+  trace_.emplace(options_, share_, platform_, plans_.timeline_rows(), plans_.io_phases());
   const auto wall_start = std::chrono::steady_clock::now();
   start_applications();
   start_workflows();
@@ -196,6 +196,7 @@ Task<void> Runner::run_tasks(const std::string& app, std::span<const TaskPlan> p
       }
       const std::uint32_t row = trace_->report_phase(app, plans_.task_name(plan), host, kind, start, sim_.now(), sum);
       if (kind != PhaseKind::Compute) trace_->record_cache(row);
+      if (kind == PhaseKind::Read && plan.accesses != plan.accesses_end) co_await read_file_sets(app, plan, host);
     }
     host.release_memory(read_bytes + plan.memory, plan.group);  // the task's memory is freed when it ends
     for (std::uint32_t f = plan.deletes; f < plan.end; ++f) {
@@ -206,6 +207,29 @@ Task<void> Runner::run_tasks(const std::string& app, std::span<const TaskPlan> p
     }
   }
   if (ends_app) finish_one();
+}
+
+// A task's accesses, after its reads: each epoch reads its files whole, one after the other,
+// freeing each file's buffer once read, and is reported as a read row of its own, its task
+// named "TASK:SET[epoch N]". A frame of its own, made only for the tasks that have accesses.
+Task<void> Runner::read_file_sets(const std::string& app, const TaskPlan& plan, Host& host) {
+  for (std::uint32_t a = plan.accesses; a < plan.accesses_end; ++a) {
+    const AccessPlan& access = plans_.access(a);
+    SampleOrder order(access.set.count, access.order, access.seed);
+    for (std::int64_t epoch = 1; epoch <= access.repeat; ++epoch) {
+      const double start = sim_.now();
+      Moved sum;
+      order.start_epoch();
+      for (std::int64_t i = 0; i < access.count; ++i) {
+        const PlacedFile& stored = platform_.files()[access.set.first + order.next()];
+        const IoResult read = co_await host.read_file(platform_.file_on(host, stored), plan.chunk_size, plan.direct_io, plan.group);
+        host.release_memory(read.bytes, plan.group);  // a data loader keeps no sample
+        add_moved(sum, read);
+      }
+      const std::string label = fmt::format("{}:{}[epoch {}]", plans_.task_name(plan), plans_.set_name(access), epoch);
+      trace_->record_cache(trace_->report_phase(app, label, host, PhaseKind::Read, start, sim_.now(), sum));
+    }
+  }
 }
 
 Task<void> Runner::run_workflow_task(const WorkflowSpec& w, const TaskSpec& task, const TaskPlan& plan, WorkflowHosts& hosts, std::size_t index,

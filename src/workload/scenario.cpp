@@ -9,6 +9,8 @@ namespace pagecache {
 
 const char* to_string(Profile profile) { return profile == Profile::Paper ? "paper" : "linux"; }
 
+const char* to_string(AccessPattern pattern) { return pattern == AccessPattern::Random ? "random" : "sequential"; }
+
 CacheSettings settings_for(Profile profile) {
   return profile == Profile::Paper ? CacheSettings::paper() : CacheSettings::kernel();
 }

@@ -270,3 +270,46 @@ TEST_CASE("the README's picture is of the report.html today's pcsim run writes",
   CHECK(sha256(out / "pcsim-out" / "report.html") == page[1].str());
   CHECK(sha256(docs / "report-exp1.png") == picture[1].str());
 }
+
+TEST_CASE("the README's training epochs: epoch times and shares from the page cache at 0.8x, 1.0x and 1.2x memory", "[cli][docs][file_sets]") {
+  const auto f = figures(
+      R"(With the data set at 0.8x memory \(8,000 files, as shipped\) epoch 1 takes ([0-9.]+) s from disk and epoch 2 ([0-9.]+) s, )"
+      R"(([0-9.]+) % of it from the page cache; at 1.0x \(`--set file_sets.0.count=10000`\) epoch 2 takes ([0-9.]+) s, ([0-9.]+) % from )"
+      R"(the cache; at 1.2x \(`--set file_sets.0.count=12000`\) ([0-9.]+) s, ([0-9.]+) % from the cache: .* Sequential epochs at 1.2x )"
+      R"(\(`--set apps.0.tasks.0.access.0.pattern=sequential` too\) find ([0-9.]+) % in the cache, .* and epoch 2 takes ([0-9.]+) s, as epoch 1\.)");
+  const std::string scenario = (fs::path(PCSIM_SOURCE_DIR) / "scenarios/examples/training-epochs.toml").string();
+  // The epoch rows of a run with `sets`: [epoch] -> row.
+  const auto epochs = [&](const std::string& name, const std::vector<std::string>& sets) {
+    const fs::path out = fresh("training-" + name);
+    std::vector<std::string> args{"run", scenario, "--out", out.string(), "--quiet"};
+    for (const std::string& s : sets) args.insert(args.end(), {"--set", s});
+    run_pcsim(args);
+    std::map<int, pagecache::testing::CsvRow> rows;
+    for (const auto& row : read_csv((out / "timeline.csv").string())) {
+      std::smatch m;
+      const std::string task = row.at("task");
+      if (std::regex_match(task, m, std::regex(R"(train:images\[epoch ([0-9]+)\])"))) rows.emplace(std::stoi(m[1].str()), row);
+    }
+    REQUIRE(rows.size() == 3);
+    return rows;
+  };
+  const auto cached_pct = [](const pagecache::testing::CsvRow& row) { return 100.0 * std::stod(row.at("cache_bytes")) / std::stod(row.at("bytes")); };
+  const auto at_08 = epochs("0.8", {});
+  check_figure("0.8x epoch 1", f[0], duration(at_08.at(1)));
+  check_figure("0.8x epoch 2", f[1], duration(at_08.at(2)));
+  check_figure("0.8x epoch 2 from cache", f[2], cached_pct(at_08.at(2)));
+  const auto at_10 = epochs("1.0", {"file_sets.0.count=10000"});
+  check_figure("1.0x epoch 2", f[3], duration(at_10.at(2)));
+  check_figure("1.0x epoch 2 from cache", f[4], cached_pct(at_10.at(2)));
+  const auto at_12 = epochs("1.2", {"file_sets.0.count=12000"});
+  check_figure("1.2x epoch 2", f[5], duration(at_12.at(2)));
+  check_figure("1.2x epoch 2 from cache", f[6], cached_pct(at_12.at(2)));
+  const auto sequential = epochs("1.2-sequential", {"file_sets.0.count=12000", "apps.0.tasks.0.access.0.pattern=sequential"});
+  check_figure("1.2x sequential epoch 2 from cache", f[7], cached_pct(sequential.at(2)));
+  check_figure("1.2x sequential epoch 2", f[8], duration(sequential.at(2)));
+  // The physics, whatever the README says: a data set that fits is read from memory from epoch
+  // 2 on; one that does not is read in order from disk every epoch.
+  CHECK(at_08.at(2).at("disk_bytes") == "0");
+  CHECK(sequential.at(2).at("cache_bytes") == "0");
+  CHECK(duration(sequential.at(2)) == Approx(duration(sequential.at(1))));
+}

@@ -67,7 +67,6 @@ class Plans {
   /// Per application, in order; the workflows' task plans, in their order, from workflow_tasks().
   const std::vector<AppPlan>& apps() const noexcept { return apps_; }
   const TaskPlan* workflow_tasks() const noexcept { return tasks_.data() + first_workflow_task_; }
-  std::size_t task_count() const noexcept { return tasks_.size(); }
   std::span<const TaskPlan> tasks_of(const AppPlan& app) const noexcept { return {tasks_.data() + app.first, app.tasks}; }
 
   const std::string& task_name(const TaskPlan& plan) const noexcept { return task_names_[plan.name]; }

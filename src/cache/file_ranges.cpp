@@ -8,9 +8,29 @@
 
 namespace pagecache::cache {
 
+namespace {
+
+// How many of the first `count` keys are <= key (upper bound's position), by a full scan: a
+// node's keys are four cache lines, fetched together when scanned in order, where a binary
+// search waits for each line it probes in turn.
+int keys_at_or_below(const std::int64_t* keys, int count, std::int64_t key) noexcept {
+  int n = 0;
+  for (int i = 0; i < count; ++i) n += keys[i] <= key ? 1 : 0;
+  return n;
+}
+
+// How many are < key (lower bound's position).
+int keys_below(const std::int64_t* keys, int count, std::int64_t key) noexcept {
+  int n = 0;
+  for (int i = 0; i < count; ++i) n += keys[i] < key ? 1 : 0;
+  return n;
+}
+
+}  // namespace
+
 int FileRanges::child_for(const Node& n, std::int64_t key) const noexcept {
   // The last child whose least key is <= key; child 0 takes everything below keys[1].
-  return static_cast<int>(std::upper_bound(n.keys + 1, n.keys + n.count, key) - (n.keys + 1));
+  return keys_at_or_below(n.keys + 1, n.count - 1, key);
 }
 
 FileRanges::NodeId FileRanges::edge_leaf(FileId file, bool rightmost) const noexcept {
@@ -19,12 +39,37 @@ FileRanges::NodeId FileRanges::edge_leaf(FileId file, bool rightmost) const noex
   return n;
 }
 
-FileRanges::Around FileRanges::around(FileId file, std::int64_t offset) const noexcept {
+FileRanges::NodeId FileRanges::leaf_for(FileId file, std::int64_t offset) const noexcept {
+  const Finger& f = finger_;
+  if (f.leaf != kNoNode && f.file == file && f.splits == splits_ && nodes_[f.leaf].generation == f.generation && offset >= f.low &&
+      offset < f.high) {
+    return f.leaf;
+  }
   NodeId n = tree(file).root;
+  if (n == kNoNode) return kNoNode;
+  std::int64_t low = std::numeric_limits<std::int64_t>::min();
+  std::int64_t high = std::numeric_limits<std::int64_t>::max();
+  while (!nodes_[n].leaf) {
+    const Node& inner = nodes_[n];
+    const int child = child_for(inner, offset);
+    if (child > 0) low = inner.keys[child];
+    if (child + 1 < inner.count) high = inner.keys[child + 1];
+    n = inner.ids[child];
+  }
+  finger_ = Finger{.file = file, .leaf = n, .generation = nodes_[n].generation, .splits = splits_, .low = low, .high = high};
+  return n;
+}
+
+void FileRanges::free_node(NodeId n) {
+  ++nodes_[n].generation;
+  free_nodes_.push_back(n);
+}
+
+FileRanges::Around FileRanges::around(FileId file, std::int64_t offset) const noexcept {
+  const NodeId n = leaf_for(file, offset);
   if (n == kNoNode) return {};
-  while (!nodes_[n].leaf) n = nodes_[n].ids[child_for(nodes_[n], offset)];
   const Node& leaf = nodes_[n];
-  const int pos = static_cast<int>(std::upper_bound(leaf.keys, leaf.keys + leaf.count, offset) - leaf.keys);
+  const int pos = keys_at_or_below(leaf.keys, leaf.count, offset);
   Around found;
   // A leaf's least key may be above `offset` (its lower entries erased): the floor is then the
   // previous leaf's last entry; likewise the next leaf's first is the one above.
@@ -37,7 +82,7 @@ FileRanges::Around FileRanges::around(FileId file, std::int64_t offset) const no
 
 BlockId FileRanges::ceiling(FileId file, std::int64_t offset) const noexcept {
   const Around at = around(file, offset);
-  return at.floor != kNoBlock && offsets_[at.floor] == offset ? at.floor : at.above;
+  return at.floor != kNoBlock && spans_[at.floor].offset == offset ? at.floor : at.above;
 }
 
 BlockId FileRanges::first(FileId file) const noexcept {
@@ -59,12 +104,15 @@ FileRanges::NodeId FileRanges::new_node(bool leaf) {
     id = static_cast<NodeId>(nodes_.size());
     nodes_.emplace_back();
   }
+  const std::uint32_t generation = nodes_[id].generation;
   nodes_[id] = Node{};
+  nodes_[id].generation = generation;
   nodes_[id].leaf = leaf;
   return id;
 }
 
 FileRanges::Split FileRanges::split_node(NodeId n) {
+  ++splits_;
   const NodeId right = new_node(nodes_[n].leaf);  // may move nodes_: no reference held across it
   Node& l = nodes_[n];
   Node& r = nodes_[right];
@@ -87,7 +135,7 @@ FileRanges::Split FileRanges::insert_below(NodeId n, int level, std::int64_t key
   std::uint32_t id = block;
   if (level == 0) {
     const Node& leaf = nodes_[n];
-    pos = static_cast<int>(std::lower_bound(leaf.keys, leaf.keys + leaf.count, key) - leaf.keys);
+    pos = keys_below(leaf.keys, leaf.count, key);
     PC_ASSERT_MSG(pos == leaf.count || leaf.keys[pos] != key, fmt::format("two blocks at offset {}", key));
   } else {
     const int child = child_for(nodes_[n], key);
@@ -116,14 +164,21 @@ FileRanges::Split FileRanges::insert_below(NodeId n, int level, std::int64_t key
   return split;
 }
 
-void FileRanges::insert(FileId file, BlockId block, std::int64_t offset) {
-  if (block >= offsets_.size()) offsets_.resize(std::max<std::size_t>(2 * offsets_.size(), std::size_t{block} + 1));
+void FileRanges::insert(FileId file, BlockId block, std::int64_t offset, std::int64_t size) {
+  if (block >= spans_.size()) spans_.resize(std::max<std::size_t>(2 * spans_.size(), std::size_t{block} + 1));
   if (file >= trees_.size()) trees_.resize(std::max<std::size_t>(2 * trees_.size(), std::size_t{file} + 1));
-  offsets_[block] = offset;
+  spans_[block] = {offset, offset + size};
   Tree& t = trees_[file];
   if (t.root == kNoNode) {
     t.root = new_node(true);
     t.height = 1;
+  }
+  // Into the finger's leaf if it holds the offset and has room: no descent, no separator moves.
+  const Finger& f = finger_;
+  if (f.leaf != kNoNode && f.file == file && f.splits == splits_ && nodes_[f.leaf].generation == f.generation && offset >= f.low &&
+      offset < f.high && nodes_[f.leaf].count < kFan) {
+    insert_below(f.leaf, 0, offset, block);
+    return;
   }
   const Split split = insert_below(t.root, t.height - 1, offset, block);
   if (split.node == kNoNode) return;
@@ -142,7 +197,7 @@ bool FileRanges::erase_below(NodeId n, int level, std::int64_t key, BlockId bloc
   int pos = 0;
   if (level == 0) {
     const Node& leaf = nodes_[n];
-    pos = static_cast<int>(std::lower_bound(leaf.keys, leaf.keys + leaf.count, key) - leaf.keys);
+    pos = keys_below(leaf.keys, leaf.count, key);
     PC_ASSERT_MSG(pos < leaf.count && leaf.ids[pos] == block, fmt::format("block {} is not indexed at offset {}", block, key));
   } else {
     pos = child_for(nodes_[n], key);
@@ -157,21 +212,21 @@ bool FileRanges::erase_below(NodeId n, int level, std::int64_t key, BlockId bloc
     if (node.prev != kNoNode) nodes_[node.prev].next = node.next;
     if (node.next != kNoNode) nodes_[node.next].prev = node.prev;
   }
-  free_nodes_.push_back(n);
+  free_node(n);
   return true;
 }
 
 void FileRanges::erase(FileId file, BlockId block) {
   Tree& t = trees_[file];
   PC_ASSERT_MSG(t.root != kNoNode, fmt::format("file {}: block {} is not indexed", file, block));
-  if (erase_below(t.root, t.height - 1, offsets_[block], block, true)) {
-    free_nodes_.push_back(t.root);
+  if (erase_below(t.root, t.height - 1, spans_[block].offset, block, true)) {
+    free_node(t.root);
     t = Tree{};
     return;
   }
   // A root with one child gives way to it.
   while (t.height > 1 && nodes_[t.root].count == 1) {
-    free_nodes_.push_back(t.root);
+    free_node(t.root);
     t.root = nodes_[t.root].ids[0];
     --t.height;
   }
@@ -203,7 +258,8 @@ std::size_t FileRanges::check_node(NodeId n, int level, std::int64_t low, std::i
       PC_ASSERT_MSG(++seen <= most, "a file's offset index holds more entries than there are blocks (a cycle?)");
       PC_ASSERT_MSG(node.keys[i] >= low && node.keys[i] < high && (i == 0 || node.keys[i - 1] < node.keys[i]),
                     fmt::format("offset index: offset {} out of order", node.keys[i]));
-      PC_ASSERT_MSG(offsets_[node.ids[i]] == node.keys[i], fmt::format("block {}: offset {} indexed at {}", node.ids[i], offsets_[node.ids[i]], node.keys[i]));
+      PC_ASSERT_MSG(spans_[node.ids[i]].offset == node.keys[i],
+                    fmt::format("block {}: offset {} indexed at {}", node.ids[i], spans_[node.ids[i]].offset, node.keys[i]));
     }
     return node.count;
   }

@@ -23,13 +23,18 @@ namespace pagecache::cache {
 
 class FileRanges {
  public:
-  /// Indexes `block` of `file` at `offset`. The block is not indexed already, and no block of
-  /// the file has that offset.
-  void insert(FileId file, BlockId block, std::int64_t offset);
+  /// Indexes `block` of `file`, [offset, offset + size). The block is not indexed already, and
+  /// no block of the file has that offset.
+  void insert(FileId file, BlockId block, std::int64_t offset, std::int64_t size);
   /// Takes `block` (indexed under `file`) out of the index.
   void erase(FileId file, BlockId block);
-  /// Where `block` starts in its file (as last inserted).
-  std::int64_t offset(BlockId block) const noexcept { return offsets_[block]; }
+  /// Where `block` starts in its file, and where it ends (kept here beside the offset, so that
+  /// a look-up learns whether a block holds an offset without reading the block: a cache miss
+  /// under random access).
+  std::int64_t offset(BlockId block) const noexcept { return spans_[block].offset; }
+  std::int64_t end(BlockId block) const noexcept { return spans_[block].end; }
+  /// The block's size changed (its offset did not).
+  void resize(BlockId block, std::int64_t size) noexcept { spans_[block].end = spans_[block].offset + size; }
 
   /// The block of `file` with the greatest offset <= `offset` (the one that holds `offset`, if
   /// any does), or kNoBlock.
@@ -47,7 +52,7 @@ class FileRanges {
   /// The block of `file` with the greatest offset, or kNoBlock.
   BlockId last(FileId file) const noexcept;
   /// The block after `block` by offset in its file, or kNoBlock.
-  BlockId next(FileId file, BlockId block) const noexcept { return around(file, offsets_[block]).above; }
+  BlockId next(FileId file, BlockId block) const noexcept { return around(file, spans_[block].offset).above; }
   bool empty(FileId file) const noexcept { return tree(file).root == kNoNode; }
 
   /// Calls `visit(block)` for every block of `file`, by offset (invariant checks, tests).
@@ -73,8 +78,21 @@ class FileRanges {
     std::uint32_t ids[kFan];
     NodeId prev = kNoNode;  // leaves: the file's leaves in order
     NodeId next = kNoNode;
+    std::uint32_t generation = 0;  // bumped when the node is freed: a finger to it is stale
     std::uint16_t count = 0;
     bool leaf = true;
+  };
+  // The leaf the last descent ended in, and the offsets it covers ([low, high): its separators
+  // on the way down). A chunk read looks up the same offset three or four times (its plan,
+  // its read, the new block's insert); between them only erases elsewhere may happen, which
+  // move no separator. A split anywhere, or the leaf freed, makes the finger stale.
+  struct Finger {
+    FileId file = 0;
+    NodeId leaf = kNoNode;
+    std::uint32_t generation = 0;
+    std::uint64_t splits = 0;
+    std::int64_t low = 0;
+    std::int64_t high = 0;
   };
   struct Tree {
     NodeId root = kNoNode;
@@ -104,9 +122,20 @@ class FileRanges {
   std::size_t check_node(NodeId n, int level, std::int64_t low, std::int64_t high, std::size_t most, std::size_t& seen,
                          std::vector<NodeId>& leaves) const;
 
+  /// The leaf of the file's tree whose range holds `offset` (kNoNode: no tree), by the finger
+  /// if it holds, else by a descent that sets it.
+  NodeId leaf_for(FileId file, std::int64_t offset) const noexcept;
+  void free_node(NodeId n);
+
   std::vector<Node> nodes_;
+  mutable Finger finger_;
+  std::uint64_t splits_ = 0;
   std::vector<NodeId> free_nodes_;
-  std::vector<std::int64_t> offsets_;  // by BlockId
+  struct Span {
+    std::int64_t offset;
+    std::int64_t end;
+  };
+  std::vector<Span> spans_;  // by BlockId
   std::vector<Tree> trees_;            // by FileId
 };
 

@@ -20,7 +20,7 @@ void PageCache::track_ranges(FileId file) {
   for (FileOrder* flist : {&entry.inactive, &entry.active}) {
     for (BlockId id = flist->front(); id != kNoBlock; id = FileOrder::next(blocks_, id)) {
       blocks_[id].ranged = true;
-      ranges_.insert(file, id, offset);
+      ranges_.insert(file, id, offset, blocks_[id].size);
       offset += blocks_[id].size;
     }
   }
@@ -29,12 +29,12 @@ void PageCache::track_ranges(FileId file) {
 
 std::int64_t PageCache::ranged_end(FileId file) const noexcept {
   const BlockId last = ranges_.last(file);
-  return last == kNoBlock ? 0 : ranges_.offset(last) + blocks_[last].size;
+  return last == kNoBlock ? 0 : ranges_.end(last);
 }
 
 BlockId PageCache::block_at_or_after(FileId file, std::int64_t offset) const noexcept {
   const FileRanges::Around at = ranges_.around(file, offset);
-  if (at.floor != kNoBlock && ranges_.offset(at.floor) + blocks_[at.floor].size > offset) return at.floor;
+  if (at.floor != kNoBlock && ranges_.end(at.floor) > offset) return at.floor;
   return at.above;
 }
 
@@ -58,7 +58,7 @@ std::int64_t PageCache::cached_in(FileId file, std::int64_t offset, std::int64_t
 BlockId PageCache::new_ranged_block(FileId file, std::int64_t offset, std::int64_t size, BlockState state, double now) {
   const BlockId id = new_block(file, size, state, now);
   blocks_[id].ranged = true;
-  ranges_.insert(file, id, offset);
+  ranges_.insert(file, id, offset, size);
   return id;
 }
 
@@ -86,6 +86,7 @@ void PageCache::move_ranged(BlockId id, ListKind to) {
       ranges_.erase(block.file, id);
       blocks_.give_back(id);
       list_of(to).resize(tail_id, tail.size + size);
+      ranges_.resize(tail_id, tail.size);
       FileEntry& entry = files_[tail.file];
       (to == ListKind::Inactive ? entry.inactive_bytes : entry.active_bytes) += size;
       charge(tail.file, size);
@@ -103,6 +104,7 @@ void PageCache::add_ranged(FileId file, std::int64_t offset, std::int64_t bytes,
     if (tail.file == file && tail.ranged && tail.state == state && tail.referenced == referenced &&
         (state == BlockState::Clean || tail.entry_time == now) && ranges_.offset(tail_id) + tail.size == offset) {
       list.resize(tail_id, tail.size + bytes);
+      ranges_.resize(tail_id, tail.size);
       FileEntry& entry = files_[file];
       entry.inactive_bytes += bytes;
       charge(file, bytes);
@@ -236,6 +238,7 @@ void PageCache::check_ranges(std::size_t f, std::size_t most) const {
     const Block& block = blocks_[id];
     PC_ASSERT_MSG(block.ranged && block.file == file && block.size > 0, fmt::format("file {}: block {} indexed wrongly", f, id));
     PC_ASSERT_MSG(ranges_.offset(id) >= end, fmt::format("file {}: block {} overlaps the one before", f, id));
+    PC_ASSERT_MSG(ranges_.end(id) == ranges_.offset(id) + block.size, fmt::format("file {}: block {}'s end is not indexed", f, id));
     end = ranges_.offset(id) + block.size;
   });
 }

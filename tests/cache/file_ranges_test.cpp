@@ -53,10 +53,10 @@ TEST_CASE("A file's blocks are found by offset, whatever order they came in") {
   FileRanges index;
   REQUIRE(index.first(0) == kNoBlock);
   REQUIRE(index.floor(3, 100) == kNoBlock);
-  index.insert(0, 7, 4096);
-  index.insert(0, 2, 0);
-  index.insert(0, 9, 8192);
-  index.insert(1, 3, 0);  // another file's block at the same offset
+  index.insert(0, 7, 4096, 4096);
+  index.insert(0, 2, 0, 4096);
+  index.insert(0, 9, 8192, 4096);
+  index.insert(1, 3, 0, 10);  // another file's block at the same offset
   REQUIRE(index.floor(0, 4095) == 2);
   REQUIRE(index.floor(0, 4096) == 7);
   REQUIRE(index.floor(0, 1 << 20) == 9);
@@ -78,11 +78,11 @@ TEST_CASE("A file's blocks are found by offset, whatever order they came in") {
 
 TEST_CASE("Two blocks of one file at one offset are refused") {
   FileRanges index;
-  for (BlockId id = 0; id < 64; ++id) index.insert(0, id, 4096 * std::int64_t{id});
+  for (BlockId id = 0; id < 64; ++id) index.insert(0, id, 4096 * std::int64_t{id}, 4096);
   // Either on the way down or by the check, depending on where the new node lands.
   bool refused = false;
   try {
-    index.insert(0, 100, 4096 * 17);
+    index.insert(0, 100, 4096 * 17, 4096);
     index.check(0, 65);
   } catch (const pagecache::InvariantError&) {
     refused = true;
@@ -93,7 +93,7 @@ TEST_CASE("Two blocks of one file at one offset are refused") {
 TEST_CASE("A file read in order stays shallow: 10^5 blocks appended by offset") {
   FileRanges index;
   constexpr BlockId n = 100000;
-  for (BlockId id = 0; id < n; ++id) index.insert(0, id, std::int64_t{id} * 4096);
+  for (BlockId id = 0; id < n; ++id) index.insert(0, id, std::int64_t{id} * 4096, 4096);
   REQUIRE(index.check(0, n) == n);
   REQUIRE(index.floor(0, 4096 * 5000 + 17) == 5000);
   for (BlockId id = 0; id < n; id += 2) index.erase(0, id);
@@ -135,7 +135,7 @@ TEST_CASE("Random inserts, erases, splits and look-ups agree with std::map") {
         const std::int64_t room = (next == ref.end() ? kFileSize : next->first) - at;
         const std::int64_t size = 1 + static_cast<std::int64_t>(rng() % static_cast<std::uint64_t>(room));
         const BlockId id = take_id();
-        index.insert(file, id, at);
+        index.insert(file, id, at, size);
         ref[at] = {id, size};
         break;
       }
@@ -153,7 +153,8 @@ TEST_CASE("Random inserts, erases, splits and look-ups agree with std::map") {
         if (it->second.size < 2) break;
         const std::int64_t head = 1 + static_cast<std::int64_t>(rng() % static_cast<std::uint64_t>(it->second.size - 1));
         const BlockId tail = take_id();
-        index.insert(file, tail, it->first + head);
+        index.insert(file, tail, it->first + head, it->second.size - head);
+        index.resize(it->second.id, head);
         ref[it->first + head] = {tail, it->second.size - head};
         it->second.size = head;
         break;
@@ -167,6 +168,7 @@ TEST_CASE("Random inserts, erases, splits and look-ups agree with std::map") {
         if (!ref.empty()) {
           const auto it = pick(ref);
           REQUIRE(index.offset(it->second.id) == it->first);
+          REQUIRE(index.end(it->second.id) == it->first + it->second.size);
           const auto after = std::next(it);
           REQUIRE(index.next(file, it->second.id) == (after == ref.end() ? kNoBlock : after->second.id));
         }

@@ -41,6 +41,10 @@ struct HostSpec {
   /// were freed just before it (a dropped cache); the rest of it is cold.
   double page_reporting_delay = 2.0;
   std::int64_t memory_freed_at_start = 0;
+  /// Seconds a thread spends on each request of a read or write of parts of a file
+  /// (read_ranges, write_ranges) besides its transfers: the system call and the page cache's
+  /// look-up. 0: none.
+  double request_time = 0.0;
 };
 
 /// A disk of a host (index in the order of add_disk).

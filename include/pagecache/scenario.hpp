@@ -53,6 +53,8 @@ struct HostConfig {
   /// Free page reporting (with memory_bandwidth.cold_fault): HostSpec's fields of these names.
   double page_reporting_delay = 2.0;
   std::int64_t memory_freed_at_start = 0;
+  /// HostSpec's field of this name: seconds per request of a read or write by parts.
+  double request_time = 0.0;
   CacheSettings cache;
   std::vector<DiskSpec> disks;
 };

@@ -61,6 +61,8 @@ Host::Host(Simulator& sim, FairShare& share, HostSpec spec) : impl_(std::make_un
   impl_->cache.allocate_anonymous(impl_->spec.memory_in_use);
   impl_->io.machine_at_rest();
   if (impl_->spec.memory_bandwidth.cold_fault > 0.0) impl_->io.report_free_pages(impl_->spec.page_reporting_delay, impl_->spec.memory_freed_at_start);
+  if (!(impl_->spec.request_time >= 0.0)) throw ConfigError(fmt::format("host '{}': request_time must be >= 0 s", impl_->spec.name));
+  impl_->io.set_request_time(impl_->spec.request_time);
   impl_->flusher.start();
 }
 

@@ -120,6 +120,9 @@ class IoController {
   /// Bytes written to devices to make room or to respect the dirty ratio (not counting the
   /// periodic flusher's).
   std::int64_t flushed_bytes() const noexcept { return flushed_; }
+  /// Seconds each request of read_ranges and write_ranges takes besides its transfers
+  /// (HostSpec::request_time).
+  void set_request_time(double seconds) noexcept { request_time_ = seconds; }
   /// Chunks of the reads and writes of applications started on this host so far.
   std::uint64_t chunk_operations() const noexcept { return chunks_; }
 
@@ -189,6 +192,7 @@ class IoController {
   Flusher* flusher_;
   std::int64_t flushed_ = 0;
   std::uint64_t chunks_ = 0;
+  double request_time_ = 0.0;
   DirtyThrottle throttle_;
   std::optional<Event> progress_;
   std::optional<FreePageReporting> reporting_;  // none: no memory is ever cold

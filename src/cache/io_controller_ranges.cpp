@@ -27,6 +27,10 @@ void check_within(const FileInfo& info, const ByteRange& r, const char* verb) {
   }
 }
 
+// The requests' own time is slept in stretches of this much: a thread's system calls, one
+// after the other, add up the same; a stretch is one event where 10^7 requests would be 10^7.
+constexpr double kRequestTimeBatch = 1e-3;
+
 }  // namespace
 
 Task<IoResult> IoController::read_ranges(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group, ReadAdvice advice) {
@@ -46,9 +50,15 @@ Task<IoResult> IoController::read_ranges_of(FileId file, std::function<bool(Byte
   cache_->track_ranges(file);
   RangeReadahead readahead(*disk, advice);
   IoResult result{.start = start};
+  double pending = 0.0;  // request time not yet slept
   for (ByteRange r; next(r);) {
     check_within(info, r, "read");
     ++chunks_;
+    pending += request_time_;
+    if (pending >= kRequestTimeBatch) {
+      co_await sim_->sleep(pending);
+      pending = 0.0;
+    }
     const ByteRange pages = pages_of(r, size);
     // Room for what the device reads: the request's holes, and a readahead window's.
     const ByteRange window = readahead.window(pages, size);
@@ -73,6 +83,7 @@ Task<IoResult> IoController::read_ranges_of(FileId file, std::function<bool(Byte
     result.cache_bytes += copied;
     result.disk_bytes += disk_read;
   }
+  if (pending > 0.0) co_await sim_->sleep(pending);
   cache_->release_anonymous(buffer, group);
   result.end = sim_->now();
   co_return result;
@@ -91,9 +102,15 @@ Task<IoResult> IoController::write_ranges_of(FileId file, std::function<bool(Byt
   cache_->track_ranges(file);
   cache_->set_being_written(file, true);
   IoResult result{.start = start};
+  double pending = 0.0;  // request time not yet slept
   for (ByteRange r; next(r);) {
     check_within(info, r, "write");
     ++chunks_;
+    pending += request_time_;
+    if (pending >= kRequestTimeBatch) {
+      co_await sim_->sleep(pending);
+      pending = 0.0;
+    }
     // A write of part of a page copies and dirties the page (the kernel would read it first
     // if it is not cached: not modelled).
     const ByteRange pages = pages_of(r, info.size);
@@ -102,6 +119,7 @@ Task<IoResult> IoController::write_ranges_of(FileId file, std::function<bool(Byt
     result.cache_bytes += t.cache_bytes;
     result.disk_bytes += t.disk_bytes;
   }
+  if (pending > 0.0) co_await sim_->sleep(pending);
   cache_->set_being_written(file, false);
   result.end = sim_->now();
   co_return result;

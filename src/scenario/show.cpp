@@ -73,6 +73,7 @@ void write_memory(std::string& out, const HostConfig& h) {
   if (h.memory_bandwidth.reclaimed_write > 0.0) {
     out += fmt::format("memory_reclaimed_write_bw = {}\n", quoted(units::format_bandwidth(h.memory_bandwidth.reclaimed_write)));
   }
+  if (h.request_time > 0.0) out += fmt::format("request_time = {}\n", quoted(units::format_duration(h.request_time)));
   if (h.memory_bandwidth.cold_fault > 0.0) {
     out += fmt::format("memory_cold_fault_bw = {}\npage_reporting_delay = {}\nmemory_freed_at_start = {}\n",
                        quoted(units::format_bandwidth(h.memory_bandwidth.cold_fault)), quoted(units::format_duration(h.page_reporting_delay)),

@@ -133,6 +133,14 @@ class Host {
   /// readahead pages go to the inactive list untouched.
   Task<IoResult> read_ranges(FileRef file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupRef group = {},
                              ReadAdvice advice = ReadAdvice::Normal);
+  /// posix_fadvise(POSIX_FADV_WILLNEED) on `range` of a local file: what is not cached of its
+  /// pages is read into the page cache in the background (the call returns at once), as
+  /// readahead is: one device request, the pages untouched at the inactive list's MRU end.
+  void will_need(FileRef file, ByteRange range);
+  /// posix_fadvise(POSIX_FADV_DONTNEED) on `range` of a local file: the clean data of its pages
+  /// leaves the page cache now. Dirty data stays (the kernel starts its writeback; here the
+  /// flusher writes it as any other). Returns the bytes dropped.
+  std::int64_t dont_need(FileRef file, ByteRange range);
   /// Writes parts of a local file: the requests `next` yields, one after the other. Each writes
   /// the pages it touches: where they are not cached, new dirty data (as write_file's chunks,
   /// under the same dirty throttling); where they are, in place (clean pages become dirty,

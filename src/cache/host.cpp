@@ -122,6 +122,10 @@ Task<IoResult> Host::read_ranges(FileRef file, std::function<bool(ByteRange&)> n
   return impl_->io.read_ranges(impl_->id(file), std::move(next), buffer, impl_->group(group), advice);
 }
 
+void Host::will_need(FileRef file, ByteRange range) { impl_->io.will_need(impl_->id(file), range); }
+
+std::int64_t Host::dont_need(FileRef file, ByteRange range) { return impl_->io.dont_need(impl_->id(file), range); }
+
 Task<IoResult> Host::write_ranges(FileRef file, std::function<bool(ByteRange&)> next, GroupRef group) {
   return impl_->io.write_ranges(impl_->id(file), std::move(next), impl_->group(group));
 }

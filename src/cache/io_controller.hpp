@@ -80,6 +80,13 @@ class IoController {
   /// new dirty data, cached parts are written in place (PageCache::write_range). The file is
   /// held by range from its start. Errors as read_ranges'.
   Task<IoResult> write_ranges(FileId file, std::function<bool(ByteRange&)> next, GroupId group = kRootGroup);
+  /// posix_fadvise(POSIX_FADV_WILLNEED): the holes of `range` of a local file are read into the
+  /// page cache by a process of their own (the call returns at once), as readahead (untouched,
+  /// at the inactive list's MRU end), one device request.
+  void will_need(FileId file, ByteRange range);
+  /// posix_fadvise(POSIX_FADV_DONTNEED): the clean data of `range` of a local file leaves the
+  /// page cache now (PageCache::drop_clean_range). Returns the bytes dropped.
+  std::int64_t dont_need(FileId file, ByteRange range);
   /// Takes `bytes` of application memory (a task's working memory), writing back and
   /// evicting cached data to make room. Throws SimulationError when nothing can free enough.
   Task<void> hold_memory(std::int64_t bytes, GroupId group = kRootGroup);
@@ -135,6 +142,8 @@ class IoController {
   /// read_ranges once checked.
   Task<IoResult> read_ranges_of(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group, ReadAdvice advice);
   Task<IoResult> write_ranges_of(FileId file, std::function<bool(ByteRange&)> next, GroupId group);
+  /// will_need's process.
+  Task<void> prefetch(FileId file, ByteRange range);
   /// A local file's read (read_file).
   Task<IoResult> read_whole_file(FileId file, std::int64_t chunk_size, bool direct, GroupId group);
   /// A remote file's read (read_file): from this host's cache and the server.

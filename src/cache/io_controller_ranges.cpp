@@ -125,4 +125,35 @@ Task<IoResult> IoController::write_ranges_of(FileId file, std::function<bool(Byt
   co_return result;
 }
 
+void IoController::will_need(FileId file, ByteRange range) {
+  const FileInfo& info = (*files_)[file];
+  if (info.is_remote()) throw ConfigError(fmt::format("'{}': advice on parts of a file is for local files only", info.name));
+  check_within(info, range, "prefetch");
+  sim_->spawn(prefetch(file, pages_of(range, info.size)));
+}
+
+Task<void> IoController::prefetch(FileId file, ByteRange range) {
+  const FileInfo& info = (*files_)[file];
+  cache_->track_ranges(file);
+  const ReadRequest request{.file = file, .file_size = info.size, .bytes = range.length, .anonymous = 0, .offset = range.offset};
+  std::int64_t disk_read = evict_for_chunk(*cache_, request);
+  if (disk_read < 0) disk_read = co_await room_for_chunk(file, info.size, request.bytes, 0, request.offset, kRootGroup, "prefetching");
+  const std::int64_t cold = cold_taken();
+  const std::int64_t added = cache_->read_ahead(file, range.offset, range.length, sim_->now());
+  PC_ASSERT(added == disk_read);
+  if (added > 0) {
+    const double cold_share = static_cast<double>(cold_taken() - cold) / static_cast<double>(added);
+    co_await info.disk->read(added, memory_->fresh_copy_rate(cold_share), added);
+  }
+}
+
+std::int64_t IoController::dont_need(FileId file, ByteRange range) {
+  const FileInfo& info = (*files_)[file];
+  if (info.is_remote()) throw ConfigError(fmt::format("'{}': advice on parts of a file is for local files only", info.name));
+  check_within(info, range, "drop");
+  cache_->track_ranges(file);
+  const ByteRange pages = pages_of(range, info.size);
+  return cache_->drop_clean_range(file, pages.offset, pages.length);
+}
+
 }  // namespace pagecache::cache

@@ -203,6 +203,10 @@ class PageCache {
   /// readahead pages: unreferenced, on the inactive list, evicted as any other). Returns the
   /// bytes added.
   std::int64_t read_ahead(FileId file, std::int64_t offset, std::int64_t bytes, double now);
+  /// POSIX_FADV_DONTNEED on [offset, offset + bytes) of a ranged file: its clean data there
+  /// is dropped (dirty data and data being written back stay: the kernel starts their
+  /// writeback and drops only clean pages). Returns the bytes dropped.
+  std::int64_t drop_clean_range(FileId file, std::int64_t offset, std::int64_t bytes);
   /// A write of [offset, offset + bytes) of a ranged file, its copy done: the holes become new
   /// dirty data (free memory), cached clean data and data being written back become dirty
   /// again (a new entry time `now`; the write in flight ends for the rest of its data only),

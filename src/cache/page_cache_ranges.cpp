@@ -184,6 +184,25 @@ std::int64_t PageCache::read_ahead(FileId file, std::int64_t offset, std::int64_
   return added;
 }
 
+std::int64_t PageCache::drop_clean_range(FileId file, std::int64_t offset, std::int64_t bytes) {
+  PC_ASSERT(ranged(file) && offset >= 0 && bytes >= 0);
+  const std::int64_t end = offset + bytes;
+  std::int64_t dropped = 0;
+  for (BlockId id = block_at_or_after(file, offset); id != kNoBlock && ranges_.offset(id) < end;) {
+    id = cut_before(id, std::max(offset, ranges_.offset(id)));
+    if (ranges_.end(id) > end) split_front(id, end - ranges_.offset(id));
+    const BlockId next = ranges_.end(id) < end ? ranges_.next(file, id) : kNoBlock;
+    if (blocks_[id].state == BlockState::Clean) {
+      dropped += blocks_[id].size;
+      destroy(id);
+    }
+    id = next;
+  }
+  settle();
+  if (dropped > 0 && progress_hook_) progress_hook_();
+  return dropped;
+}
+
 std::int64_t PageCache::write_range(FileId file, std::int64_t offset, std::int64_t bytes, double now) {
   PC_ASSERT(ranged(file) && offset >= 0 && bytes >= 0);
   const std::int64_t end = offset + bytes;

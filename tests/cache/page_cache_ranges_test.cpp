@@ -269,3 +269,34 @@ TEST_CASE("each request of a read by parts costs the host's request_time", "[hos
   CHECK(run(0.0) == Approx(1000 * 4096 / 1000e6));
   CHECK(run(20e-6) == Approx(1000 * 4096 / 1000e6 + 1000 * 20e-6));
 }
+
+TEST_CASE("POSIX_FADV_WILLNEED reads ahead in the background; POSIX_FADV_DONTNEED drops the clean pages of a range", "[host][ranges]") {
+  // 10 MB at 100 MB/s: the prefetch ends at 0.1 s, while the task computes for 1 s; its read
+  // then hits all of it. DONTNEED then drops the 3 MB it names but the 1 MB just written.
+  constexpr std::int64_t kMiB = 1 << 20;
+  Simulator sim;
+  FairShare share(sim);
+  Host host(sim, share,
+            HostSpec{.name = "h", .cores = 1, .memory = 1000 * MB, .memory_bandwidth = MemoryBandwidth::shared_channel(1000e6), .cache = lru()});
+  const FileRef file = host.add_file("f", 10 * kMiB, host.add_disk("d", 100e6, 100e6));
+  const std::vector<ByteRange> all = in_order(10 * kMiB, kMiB);
+  const std::vector<ByteRange> written{{.offset = 0, .length = kMiB}};
+  IoResult read;
+  std::vector<std::int64_t> seen;
+  auto job = [&]() -> Task<void> {
+    host.will_need(file, {.offset = 0, .length = 10 * kMiB});
+    co_await host.compute(1.0);
+    seen.push_back(host.cached(file));
+    read = co_await host.read_ranges(file, each(all), kMiB);
+    co_await host.write_ranges(file, each(written));
+    seen.push_back(host.dont_need(file, {.offset = 0, .length = 4 * kMiB}));
+    seen.push_back(host.cached(file));
+    seen.push_back(host.dirty(file));
+  };
+  sim.spawn(job());
+  sim.run();
+  CHECK(seen == std::vector<std::int64_t>{10 * kMiB, 3 * kMiB, 7 * kMiB, kMiB});
+  CHECK(read.disk_bytes == 0);
+  CHECK(read.cache_bytes == 10 * kMiB);
+  CHECK_THROWS_AS(host.dont_need(file, {.offset = 10 * kMiB, .length = 1}), SimulationError);
+}

@@ -2,6 +2,7 @@
 
 #include "cache/policy.hpp"
 #include "scenario/route_index.hpp"
+#include "workload/access_pattern.hpp"
 
 #include <pagecache/units.hpp>
 
@@ -197,6 +198,15 @@ class Estimator {
     std::optional<std::size_t> busiest;
     for (std::size_t i = 0; i < t.accesses.size(); ++i) {
       const AccessSpec& a = t.accesses[i];
+      if (!a.file.empty()) {
+        const double ops_before = operations;
+        largest = std::max(largest, add_file_access(a, move));
+        if (operations - ops_before > most) {
+          most = operations - ops_before;
+          busiest = i;
+        }
+        continue;
+      }
       const std::size_t set = set_index_.at(a.file_set);
       const double samples = static_cast<double>(a.count > 0 ? a.count : s_.file_sets[set].count) * static_cast<double>(a.repeat);
       const double size = static_cast<double>(s_.file_sets[set].size), ops_before = operations;
@@ -210,6 +220,19 @@ class Estimator {
     }
     if (operations > most_ops_) access_of_most_ops_ = operations - before > before ? busiest : std::nullopt;
     return largest;
+  }
+
+  // An access of parts of one file: each request an operation as a chunk's (`move`, add_task's),
+  // read or written where the file is. Returns the buffer a read holds meanwhile (a request's).
+  template <typename Move>
+  double add_file_access(const AccessSpec& a, const Move& move) {
+    const std::size_t f = file_index_.at(a.file);
+    const workload::RequestPattern pattern = workload::request_pattern(a);
+    const double epochs = static_cast<double>(a.repeat);
+    const double requests = static_cast<double>(workload::RequestStream(pattern).per_epoch()) * epochs;
+    const bool writing = a.mode != AccessMode::Read;
+    move(place_[f].first, place_[f].second, workload::bytes_per_epoch(pattern) * epochs, requests, writing);
+    return writing ? 0.0 : static_cast<double>(a.request);
   }
 
   void note_operations(double ops, TaskAt at) {

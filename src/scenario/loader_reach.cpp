@@ -65,7 +65,8 @@ class ReachCheck {
  private:
   // Reads and writes by part (Host::read_ranges) are of a file of the task's own host: one it
   // might read over a route is refused.
-  void local(const std::string& where, const std::string& owner, const TaskSpec& t, const std::string& file_name, const std::vector<std::string>& hosts) {
+  void local(const std::string& where, const std::string& owner, const TaskSpec& t, const std::string& file_name,
+             const std::vector<std::string>& hosts) {
     const auto it = files_.find(file_name);
     if (it == files_.end()) throw ConfigError(fmt::format("{}: {}, task '{}': unknown file '{}'", where, owner, t.name, file_name));
     const std::string& server = it->second->host;

@@ -162,7 +162,9 @@ void Plans::plan_file_access(const TaskSpec& task, const AccessSpec& a, AccessPl
     throw ConfigError(fmt::format("task '{}': draws with replacement need the random pattern", task.name));
   }
   access.writing = a.mode != AccessMode::Read;
-  access.advice = a.advice == AccessAdvice::Random ? ReadAdvice::Random : a.advice == AccessAdvice::Sequential ? ReadAdvice::Sequential : ReadAdvice::Normal;
+  access.advice = a.advice == AccessAdvice::Random       ? ReadAdvice::Random
+                  : a.advice == AccessAdvice::Sequential ? ReadAdvice::Sequential
+                                                         : ReadAdvice::Normal;
   access.repeat = a.repeat;
 }
 

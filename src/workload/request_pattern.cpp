@@ -73,7 +73,8 @@ ByteRange RequestStream::request(std::int64_t i) {
     case RequestPattern::Kind::Sequential: return slot(i % slots_);
     case RequestPattern::Kind::Random: {
       const auto n = static_cast<std::uint64_t>(slots_);
-      const std::uint64_t s = p.replacement ? draws_.below(static_cast<std::uint32_t>(n)) : permute(static_cast<std::uint64_t>(i) % n, n, key_, half_bits_);
+      const std::uint64_t s =
+          p.replacement ? draws_.below(static_cast<std::uint32_t>(n)) : permute(static_cast<std::uint64_t>(i) % n, n, key_, half_bits_);
       return slot(static_cast<std::int64_t>(s));
     }
     case RequestPattern::Kind::Strided: return {.offset = p.offset + i * p.stride, .length = p.request};

@@ -176,6 +176,33 @@ hosts = ["node", "other"]
                                   Catch::Contains("the task's own host"));
 }
 
+TEST_CASE("a workflow task accessing a file by part runs only where the file is", "[scenario][access]") {
+  const std::string other = R"([[hosts]]
+name = "other"
+memory = "1 GB"
+memory_read_bw = "10 GB/s"
+memory_write_bw = "10 GB/s"
+[[hosts.disks]]
+name = "ssd"
+read_bw = "500 MB/s"
+write_bw = "400 MB/s"
+[[links]]
+name = "net"
+bandwidth = "1 GB/s"
+hosts = ["node", "other"]
+)";
+  const std::string workflow = kHost + other + "[[files]]\nname = \"data\"\nsize = \"10 MB\"\n[workflow]\nhosts = [\"node\", \"other\"]\n" +
+                               "[[workflow.tasks]]\nname = \"scan\"\n%s[[workflow.tasks.access]]\nfile = \"data\"\n";
+  const auto with = [&](const std::string& task_keys) {
+    std::string text = workflow;
+    text.replace(text.find("%s"), 2, task_keys);
+    return text;
+  };
+  CHECK_THAT(refusal(with("")), Catch::Contains("workflow 'workflow', task 'scan': file 'data' is on host 'node' and the task may run on 'other'"));
+  const Scenario s = parse_scenario(with("host = \"node\"\n"), "s.toml");
+  CHECK(s.workflows.at(0).tasks.at(0).accesses.at(0).file == "data");
+}
+
 TEST_CASE("pcsim show writes an access of one file with its pattern's keys, and it reads back the same", "[scenario][access][show]") {
   for (const std::string keys : {"pattern = \"strided\"\nrequest = \"64 KiB\"\nstride = \"1 MB\"\nrepeat = 2",
                                  "pattern = \"random\"\nrequest = \"4 KiB\"\nseed = 5\nadvice = \"random\"",

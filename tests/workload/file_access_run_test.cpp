@@ -158,7 +158,8 @@ TEST_CASE("a strided hyperslab that fits the cache is read from disk in epoch 1 
 }
 
 TEST_CASE("a seed fixes a random access's requests: the same run twice gives the same rows", "[workload][access]") {
-  const std::string keys = "[[apps.tasks.access]]\nfile = \"big\"\npattern = \"random\"\nrequest = \"4 KiB\"\nreplacement = true\ncount = 3000\nseed = 11\nrepeat = 2";
+  const std::string keys =
+      "[[apps.tasks.access]]\nfile = \"big\"\npattern = \"random\"\nrequest = \"4 KiB\"\nreplacement = true\ncount = 3000\nseed = 11\nrepeat = 2";
   const RunResult a = run_scenario(with_accesses("linux", keys));
   const RunResult b = run_scenario(with_accesses("linux", keys));
   const std::vector<PhaseRow> ea = epoch_rows(a), eb = epoch_rows(b);
@@ -168,6 +169,54 @@ TEST_CASE("a seed fixes a random access's requests: the same run twice gives the
     CHECK(ea[i].end == eb[i].end);
   }
   CHECK(ea[1].cache_bytes > ea[0].cache_bytes);  // epoch 2 draws some of epoch 1's pages again
+}
+
+}  // namespace
+}  // namespace pagecache
+
+namespace pagecache {
+namespace {
+
+TEST_CASE("a workflow task's access of one file runs on its host and reports its epochs", "[workload][access]") {
+  const RunResult r = run_scenario(parse_scenario(R"([[hosts]]
+name = "node"
+memory = "1 GB"
+memory_read_bw = "10 GB/s"
+memory_write_bw = "10 GB/s"
+[[hosts.disks]]
+name = "ssd"
+read_bw = "500 MB/s"
+write_bw = "400 MB/s"
+[[files]]
+name = "log"
+size = "4 MiB"
+[workflow]
+name = "wf"
+[[workflow.tasks]]
+name = "writer"
+[[workflow.tasks.access]]
+file = "log"
+mode = "append"
+request = "64 KiB"
+[[workflow.tasks]]
+name = "reader"
+after = ["writer"]
+[[workflow.tasks.access]]
+file = "log"
+pattern = "random"
+request = "64 KiB"
+repeat = 2
+)",
+                                                  "<test>"));
+  std::vector<PhaseRow> e;
+  for (const PhaseRow& p : r.timeline) {
+    if (r.task_name(p).find("[epoch ") != std::string::npos) e.push_back(p);
+  }
+  REQUIRE(e.size() == 3);
+  CHECK(r.task_name(e[0]) == "writer:log[epoch 1]");
+  CHECK(e[0].phase == PhaseKind::Write);
+  CHECK(r.task_name(e[2]) == "reader:log[epoch 2]");
+  for (const std::size_t i : {1, 2}) CHECK(e[i].cache_bytes == 4 * kMiB);  // the appended log, from the cache
 }
 
 }  // namespace

@@ -1,7 +1,9 @@
 #include "scenario/estimate.hpp"
+#include "scenario/estimate_loads.hpp"
 
 #include "cache/policy.hpp"
 #include "scenario/route_index.hpp"
+#include "workload/access_pattern.hpp"
 
 #include <pagecache/units.hpp>
 
@@ -20,47 +22,7 @@ namespace pagecache::scenario {
 
 namespace {
 
-// Events per chunk, as the engine counts them: a transfer is a flow, which costs about two
-// events (its completion scheduled, its process woken); a latency is a sleep, one more.
-constexpr double kFlowEvents = 2.0;
-// A chunk read locally: one flow, from the device or from the cache (both when split).
-constexpr double kLocalReadEvents = kFlowEvents;
-// A chunk written into a writeback cache: the copy, and later the writeback of its block,
-// whoever writes it (the writer at the dirty limit, reclaim, background writeback, expiry).
-constexpr double kCachedWriteEvents = 2.0 * kFlowEvents;
-// A chunk written through to the device (writethrough, O_DIRECT).
-constexpr double kDeviceWriteEvents = kFlowEvents;
-// A chunk to or from another host: one flow through the route (hits in the client's cache
-// are one flow through its memory), after the route's latency.
-constexpr double kRemoteEvents = 1.5;
-// A workflow task's start: spawned, woken by its prerequisites, given its cores.
-constexpr double kWorkflowTaskStartEvents = 3.0;
-// A throttled writer pauses 1 s at most (DirtyThrottle::Writer::next).
-constexpr double kMaxPause = 1.0;
-
 std::string bytes_text(double b) { return units::format_size(static_cast<std::int64_t>(std::min(b, 9e18))); }
-
-// What the tasks ask of one host: its devices' bytes, its cores' seconds, and what its page
-// cache must hold and write back.
-struct HostLoad {
-  std::vector<double> disk_read, disk_write;  // bytes per disk, all reads and writes
-  std::vector<double> dirtied;                // bytes per disk written into this host's cache (writeback)
-  double memory_read = 0.0, memory_write = 0.0;
-  double cpu = 0.0;         // core-seconds computed here
-  double anonymous = 0.0;   // application memory held at once by the tasks running here
-  double writers = 0.0;     // write streams into this host's cache at once
-  double dirtied_ops = 0.0; // chunks written into this host's cache
-  double write_rounds = 0.0;  // write phases one after another into this cache (the most of any stream)
-  double group_pauses = 0.0;  // pauses memory groups' own dirty limits impose
-};
-
-// One stream of tasks (an application, or a workflow's tasks that run at once) as it loads the
-// hosts: what it writes where, and how many write phases it has there.
-struct StreamWrites {
-  std::map<std::size_t, double> phases;  // host -> write phases into its cache
-  std::map<std::size_t, double> bytes;   // host -> bytes dirtied there
-  std::map<std::size_t, double> ops;     // host -> chunks dirtied there
-};
 
 class Estimator {
  public:
@@ -197,6 +159,15 @@ class Estimator {
     std::optional<std::size_t> busiest;
     for (std::size_t i = 0; i < t.accesses.size(); ++i) {
       const AccessSpec& a = t.accesses[i];
+      if (!a.file.empty()) {
+        const double ops_before = operations;
+        largest = std::max(largest, add_file_access(a, move));
+        if (operations - ops_before > most) {
+          most = operations - ops_before;
+          busiest = i;
+        }
+        continue;
+      }
       const std::size_t set = set_index_.at(a.file_set);
       const double samples = static_cast<double>(a.count > 0 ? a.count : s_.file_sets[set].count) * static_cast<double>(a.repeat);
       const double size = static_cast<double>(s_.file_sets[set].size), ops_before = operations;
@@ -210,6 +181,19 @@ class Estimator {
     }
     if (operations > most_ops_) access_of_most_ops_ = operations - before > before ? busiest : std::nullopt;
     return largest;
+  }
+
+  // An access of parts of one file: each request an operation as a chunk's (`move`, add_task's),
+  // read or written where the file is. Returns the buffer a read holds meanwhile (a request's).
+  template <typename Move>
+  double add_file_access(const AccessSpec& a, const Move& move) {
+    const std::size_t f = file_index_.at(a.file);
+    const workload::RequestPattern pattern = workload::request_pattern(a);
+    const double epochs = static_cast<double>(a.repeat);
+    const double requests = static_cast<double>(workload::RequestStream(pattern).per_epoch()) * epochs;
+    const bool writing = a.mode != AccessMode::Read;
+    move(place_[f].first, place_[f].second, workload::bytes_per_epoch(pattern) * epochs, requests, writing);
+    return writing ? 0.0 : static_cast<double>(a.request);
   }
 
   void note_operations(double ops, TaskAt at) {

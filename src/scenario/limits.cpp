@@ -102,10 +102,14 @@ void check_timeline_rows(const Scenario& s, const Origins& o, const ScenarioLimi
 // Too many events, most of them for an access's epochs over a file set: its count and repeat
 // make them.
 [[noreturn]] void fail_epochs(const Origin& access, const RunEstimate& e, const ScenarioLimits& limits) {
-  access.fail(access.has("repeat") || !access.has("count") ? "repeat" : "count",
+  // Of one file, the requests per epoch are the count, else the region over the request size.
+  const char* key = access.has("file") && !access.has("count") && !access.has("repeat") ? "request"
+                    : access.has("repeat") || !access.has("count")                     ? "repeat"
+                                                                                        : "count";
+  access.fail(key,
               fmt::format("the run would take about {:.3g} events, {:.3g} of them for {:.3g} chunk operations (each file's bytes over its "
-                          "task's chunk size, for every read and write, and every file an access reads in each epoch), more than the "
-                          "{:.3g} a run may take{}: fewer epochs or files per epoch make fewer",
+                          "task's chunk size, for every read and write, and every file or request of an access in each epoch), more "
+                          "than the {:.3g} a run may take{}: fewer epochs, or files or requests per epoch, make fewer",
                           e.events(), e.transfer_events, e.chunk_operations, limits.max_events, limits_hint(limits)));
 }
 

@@ -47,6 +47,10 @@ class ReachCheck {
         }
       }
       for (const AccessSpec& a : t.accesses) {
+        if (!a.file.empty()) {
+          local(where, owner, t, a.file, t.host.empty() ? hosts : std::vector<std::string>{t.host});
+          continue;
+        }
         const auto it = set_hosts_.find(a.file_set);
         if (it == set_hosts_.end()) throw ConfigError(fmt::format("{}: {}, task '{}': unknown file set '{}'", where, owner, t.name, a.file_set));
         if (!t.host.empty()) reach(where, owner, t.name, a.file_set, t.host, *it->second);
@@ -59,6 +63,23 @@ class ReachCheck {
   }
 
  private:
+  // Reads and writes by part (Host::read_ranges) are of a file of the task's own host: one it
+  // might read over a route is refused.
+  void local(const std::string& where, const std::string& owner, const TaskSpec& t, const std::string& file_name,
+             const std::vector<std::string>& hosts) {
+    const auto it = files_.find(file_name);
+    if (it == files_.end()) throw ConfigError(fmt::format("{}: {}, task '{}': unknown file '{}'", where, owner, t.name, file_name));
+    const std::string& server = it->second->host;
+    for (const std::string& host : hosts) {
+      if (host != server) {
+        throw ConfigError(fmt::format("{}: {}, task '{}': file '{}' is on host '{}' and the task may run on '{}': an access of parts of a "
+                                      "file (file = \"{}\") is of a file of the task's own host (pcsim does not model reads by part over "
+                                      "the network)",
+                                      where, owner, t.name, file_name, server, host, file_name));
+      }
+    }
+  }
+
   void reach(const std::string& where, const std::string& owner, const std::string& task, const std::string& file_name, const std::string& host,
              const std::string& server) {
     if (server == host || !reachable_.emplace(host, server).second) return;

@@ -37,6 +37,27 @@ std::string list(const std::vector<std::string>& items) {
   return toml_text(array);
 }
 
+// An access of parts of one file: its pattern's keys only.
+void write_file_access(std::string& out, const std::string& table, const AccessSpec& a) {
+  out += fmt::format("\n[[{}.access]]\nfile = {}\npattern = {}\nmode = {}\n", table, quoted(a.file), quoted(to_string(a.pattern)),
+                     quoted(to_string(a.mode)));
+  if (a.mode == AccessMode::Read) out += fmt::format("advice = {}\n", quoted(to_string(a.advice)));
+  out += fmt::format("request = {}\n", quoted(units::format_size(a.request)));
+  if (a.pattern == AccessPattern::Ranges) {
+    std::string ranges;
+    for (const auto& [offset, length] : a.ranges) {
+      ranges += fmt::format("{}[{}, {}]", ranges.empty() ? "" : ", ", quoted(units::format_size(offset)), quoted(units::format_size(length)));
+    }
+    out += fmt::format("ranges = [{}]\n", ranges);
+  } else {
+    out += fmt::format("offset = {}\nlength = {}\n", quoted(units::format_size(a.offset)), quoted(units::format_size(a.length)));
+    if (a.pattern == AccessPattern::Strided) out += fmt::format("stride = {}\n", quoted(units::format_size(a.stride)));
+    if (a.pattern == AccessPattern::Random) out += fmt::format("seed = {}\nreplacement = {}\n", a.seed, a.replacement);
+    out += fmt::format("count = {}\n", a.count);
+  }
+  out += fmt::format("repeat = {}\n", a.repeat);
+}
+
 void write_task(std::string& out, const std::string& table, const TaskSpec& t, bool in_workflow) {
   out += fmt::format("\n[[{}]]\nname = {}\n", table, quoted(t.name));
   if (in_workflow && !t.host.empty()) out += fmt::format("host = {}\n", quoted(t.host));
@@ -48,6 +69,10 @@ void write_task(std::string& out, const std::string& table, const TaskSpec& t, b
   if (t.memory_limits.max > 0) out += fmt::format("memory_max = {}\n", quoted(units::format_size(t.memory_limits.max)));
   if (t.memory_limits.high > 0) out += fmt::format("memory_high = {}\n", quoted(units::format_size(t.memory_limits.high)));
   for (const AccessSpec& a : t.accesses) {
+    if (!a.file.empty()) {
+      write_file_access(out, table, a);
+      continue;
+    }
     out += fmt::format("\n[[{}.access]]\nfiles = {}\npattern = {}\n", table, quoted(a.file_set), quoted(to_string(a.pattern)));
     if (a.pattern == AccessPattern::Random) out += fmt::format("seed = {}\nreplacement = {}\n", a.seed, a.replacement);
     out += fmt::format("count = {}\nrepeat = {}\n", a.count, a.repeat);

@@ -1,5 +1,7 @@
 #include "workload/plans.hpp"
 
+#include "workload/access_pattern.hpp"
+
 #include <pagecache/error.hpp>
 #include <pagecache/units.hpp>
 
@@ -109,13 +111,20 @@ void Plans::plan_task(const TaskSpec& task, const std::vector<PlacedFile>& place
   plan.compute = task.compute;
   plan.fsync = task.fsync;
   plan.direct_io = task.direct_io;
-  plan_accesses(task, plan);
+  plan_accesses(task, plan, placed, files);
 }
 
 // Scenarios built in code skip the loader's checks: what the run relies on is checked here.
-void Plans::plan_accesses(const TaskSpec& task, TaskPlan& plan) {
+void Plans::plan_accesses(const TaskSpec& task, TaskPlan& plan, const std::vector<PlacedFile>& placed, const FileIndex& files) {
   plan.accesses = static_cast<std::uint32_t>(accesses_.size());
   for (const AccessSpec& a : task.accesses) {
+    if (a.repeat < 1) throw ConfigError(fmt::format("task '{}': an access needs repeat >= 1", task.name));
+    if (!a.file.empty()) {
+      if (task.direct_io) throw ConfigError(fmt::format("task '{}': accesses of parts of a file with direct_io are not modelled", task.name));
+      plan_file_access(task, a, accesses_.emplace_back(), placed, files);
+      epochs_ += static_cast<std::size_t>(a.repeat);
+      continue;
+    }
     const auto set = set_index_.find(a.file_set);
     if (set == set_index_.end()) throw ConfigError(fmt::format("task '{}': no file set named '{}'", task.name, a.file_set));
     if (a.count < 0 || a.repeat < 1) {
@@ -137,6 +146,26 @@ void Plans::plan_accesses(const TaskSpec& task, TaskPlan& plan) {
     epochs_ += static_cast<std::size_t>(a.repeat);
   }
   plan.accesses_end = static_cast<std::uint32_t>(accesses_.size());
+}
+
+void Plans::plan_file_access(const TaskSpec& task, const AccessSpec& a, AccessPlan& access, const std::vector<PlacedFile>& placed,
+                             const FileIndex& files) const {
+  const auto it = files.find(a.file);
+  if (it == files.end()) throw ConfigError(fmt::format("task '{}': no file named '{}'", task.name, a.file));
+  access.of_file = true;
+  access.file = it->second;
+  access.requests = request_pattern(a);
+  const PlacedFile& file = placed[it->second];
+  const std::string problem = pattern_problem(access.requests, file.host->file_size(file.ref));
+  if (!problem.empty()) throw ConfigError(fmt::format("task '{}', access of file '{}': {}", task.name, a.file, problem));
+  if (a.replacement && a.pattern != AccessPattern::Random) {
+    throw ConfigError(fmt::format("task '{}': draws with replacement need the random pattern", task.name));
+  }
+  access.writing = a.mode != AccessMode::Read;
+  access.advice = a.advice == AccessAdvice::Random       ? ReadAdvice::Random
+                  : a.advice == AccessAdvice::Sequential ? ReadAdvice::Sequential
+                                                         : ReadAdvice::Normal;
+  access.repeat = a.repeat;
 }
 
 WorkflowHosts place_workflow(const WorkflowSpec& w, const Platform& platform, Simulator& sim) {

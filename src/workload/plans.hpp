@@ -5,6 +5,7 @@
 
 #include "workload/core_scheduler.hpp"
 #include "workload/platform.hpp"
+#include "workload/request_pattern.hpp"
 #include "workload/sample_order.hpp"
 
 #include <pagecache/host.hpp>
@@ -40,8 +41,14 @@ struct TaskPlan {
   GroupRef group;  // its application's memory group, if it has one
 };
 
-/// An access (AccessSpec) as its run reads it: its set's files, the order it visits them in.
+/// An access (AccessSpec) as its run reads it: its set's files, the order it visits them in; or
+/// its file and the requests it makes of it.
 struct AccessPlan {
+  bool of_file = false;
+  std::uint32_t file = 0;    // of_file: in Platform::files()
+  RequestPattern requests;   // of_file
+  bool writing = false;      // of_file: writes (in place or appends), else reads
+  ReadAdvice advice = ReadAdvice::Normal;
   PlacedFileSet set;
   std::uint32_t set_index = 0;  // in the scenario's file sets (Plans::set_name)
   SampleOrder::Kind order = SampleOrder::Kind::InOrder;
@@ -86,7 +93,9 @@ class Plans {
   void plan_applications(const std::vector<AppSpec>& apps, const Platform& platform, const FileIndex& files, TaskIndex& names);
   void plan_workflows(const std::vector<WorkflowSpec>& workflows, const Platform& platform, const FileIndex& files, TaskIndex& names);
   void plan_task(const TaskSpec& task, const std::vector<PlacedFile>& placed, const FileIndex& files, TaskIndex& names);
-  void plan_accesses(const TaskSpec& task, TaskPlan& plan);
+  void plan_accesses(const TaskSpec& task, TaskPlan& plan, const std::vector<PlacedFile>& placed, const FileIndex& files);
+  void plan_file_access(const TaskSpec& task, const AccessSpec& a, AccessPlan& access, const std::vector<PlacedFile>& placed,
+                        const FileIndex& files) const;
 
   std::vector<AppPlan> apps_;
   std::vector<TaskPlan> tasks_;  // per task, apps' then workflows', in order

@@ -7,24 +7,7 @@ namespace pagecache::workload {
 
 namespace {
 
-std::uint64_t mix(std::uint64_t z) noexcept {  // splitmix64's finaliser
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
-
-std::uint64_t next_random(std::uint64_t& state) noexcept {
-  state += 0x9E3779B97F4A7C15ull;
-  return mix(state);
-}
-
-// A draw in [0, n), unbiased: draws below 2^64 mod n are rejected, the rest fall evenly.
-std::uint64_t below(std::uint64_t& state, std::uint64_t n) noexcept {
-  const std::uint64_t rejected = (0 - n) % n;
-  std::uint64_t r = next_random(state);
-  while (r < rejected) r = next_random(state);
-  return r % n;
-}
+constexpr auto mix = SplitMix64::mix;
 
 }  // namespace
 
@@ -76,7 +59,7 @@ void RequestStream::start_epoch(std::int64_t epoch) {
   within_ = 0;
   // Each epoch its own order: keys and draws from the seed and the epoch alone.
   key_ = mix(pattern_.seed ^ mix(static_cast<std::uint64_t>(epoch) + 0x5851F42D4C957F2Dull));
-  random_ = key_;
+  draws_ = SplitMix64(key_);
 }
 
 ByteRange RequestStream::slot(std::int64_t i) const noexcept {
@@ -90,7 +73,8 @@ ByteRange RequestStream::request(std::int64_t i) {
     case RequestPattern::Kind::Sequential: return slot(i % slots_);
     case RequestPattern::Kind::Random: {
       const auto n = static_cast<std::uint64_t>(slots_);
-      const std::uint64_t s = p.replacement ? below(random_, n) : permute(static_cast<std::uint64_t>(i) % n, n, key_, half_bits_);
+      const std::uint64_t s =
+          p.replacement ? draws_.below(static_cast<std::uint32_t>(n)) : permute(static_cast<std::uint64_t>(i) % n, n, key_, half_bits_);
       return slot(static_cast<std::int64_t>(s));
     }
     case RequestPattern::Kind::Strided: return {.offset = p.offset + i * p.stride, .length = p.request};

@@ -2,9 +2,12 @@
 // RequestPattern: how a task reads one file by parts — in order, at random, strided, or a list
 // of ranges — and RequestStream, the requests it makes, one at a time, for Host::read_ranges.
 // Random orders are a seeded function of the pattern alone (a Feistel permutation of the
-// request slots, cycle-walked to their count; draws with replacement from splitmix64), so a
+// request slots, cycle-walked to their count; draws with replacement from SplitMix64, the
+// generator of file-set orders too), so a
 // stream costs O(1) memory whatever the file's size and gives the same requests on any
 // compiler and machine.
+
+#include "workload/sample_order.hpp"
 
 #include <pagecache/host.hpp>
 
@@ -25,6 +28,7 @@ struct RequestPattern {
   /// Strided: bytes from one request's start to the next's (>= request).
   std::int64_t stride = 0;
   /// Requests per epoch; 0: every slot once (Random, Sequential, Strided: as many as fit).
+  /// Random: the slots are fewer than 2^32.
   std::int64_t count = 0;
   /// Random: draws with replacement (a slot may come twice in an epoch), else each at most once.
   bool replacement = false;
@@ -55,7 +59,7 @@ class RequestStream {
   std::int64_t slots_ = 0;      // Random, Sequential: slots of the region
   std::int64_t per_epoch_ = 0;
   std::int64_t index_ = 0;      // next request of the epoch
-  std::uint64_t random_ = 0;    // splitmix64 state (draws with replacement)
+  SplitMix64 draws_{0};         // draws with replacement
   std::uint64_t key_ = 0;       // this epoch's permutation key
   int half_bits_ = 0;           // the permutation's domain is 2^(2 * half_bits_)
   std::size_t range_ = 0;       // Ranges: the range being read and where in it

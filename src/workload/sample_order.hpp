@@ -14,8 +14,10 @@ namespace pagecache::workload {
 class SplitMix64 {
  public:
   explicit SplitMix64(std::uint64_t seed) noexcept : state_(seed) {}
-  std::uint64_t next() noexcept {
-    std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
+  std::uint64_t next() noexcept { return mix(state_ += 0x9e3779b97f4a7c15ULL); }
+  /// SplitMix64's finaliser: a bijection of 64-bit words that mixes every bit into every other
+  /// (the round function of RequestStream's permutations).
+  static constexpr std::uint64_t mix(std::uint64_t z) noexcept {
     z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
     z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
     return z ^ (z >> 31);

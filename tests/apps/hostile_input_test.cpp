@@ -317,3 +317,12 @@ TEST_CASE("a file set's count and an access's epochs that would fill the memory 
   refused(run_edited("draws", "", set + "10\n" + access + "pattern = \"random\"\nreplacement = true\ncount = 1000000000000"),
           {"key 'apps[0].tasks[0].access[0].count'", "events"});
 }
+
+TEST_CASE("an access of one file whose requests or epochs would fill the memory is refused at once, naming its key", "[cli][hostile][access]") {
+  const std::string file = "[[files]]\nname = \"big\"\nsize = \"5 GB\"\n[[apps]]\n[[apps.tasks]]\n[[apps.tasks.access]]\nfile = \"big\"\n";
+  refused(run_edited("bytes", "", file + "request = \"1 B\""), {"key 'apps[0].tasks[0].access[0].request'", "events"});
+  refused(run_edited("file_epochs", "", file + "repeat = 1000000000000"), {"key 'apps[0].tasks[0].access[0].repeat'", "timeline"});
+  refused(run_edited("file_draws", "", file + "pattern = \"random\"\nrequest = \"4 KiB\"\nreplacement = true\ncount = 1000000000000"),
+          {"key 'apps[0].tasks[0].access[0].count'", "events"});
+  refused(run_edited("file_slots", "", file + "pattern = \"random\"\nrequest = \"1 B\""), {"key 'apps[0].tasks[0].access[0].request'", "2^32 - 1"});
+}

@@ -313,3 +313,62 @@ TEST_CASE("the README's training epochs: epoch times and shares from the page ca
   CHECK(sequential.at(2).at("cache_bytes") == "0");
   CHECK(duration(sequential.at(2)) == Approx(duration(sequential.at(1))));
 }
+
+namespace {
+
+// The epoch rows of `scenario` (scenarios/examples/) run with `sets`, task `task`: [epoch] -> row.
+std::map<int, pagecache::testing::CsvRow> access_epochs(const std::string& scenario, const std::string& task, const std::string& name,
+                                                        const std::vector<std::string>& sets) {
+  const fs::path out = fresh(name);
+  std::vector<std::string> args{"run", (fs::path(PCSIM_SOURCE_DIR) / "scenarios/examples" / scenario).string(), "--out", out.string(), "--quiet"};
+  for (const std::string& s : sets) args.insert(args.end(), {"--set", s});
+  run_pcsim(args);
+  std::map<int, pagecache::testing::CsvRow> rows;
+  for (const auto& row : read_csv((out / "timeline.csv").string())) {
+    std::smatch m;
+    const std::string label = row.at("task");
+    if (std::regex_match(label, m, std::regex(task + R"(\[epoch ([0-9]+)\])"))) rows.emplace(std::stoi(m[1].str()), row);
+  }
+  REQUIRE(rows.size() == 2);
+  return rows;
+}
+
+double cached_share(const pagecache::testing::CsvRow& row) { return std::stod(row.at("cache_bytes")) / std::stod(row.at("bytes")); }
+
+}  // namespace
+
+TEST_CASE("the README's hyperslab reads: epoch 2 from memory when the block fits, from disk when it does not", "[cli][docs][access]") {
+  const auto f = figures(R"(Epoch 1 takes ([0-9.]+) s from disk, each request a disk request \(strided requests are not read ahead\), and )"
+                         R"(epoch 2 ([0-9.]+) s, ([0-9.]+) % from the page cache, .* no longer fits: epoch 2 finds ([0-9.]+) % in the cache )"
+                         R"(and takes ([0-9.]+) s, as epoch 1\.)");
+  const auto fits = access_epochs("hyperslab-reads.toml", "slab:array", "hyperslab", {});
+  check_figure("epoch 1", f[0], duration(fits.at(1)));
+  check_figure("epoch 2", f[1], duration(fits.at(2)));
+  check_figure("epoch 2 from cache", f[2], 100.0 * cached_share(fits.at(2)));
+  const auto wide = access_epochs("hyperslab-reads.toml", "slab:array", "hyperslab-wide", {"apps.0.tasks.0.access.0.request=\"200 kB\""});
+  check_figure("wide epoch 2 from cache", f[3], 100.0 * cached_share(wide.at(2)));
+  check_figure("wide epoch 2", f[4], duration(wide.at(2)));
+  // The physics: epoch 1 misses everything, each request a disk request of its pages (80 us
+  // and its bytes at 2 GB/s); a block that fits is read from memory in epoch 2.
+  CHECK(fits.at(1).at("cache_bytes") == "0");
+  CHECK(duration(fits.at(1)) == Approx(100'000 * 80e-6 + std::stod(fits.at(1).at("disk_bytes")) / 2e9).epsilon(0.001));
+  CHECK(fits.at(2).at("disk_bytes") == "0");
+  CHECK(duration(wide.at(2)) == Approx(duration(wide.at(1))));
+}
+
+TEST_CASE("the README's key-value reads: the share from the cache is the share of the file it holds", "[cli][docs][access]") {
+  const auto f = figures(R"(in epoch 2 ([0-9.]+) % of the bytes come from the page cache, as the share of the file it holds \(256 MB of 1 GB, )"
+                         R"(([0-9.]+) %\), and a read takes ([0-9.]+) us on average\. With `advice = "random"`)");
+  const auto normal = access_epochs("key-value-random.toml", "get:db", "key-value", {});
+  check_figure("epoch 2 from cache", f[0], 100.0 * cached_share(normal.at(2)));
+  check_figure("memory over file", f[1], 100.0 * 256e6 / 1e9);
+  check_figure("time per read", f[2], duration(normal.at(2)) / 500'000 * 1e6);
+  // The physics: the hit share is the cache's share of the file, within a point.
+  CHECK(cached_share(normal.at(2)) == Approx(0.256).margin(0.01));
+  // POSIX_FADV_RANDOM changes nothing: random requests are not read ahead under normal advice.
+  const auto random = access_epochs("key-value-random.toml", "get:db", "key-value-fadv", {"apps.0.tasks.0.access.0.advice=random"});
+  for (const int e : {1, 2}) {
+    CHECK(random.at(e).at("end_s") == normal.at(e).at("end_s"));
+    CHECK(random.at(e).at("cache_bytes") == normal.at(e).at("cache_bytes"));
+  }
+}

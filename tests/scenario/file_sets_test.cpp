@@ -89,7 +89,9 @@ TEST_CASE("mistakes in a file set or an access are refused with the file, line a
              Catch::Contains("s.toml:22:9: key 'apps[0].tasks[0].access[0].count'") && Catch::Contains("at most once per epoch"));
   CHECK_THAT(refusal(scenario(ok, "repeat = 0")), Catch::Contains("key 'apps[0].tasks[0].access[0].repeat'"));
   CHECK_THAT(refusal(scenario(ok, "seed = -1")), Catch::Contains("key 'apps[0].tasks[0].access[0].seed'"));
-  CHECK_THAT(refusal(scenario(ok, "file = \"x\"")), Catch::Contains("s.toml:21:8: unknown key 'apps[0].tasks[0].access[0].file'"));
+  CHECK_THAT(refusal(scenario(ok, "file = \"x\"")), Catch::Contains("s.toml:21:8: key 'apps[0].tasks[0].access[0].file'") && Catch::Contains("not both"));
+  CHECK_THAT(refusal(scenario(ok, "request = \"4 KiB\"")),
+             Catch::Contains("s.toml:21:11: key 'apps[0].tasks[0].access[0].request'") && Catch::Contains("access of one file"));
   CHECK_THAT(refusal(scenario(ok, "").replace(scenario(ok, "").find("files = \"images\""), 16, "files = \"videos\"")),
              Catch::Contains("s.toml:20:9: key 'apps[0].tasks[0].access[0].files'") && Catch::Contains("no file set named 'videos'"));
 }

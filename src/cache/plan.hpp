@@ -79,6 +79,9 @@ struct ReadPlan {
 /// within the chunk) comes from the device and needs room beside the application's copy.
 /// Evicting may take the file's own data, and then more of the chunk is not cached: plan again.
 ReadPlan plan_read(const PageCache& cache, const ReadRequest& request) noexcept;
+/// What a chunk's room must not be taken from: spared_by_read's for a chunk of a whole-file
+/// read; nothing for a chunk of a file held by range.
+FileId spared_by_chunk(const PageCache& cache, const ReadRequest& request) noexcept;
 /// `plan` for `request` with its room planned again: the same parts from the device and the
 /// cache (the caller knows they are), the room as memory is now.
 ReadPlan replan_room(const PageCache& cache, const ReadPlan& plan, const ReadRequest& request) noexcept;

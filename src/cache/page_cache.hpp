@@ -181,43 +181,31 @@ class PageCache {
   /// chunk of the same read starts.
   ReadCursor reaccess(FileId file, std::int64_t bytes, double now, ReadCursor from = {});
 
-  // --- Byte ranges --------------------------------------------------------------------------
-  // Whole-file I/O needs only how much of a file is cached; reads of parts of a file need
-  // which parts. A file is held by range from its first partial access on: its blocks then
-  // carry offsets (FileRanges), and whole-file sequential I/O, which never asks, pays nothing.
-  /// From now on the file's data is held by byte range. Data it already has takes consecutive
-  /// ranges from offset 0, least recently used first, inactive list then active: where a
-  /// sequential read in chunks puts it. Idempotent.
+  // --- Byte ranges (docs/model.md §6.19) ---------------------------------------------------
+  // A file is held by range from its first access by parts on: its blocks then carry offsets
+  // (FileRanges); whole-file I/O, which never asks which part is cached, pays nothing.
+  /// From now on the file's data is held by range; what it has takes ranges from offset 0,
+  /// least recently used first, inactive list then active. Idempotent.
   void track_ranges(FileId file);
   bool ranged(FileId file) const noexcept { return file < ranged_.size() && ranged_[file] != 0; }
   /// Cached bytes of [offset, offset + bytes) of a ranged file.
   std::int64_t cached_in(FileId file, std::int64_t offset, std::int64_t bytes) const noexcept;
-  /// A read of [offset, offset + bytes) of a ranged file: each cached part is re-accessed as
-  /// reaccess() does (the policy decides each block's move; only the part read moves), then
-  /// each hole becomes new data read from the device as add_read() makes it. Clean data of
-  /// the file that ends up contiguous on one list stays one block. Returns the bytes read
-  /// from the device.
+  /// A read of the range: each cached part re-accessed as reaccess() does (only the part read
+  /// moves), then each hole new data read as add_read() makes it. Returns the holes' bytes.
   std::int64_t read_range(FileId file, std::int64_t offset, std::int64_t bytes, double now);
-  /// Readahead into a ranged file: the holes of [offset, offset + bytes) become new clean data
-  /// at the MRU end of the inactive list, not yet touched by any read (as the kernel adds
-  /// readahead pages: unreferenced, on the inactive list, evicted as any other). Returns the
-  /// bytes added.
+  /// Readahead: the holes become clean data at the inactive list's MRU end, untouched (as the
+  /// kernel adds readahead pages). Returns the bytes added.
   std::int64_t read_ahead(FileId file, std::int64_t offset, std::int64_t bytes, double now);
-  /// POSIX_FADV_DONTNEED on [offset, offset + bytes) of a ranged file: its clean data there
-  /// is dropped (dirty data and data being written back stay: the kernel starts their
-  /// writeback and drops only clean pages). Returns the bytes dropped.
+  /// POSIX_FADV_DONTNEED: the range's clean data is dropped (dirty data and data in writeback
+  /// stay). Returns the bytes dropped.
   std::int64_t drop_clean_range(FileId file, std::int64_t offset, std::int64_t bytes);
-  /// A write of [offset, offset + bytes) of a ranged file, its copy done: the holes become new
-  /// dirty data (free memory), cached clean data and data being written back become dirty
-  /// again (a new entry time `now`; the write in flight ends for the rest of its data only),
-  /// and dirty data stays dirty with its entry time (the kernel keeps an inode's dirtied_when).
-  /// What becomes dirty goes to the MRU end of the inactive list, in offset order. Returns the
-  /// bytes that were not cached.
+  /// A write of the range, its copy done: holes become new dirty data, clean data and data in
+  /// writeback dirty again (entered `now`; the write in flight ends for the rest of its data),
+  /// dirty data stays dirty with its entry time; all to the inactive list's MRU end, by offset.
+  /// Returns the holes' bytes.
   std::int64_t write_range(FileId file, std::int64_t offset, std::int64_t bytes, double now);
-  /// commit_dirty for a ranged file: the reservation of `bytes` ends, and they are written at
-  /// `offset` (write_range).
+  /// commit_dirty for a ranged file: the reservation of `bytes` ends, written at `offset`.
   void commit_dirty_at(FileId file, std::int64_t offset, std::int64_t bytes, double now);
-  /// Each ranged file's blocks by offset.
   const FileRanges& ranges() const noexcept { return ranges_; }
   const Block& block(BlockId id) const noexcept { return blocks_[id]; }
 

@@ -15,6 +15,25 @@
 
 namespace pagecache::scenario {
 
+namespace {
+
+// Where a file, or each file of a set (`what`), is stored: its host and disk keys, the disk
+// defaulting to the host's first. Returns the host.
+const HostConfig& read_placement(TomlReader& f, const Scenario& s, const std::string& what, std::string& host, std::string& disk) {
+  host = f.name("host", s.hosts.front().name);
+  disk = f.name("disk", "");
+  const auto h = std::find_if(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == host; });
+  if (h == s.hosts.end()) f.fail("host", fmt::format("no host named '{}'", host));
+  if (disk.empty()) {
+    // A platform file's host may have none (a SimGrid cluster's).
+    if (h->disks.empty()) f.fail("host", fmt::format("host '{}' has no disk to store {}", host, what));
+    disk = h->disks.front().name;
+  }
+  return *h;
+}
+
+}  // namespace
+
 void read_files(TomlReader& r, const std::string& file, Scenario& s, Origins& origins) {
   const auto files = r.tables("files");
   for (std::size_t i = 0; i < files.size(); ++i) {
@@ -23,16 +42,8 @@ void read_files(TomlReader& r, const std::string& file, Scenario& s, Origins& or
     FileSpec spec;
     spec.name = f.required_name("name");
     spec.size = f.required_size("size");
-    spec.host = f.name("host", s.hosts.front().name);
-    spec.disk = f.name("disk", "");
+    read_placement(f, s, fmt::format("file '{}'", spec.name), spec.host, spec.disk);
     spec.cached = f.optional_bool("cached").value_or(false);
-    const auto h = std::find_if(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == spec.host; });
-    if (h == s.hosts.end()) f.fail("host", fmt::format("no host named '{}'", spec.host));
-    if (spec.disk.empty()) {
-      // A platform file's host may have none (a SimGrid cluster's).
-      if (h->disks.empty()) f.fail("host", fmt::format("host '{}' has no disk to store file '{}'", spec.host, spec.name));
-      spec.disk = h->disks.front().name;
-    }
     f.finish();
     s.files.push_back(std::move(spec));
   }
@@ -56,15 +67,8 @@ void read_file_sets(TomlReader& r, const std::string& file, const ScenarioLimits
                                   limits_hint(limits)));
     }
     spec.size = f.required_size("size");
-    spec.host = f.name("host", s.hosts.front().name);
-    spec.disk = f.name("disk", "");
+    const HostConfig* h = &read_placement(f, s, fmt::format("file set '{}'", spec.name), spec.host, spec.disk);
     spec.cached = f.optional_bool("cached").value_or(false);
-    const auto h = std::find_if(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& c) { return c.name == spec.host; });
-    if (h == s.hosts.end()) f.fail("host", fmt::format("no host named '{}'", spec.host));
-    if (spec.disk.empty()) {
-      if (h->disks.empty()) f.fail("host", fmt::format("host '{}' has no disk to store file set '{}'", spec.host, spec.name));
-      spec.disk = h->disks.front().name;
-    }
     const auto d = std::find_if(h->disks.begin(), h->disks.end(), [&](const DiskSpec& x) { return x.name == spec.disk; });
     if (d == h->disks.end()) f.fail("disk", fmt::format("file set '{}': host '{}' has no disk '{}'", spec.name, h->name, spec.disk));
     if (d->capacity > 0 && spec.size > d->capacity) {

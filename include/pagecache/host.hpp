@@ -41,6 +41,10 @@ struct HostSpec {
   /// were freed just before it (a dropped cache); the rest of it is cold.
   double page_reporting_delay = 2.0;
   std::int64_t memory_freed_at_start = 0;
+  /// Seconds a thread spends on each request of a read or write of parts of a file
+  /// (read_ranges, write_ranges) besides its transfers: the system call and the page cache's
+  /// look-up. 0: none.
+  double request_time = 0.0;
 };
 
 /// A disk of a host (index in the order of add_disk).
@@ -57,6 +61,20 @@ struct GroupRef {
 struct FileRef {
   std::uint32_t index = 0;
   friend bool operator==(FileRef, FileRef) = default;
+};
+
+/// A part of a file: `length` bytes from `offset`.
+struct ByteRange {
+  std::int64_t offset = 0;
+  std::int64_t length = 0;
+  friend bool operator==(const ByteRange&, const ByteRange&) = default;
+};
+
+/// posix_fadvise advice for a read of parts of a file (Host::read_ranges).
+enum class ReadAdvice : std::uint8_t {
+  Normal,      ///< the kernel's readahead for sequential requests
+  Sequential,  ///< POSIX_FADV_SEQUENTIAL: readahead windows up to twice as large
+  Random,      ///< POSIX_FADV_RANDOM: no readahead
 };
 
 /// What an I/O phase moved and when.
@@ -102,7 +120,35 @@ class Host {
   /// call for a file unknown here or a chunk size <= 0; SimulationError from the task when the
   /// read cannot proceed.
   Task<IoResult> read_file(FileRef file, std::int64_t chunk_size, bool direct = false, GroupRef group = {});
-  /// Writes the file's whole size in chunks of `chunk_size` bytes. `direct`: O_DIRECT (on an
+  /// Reads parts of a local file: the requests `next` yields (it fills its argument and
+  /// returns true, or returns false when there are no more), one after the other, into a
+  /// buffer of `buffer` bytes the read holds meanwhile and then releases. Each request reads
+  /// the pages it touches: what is cached of them is a hit, the rest one device request. From
+  /// its start the file's page cache is held by byte range: which parts are
+  /// cached counts from then on (whole-file reads and writes only count how much). Throws
+  /// ConfigError at the call for a remote file or a buffer <= 0; SimulationError from the
+  /// task for a request not within the file or when the read cannot proceed.
+  /// Sequential requests (each starting where the one before ended, the first at 0) are read
+  /// ahead as the kernel does, in windows up to the disk's read_ahead, as `advice` allows;
+  /// readahead pages go to the inactive list untouched.
+  Task<IoResult> read_ranges(FileRef file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupRef group = {},
+                             ReadAdvice advice = ReadAdvice::Normal);
+  /// posix_fadvise(POSIX_FADV_WILLNEED) on `range` of a local file: what is not cached of its
+  /// pages is read into the page cache in the background (the call returns at once), as
+  /// readahead is: one device request, the pages untouched at the inactive list's MRU end.
+  void will_need(FileRef file, ByteRange range);
+  /// posix_fadvise(POSIX_FADV_DONTNEED) on `range` of a local file: the clean data of its pages
+  /// leaves the page cache now. Dirty data stays (the kernel starts its writeback; here the
+  /// flusher writes it as any other). Returns the bytes dropped.
+  std::int64_t dont_need(FileRef file, ByteRange range);
+  /// Writes parts of a local file: the requests `next` yields, one after the other. Each writes
+  /// the pages it touches: where they are not cached, new dirty data (as write_file's chunks,
+  /// under the same dirty throttling); where they are, in place (clean pages become dirty,
+  /// dirty pages stay so). An append is a write past what was written before: the file's size
+  /// is what it ends at. Errors as read_ranges'.
+  Task<IoResult> write_ranges(FileRef file, std::function<bool(ByteRange&)> next, GroupRef group = {});
+  /// Writes the file's whole size in chunks of `chunk_size` bytes. A file held by range (see
+  /// read_ranges) is written in place from its start. `direct`: O_DIRECT (on an
   /// NFS mount the same as without: there is no client write cache). Errors as read_file's.
   Task<IoResult> write_file(FileRef file, std::int64_t chunk_size, bool direct = false, GroupRef group = {});
   /// fsync(2): returns when every dirty byte of the file is on its disk.

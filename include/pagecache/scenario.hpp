@@ -53,6 +53,8 @@ struct HostConfig {
   /// Free page reporting (with memory_bandwidth.cold_fault): HostSpec's fields of these names.
   double page_reporting_delay = 2.0;
   std::int64_t memory_freed_at_start = 0;
+  /// HostSpec's field of this name: seconds per request of a read or write by parts.
+  double request_time = 0.0;
   CacheSettings cache;
   std::vector<DiskSpec> disks;
 };
@@ -85,6 +87,70 @@ struct FileSpec {
   bool cached = false;  ///< in its host's page cache (clean) at time 0
 };
 
+/// Many files of one size stored together, e.g. a training data set: `count` files named
+/// `name/0` ... `name/{count-1}`, made when the run starts (never a FileSpec each: a set of 10^6
+/// is one entry). Tasks read its files through AccessSpec only.
+struct FileSetSpec {
+  std::string name;
+  std::int64_t count = 0;  ///< files, >= 1
+  std::int64_t size = 0;   ///< bytes of each
+  std::string host;        ///< where they are stored
+  std::string disk;
+  bool cached = false;  ///< all in their host's page cache (clean) at time 0
+};
+
+/// The order in which an access visits its files (a file set's), or a file's parts (one file's).
+enum class AccessPattern {
+  Sequential,  ///< files 0, 1, ... (parts from the region's start) in order, the same every epoch
+  Random,      ///< a seeded draw, new each epoch (AccessSpec::replacement)
+  Strided,     ///< one file: requests `stride` bytes apart from the region's start
+  Ranges,      ///< one file: the listed ranges, in order
+};
+
+/// What an access of one file does with its requests.
+enum class AccessMode {
+  Read,
+  Write,   ///< in place where cached, new dirty data elsewhere (Host::write_ranges)
+  Append,  ///< a sequential write from the region's start to the file's end
+};
+
+/// posix_fadvise advice an access of one file gives before it reads (Host's ReadAdvice).
+enum class AccessAdvice { Normal, Sequential, Random };
+
+const char* to_string(AccessPattern pattern);
+const char* to_string(AccessMode mode);
+const char* to_string(AccessAdvice advice);
+
+/// A task's reads over a file set, in epochs (a training job's passes over its data set): each
+/// epoch reads `count` files of the set, each whole in the task's chunks (as a `read` of that
+/// file), and frees each file's buffer once it is read (a data loader keeps no sample).
+/// Or, with `file` instead of `file_set`, its reads or writes of parts of one file (a
+/// hyperslab, a key-value store's pages, a log's appends), in requests of `request` bytes that
+/// the page cache serves by byte range (Host::read_ranges, write_ranges), epoch after epoch.
+struct AccessSpec {
+  std::string file_set;  ///< FileSetSpec::name; empty for an access of one file
+  std::string file;      ///< FileSpec::name of the file accessed by parts; empty for a file set's
+  AccessPattern pattern = AccessPattern::Sequential;
+  /// Random: the generator's seed; the same seed gives the same orders.
+  std::uint64_t seed = 0;
+  /// Random: false, each file (part) at most once per epoch (a new shuffle each epoch); true,
+  /// `count` independent draws.
+  bool replacement = false;
+  /// Files per epoch, 0: the set's count (without replacement, at most it); of one file, requests
+  /// per epoch, 0: each part of the region once (strided: as many as fit; ranges: unused).
+  std::int64_t count = 0;
+  std::int64_t repeat = 1;  ///< epochs, >= 1
+  // Of one file only:
+  std::int64_t request = 0;  ///< bytes per request, > 0 (ranges: each range cut into such requests)
+  /// The region the requests fall in, [offset, offset + length), within the file (ranges: unused).
+  std::int64_t offset = 0;
+  std::int64_t length = 0;
+  std::int64_t stride = 0;  ///< strided: bytes from one request's start to the next's, >= request
+  std::vector<std::pair<std::int64_t, std::int64_t>> ranges;  ///< ranges: (offset, length) each
+  AccessMode mode = AccessMode::Read;
+  AccessAdvice advice = AccessAdvice::Normal;  ///< reads only
+};
+
 /// One task: read files, compute, write files, then release its buffers.
 /// A memory group's limits (a cgroup's memory.max and memory.high; 0: none).
 struct MemoryLimits {
@@ -102,6 +168,8 @@ struct TaskSpec {
   /// included: a task reading more holds what it reads (bytes; 0: only its buffers).
   std::int64_t memory = 0;
   std::vector<std::string> reads;
+  /// After `reads` and before computing, in order; a timeline row per access and epoch.
+  std::vector<AccessSpec> accesses;
   double compute = 0.0;  ///< CPU seconds (on one core)
   std::vector<std::string> writes;
   std::int64_t chunk_size = 0;
@@ -155,6 +223,7 @@ struct Scenario {
   std::vector<LinkSpec> links;
   std::vector<RouteSpec> routes;
   std::vector<FileSpec> files;
+  std::vector<FileSetSpec> file_sets;  ///< names distinct from the files'
   std::vector<AppSpec> apps;
   std::vector<WorkflowSpec> workflows;
   /// What the inputs hold that pcsim read but does not model, and what it took in place of a

@@ -56,6 +56,8 @@ struct alignas(64) Block {
   BlockState state = BlockState::Clean;
   ListKind list = ListKind::Inactive;
   bool referenced = false;  // touched once while inactive (two-touch activation)
+  bool ranged = false;      // of a file held by byte range: indexed in PageCache's FileRanges
 };
+static_assert(sizeof(Block) == 64, "a block fills one cache line");
 
 }  // namespace pagecache::cache

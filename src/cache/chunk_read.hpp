@@ -37,7 +37,8 @@ bool evict_to_fit(PageCache& cache, std::int64_t required, FileId spared);
 /// of the chunk is re-accessed from `from` (where the read's previous chunk left off,
 /// PageCache::reaccess) and `request.anonymous` bytes of application memory are taken for
 /// `group`, which is charged with the file if no group has it. Returns where the next chunk
-/// of the same read starts.
+/// of the same read starts. A chunk of a file held by range (`request.offset` set) reads its
+/// range instead (PageCache::read_range): `from_disk` is then exactly the range's holes.
 ReadCursor start_chunk(PageCache& cache, const ReadRequest& request, std::int64_t from_disk, ReadCursor from, GroupId group, double now);
 
 }  // namespace pagecache::cache

@@ -61,6 +61,8 @@ Host::Host(Simulator& sim, FairShare& share, HostSpec spec) : impl_(std::make_un
   impl_->cache.allocate_anonymous(impl_->spec.memory_in_use);
   impl_->io.machine_at_rest();
   if (impl_->spec.memory_bandwidth.cold_fault > 0.0) impl_->io.report_free_pages(impl_->spec.page_reporting_delay, impl_->spec.memory_freed_at_start);
+  if (!(impl_->spec.request_time >= 0.0)) throw ConfigError(fmt::format("host '{}': request_time must be >= 0 s", impl_->spec.name));
+  impl_->io.set_request_time(impl_->spec.request_time);
   impl_->flusher.start();
 }
 
@@ -114,6 +116,18 @@ std::size_t Host::file_count() const noexcept { return impl_->files.size(); }
 // per file read or written.
 Task<IoResult> Host::read_file(FileRef file, std::int64_t chunk_size, bool direct, GroupRef group) {
   return impl_->io.read_file(impl_->id(file), chunk_size, direct, impl_->group(group));
+}
+
+Task<IoResult> Host::read_ranges(FileRef file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupRef group, ReadAdvice advice) {
+  return impl_->io.read_ranges(impl_->id(file), std::move(next), buffer, impl_->group(group), advice);
+}
+
+void Host::will_need(FileRef file, ByteRange range) { impl_->io.will_need(impl_->id(file), range); }
+
+std::int64_t Host::dont_need(FileRef file, ByteRange range) { return impl_->io.dont_need(impl_->id(file), range); }
+
+Task<IoResult> Host::write_ranges(FileRef file, std::function<bool(ByteRange&)> next, GroupRef group) {
+  return impl_->io.write_ranges(impl_->id(file), std::move(next), impl_->group(group));
 }
 
 Task<IoResult> Host::write_file(FileRef file, std::int64_t chunk_size, bool direct, GroupRef group) {

@@ -143,9 +143,9 @@ Task<void> IoController::make_group_room(GroupId group, std::int64_t bytes, File
   }
 }
 
-Task<std::int64_t> IoController::room_for_chunk(FileId file, std::int64_t file_size, std::int64_t bytes, std::int64_t buffer, GroupId group,
-                                                const char* verb) {
-  const ReadRequest request{.file = file, .file_size = file_size, .bytes = bytes, .anonymous = buffer};
+Task<std::int64_t> IoController::room_for_chunk(FileId file, std::int64_t file_size, std::int64_t bytes, std::int64_t buffer, std::int64_t offset,
+                                                GroupId group, const char* verb) {
+  const ReadRequest request{.file = file, .file_size = file_size, .bytes = bytes, .anonymous = buffer, .offset = offset};
   const bool in_group = group != kRootGroup;
   if (in_group) cache_->charge_file(file, group);
   // The group is charged with the buffer, and with the new cache data if the file is its own.
@@ -168,18 +168,18 @@ Task<std::int64_t> IoController::room_for_chunk(FileId file, std::int64_t file_s
   }
 }
 
-Task<IoTally> IoController::write_chunk(FileId file, std::int64_t chunk) {
+Task<IoTally> IoController::write_chunk(FileId file, std::int64_t chunk, std::int64_t at) {
   const FileInfo& info = (*files_)[file];
   if (info.is_remote()) {
     // No client write cache (the paper's NFS setting): every write goes to the server.
     co_await info.remote.server->serve_write(info.remote.server_file, chunk, *info.remote.route);
     co_return IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
   }
-  if (cache_->settings().write_mode == WriteMode::Writethrough) co_return co_await write_chunk_writethrough(file, chunk);
-  co_return co_await write_chunk_writeback(file, chunk);
+  if (cache_->settings().write_mode == WriteMode::Writethrough) co_return co_await write_chunk_writethrough(file, chunk, at);
+  co_return co_await write_chunk_writeback(file, chunk, at);
 }
 
-Task<std::int64_t> IoController::write_to_cache(FileId file, std::int64_t bytes, std::int64_t reclaimed) {
+Task<std::int64_t> IoController::write_to_cache(FileId file, std::int64_t bytes, std::int64_t reclaimed, std::int64_t at) {
   // The pages are taken now and hold the data once the copy is done: the dirty block's entry
   // time is the end of the copy. The file's group is charged for them.
   if (const GroupId group = cache_->group_of(file); group != kRootGroup) {
@@ -192,7 +192,7 @@ Task<std::int64_t> IoController::write_to_cache(FileId file, std::int64_t bytes,
   const std::int64_t cold = cold_taken();
   cache_->reserve(bytes);
   co_await memory_->write(bytes, std::min(reclaimed, bytes), cold_taken() - cold);
-  cache_->commit_dirty(file, bytes, sim_->now());
+  commit_write(file, at, bytes);
   flusher_->notify_dirty(cache_->group_of(file));
   co_return bytes;
 }
@@ -201,7 +201,12 @@ Task<std::int64_t> IoController::write_to_cache(FileId file, std::int64_t bytes,
 // many writers each chunk would otherwise create a frame and resume two, all out of cache.
 // What is decided between two suspensions is decided by the writer's DirtyThrottle::Writer, so
 // that the frame holds little more than it.
-Task<IoResult> IoController::write_file_throttled(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool whole_file) {
+void IoController::commit_write(FileId file, std::int64_t at, std::int64_t bytes) {
+  if (at == ReadRequest::kWholeFile) cache_->commit_dirty(file, bytes, sim_->now());
+  else cache_->commit_dirty_at(file, at, bytes, sim_->now());
+}
+
+Task<IoResult> IoController::write_file_throttled(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool whole_file, std::int64_t at) {
   const double start = sim_->now();
   if (whole_file) cache_->set_being_written(file, true);
   const double device_bw = (*files_)[file].disk->write_bandwidth();
@@ -229,7 +234,7 @@ Task<IoResult> IoController::write_file_throttled(FileId file, std::int64_t byte
         if (group != kRootGroup) co_await make_group_room(group, step.to_cache, file, "writing");
         evicted = cache_->evicted_bytes() - evicted;
         co_await memory_->write(step.to_cache, std::min(evicted, step.to_cache), cold_taken() - cold);
-        cache_->commit_dirty(file, step.to_cache, sim_->now());
+        commit_write(file, at == ReadRequest::kWholeFile ? at : at + offset + std::min(chunk_size, bytes - offset) - remaining, step.to_cache);
         flusher_->notify_dirty(group);
         remaining -= step.to_cache;
       }
@@ -239,16 +244,16 @@ Task<IoResult> IoController::write_file_throttled(FileId file, std::int64_t byte
   co_return file_result(start, sim_->now(), IoTally{.bytes = bytes, .cache_bytes = bytes, .disk_bytes = 0});
 }
 
-Task<IoTally> IoController::write_chunk_writeback(FileId file, std::int64_t chunk) {
+Task<IoTally> IoController::write_chunk_writeback(FileId file, std::int64_t chunk, std::int64_t at) {
   if (throttles_writers()) {
-    const IoResult r = co_await write_file_throttled(file, chunk, chunk, false);
+    const IoResult r = co_await write_file_throttled(file, chunk, chunk, false, at);
     co_return IoTally{.bytes = r.bytes, .cache_bytes = r.cache_bytes, .disk_bytes = r.disk_bytes};
   }
   std::int64_t to_memory = 0;
   if (const WriteStart start = plan_write_start(*cache_, chunk); start.under_threshold) {
     const std::int64_t evicted = cache_->evict(start.evict, file);
     to_memory = plan_write_start(*cache_, chunk).to_cache;  // as memory is after the eviction
-    if (to_memory > 0) to_memory = co_await write_to_cache(file, to_memory, evicted);
+    if (to_memory > 0) to_memory = co_await write_to_cache(file, to_memory, evicted, at);
   }
   std::int64_t remaining = chunk - to_memory;
   while (remaining > 0) {
@@ -261,16 +266,18 @@ Task<IoTally> IoController::write_chunk_writeback(FileId file, std::int64_t chun
       check_writer_can_wait(file, remaining);
       co_await wait_for_progress();
     }
-    if (to_cache > 0) to_cache = co_await write_to_cache(file, to_cache, evicted);
+    if (to_cache > 0) to_cache = co_await write_to_cache(file, to_cache, evicted, at == ReadRequest::kWholeFile ? at : at + chunk - remaining);
     remaining -= to_cache;
   }
   co_return IoTally{.bytes = chunk, .cache_bytes = chunk, .disk_bytes = 0};
 }
 
-Task<IoTally> IoController::write_chunk_writethrough(FileId file, std::int64_t chunk) {
+Task<IoTally> IoController::write_chunk_writethrough(FileId file, std::int64_t chunk, std::int64_t at) {
   co_await (*files_)[file].disk->write(chunk);
   cache_->evict(chunk - cache_->free(), file);
-  cache_->add_clean(file, std::min(chunk, cache_->free()), sim_->now());
+  // A range written through is cached clean, as if read: what was not cached of it, if it fits.
+  if (at != ReadRequest::kWholeFile && chunk - cache_->cached_in(file, at, chunk) <= cache_->free()) cache_->read_range(file, at, chunk, sim_->now());
+  else if (at == ReadRequest::kWholeFile) cache_->add_clean(file, std::min(chunk, cache_->free()), sim_->now());
   co_return IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
 }
 
@@ -321,11 +328,16 @@ Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_siz
     // application's buffer is fresh memory: the reader faults in and zeroes each page it
     // copies into; from the disk that overlaps the device's transfer (readahead), from the
     // cache it adds to the copy.
-    std::int64_t disk_read = group == kRootGroup ? evict_for_chunk(*cache_, {.file = file, .file_size = size, .bytes = chunk, .anonymous = chunk}) : -1;
-    if (disk_read < 0) disk_read = co_await room_for_chunk(file, size, chunk, chunk, group, "reading");
+    // A file another task reads by range is held by range: this chunk is its part of it. (The
+    // request is made at each use: one kept across the wait would enlarge every reader's frame.)
+    const std::int64_t at = cache_->ranged(file) ? offset : ReadRequest::kWholeFile;
+    std::int64_t disk_read =
+        group == kRootGroup ? evict_for_chunk(*cache_, {.file = file, .file_size = size, .bytes = chunk, .anonymous = chunk, .offset = at}) : -1;
+    if (disk_read < 0) disk_read = co_await room_for_chunk(file, size, chunk, chunk, at, group, "reading");
     const std::int64_t cache_read = chunk - disk_read;
     const std::int64_t cold = cold_taken();
-    cursor = start_chunk(*cache_, {.file = file, .file_size = size, .bytes = chunk, .anonymous = chunk}, disk_read, cursor, group, sim_->now());
+    cursor = start_chunk(*cache_, {.file = file, .file_size = size, .bytes = chunk, .anonymous = chunk, .offset = at}, disk_read, cursor, group,
+                         sim_->now());
     // Taken back by the host: new cache pages (the device's transfer fills them) and the
     // buffer (the reader's first touch), their faults one after the other (measured: a cold
     // read goes at about 1 / (2 / cold_fault) where both are cold), per byte of the chunk.
@@ -351,7 +363,8 @@ Task<IoResult> IoController::write_file(FileId file, std::int64_t bytes, std::in
   const FileInfo& info = (*files_)[file];
   if (!direct && !info.is_remote() && cache_->settings().write_mode == WriteMode::Writeback && throttles_writers()) {
     chunks_ += static_cast<std::uint64_t>((bytes + chunk_size - 1) / chunk_size);
-    return write_file_throttled(file, bytes, chunk_size, true);
+    // A file held by range is written in place, from its start.
+    return write_file_throttled(file, bytes, chunk_size, true, cache_->ranged(file) ? 0 : ReadRequest::kWholeFile);
   }
   return write_file_in_chunks(file, bytes, chunk_size, direct);
 }
@@ -363,11 +376,12 @@ Task<IoResult> IoController::write_file_in_chunks(FileId file, std::int64_t byte
   // Over NFS there is no client write cache: O_DIRECT changes nothing, every write goes to the
   // server (write_chunk).
   const Disk* const direct_to = direct && !(*files_)[file].is_remote() ? (*files_)[file].disk : nullptr;
+  const bool in_place = cache_->ranged(file);  // a file held by range is written in place
   for (std::int64_t offset = 0; offset < bytes; offset += chunk_size) {
     const std::int64_t chunk = std::min(chunk_size, bytes - offset);
     ++chunks_;
     if (direct_to == nullptr) {
-      total += co_await write_chunk(file, chunk);
+      total += co_await write_chunk(file, chunk, in_place ? offset : ReadRequest::kWholeFile);
       continue;
     }
     co_await direct_to->write(chunk, chunk);  // O_DIRECT: straight to the disk, in requests of the chunk

@@ -22,6 +22,7 @@
 #include <pagecache/simulator.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -47,7 +48,9 @@ class IoController {
 
   /// Writes `chunk` bytes to `file` (Algorithm 3 in writeback mode; disk then cache in
   /// writethrough mode).
-  Task<IoTally> write_chunk(FileId file, std::int64_t chunk);
+  /// `at`: where the chunk goes in a file held by range (ReadRequest::kWholeFile: a chunk of a
+  /// whole-file write, new data after what is cached).
+  Task<IoTally> write_chunk(FileId file, std::int64_t chunk, std::int64_t at = ReadRequest::kWholeFile);
   /// Reads a whole file in chunks of `chunk_size` bytes (Algorithm 2 per chunk; each chunk's
   /// copy stays in application memory until released); `direct`: bypassing the page cache
   /// (O_DIRECT: from the disk into the application's buffer).
@@ -62,6 +65,28 @@ class IoController {
   /// that writes the file (throttled or not).
   /// `group`: the writer's memory group, which the file is charged to if no group has it.
   Task<IoResult> write_file(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool direct = false, GroupId group = kRootGroup);
+  /// Reads parts of a local file, the requests `next` yields one after the other (ranges
+  /// within the file), into one buffer of `buffer` bytes held meanwhile. Each request reads
+  /// the pages it touches as a chunk of read_file does (Algorithm 2 on its range: the cached
+  /// parts re-accessed, the holes from the device, one device request each), sequential ones
+  /// read ahead (RangeReadahead).
+  /// From its start the file's page cache is held by range (PageCache::track_ranges).
+  /// Throws ConfigError at the call for a remote file or a buffer <= 0, SimulationError from
+  /// the task for a request outside the file or when the read cannot proceed.
+  Task<IoResult> read_ranges(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group = kRootGroup,
+                             ReadAdvice advice = ReadAdvice::Normal);
+  /// Writes parts of a local file, the requests `next` yields one after the other, each the
+  /// pages it touches as a chunk of write_file (Algorithm 3, dirty throttling): holes become
+  /// new dirty data, cached parts are written in place (PageCache::write_range). The file is
+  /// held by range from its start. Errors as read_ranges'.
+  Task<IoResult> write_ranges(FileId file, std::function<bool(ByteRange&)> next, GroupId group = kRootGroup);
+  /// posix_fadvise(POSIX_FADV_WILLNEED): the holes of `range` of a local file are read into the
+  /// page cache by a process of their own (the call returns at once), as readahead (untouched,
+  /// at the inactive list's MRU end), one device request.
+  void will_need(FileId file, ByteRange range);
+  /// posix_fadvise(POSIX_FADV_DONTNEED): the clean data of `range` of a local file leaves the
+  /// page cache now (PageCache::drop_clean_range). Returns the bytes dropped.
+  std::int64_t dont_need(FileId file, ByteRange range);
   /// Takes `bytes` of application memory (a task's working memory), writing back and
   /// evicting cached data to make room. Throws SimulationError when nothing can free enough.
   Task<void> hold_memory(std::int64_t bytes, GroupId group = kRootGroup);
@@ -102,6 +127,9 @@ class IoController {
   /// Bytes written to devices to make room or to respect the dirty ratio (not counting the
   /// periodic flusher's).
   std::int64_t flushed_bytes() const noexcept { return flushed_; }
+  /// Seconds each request of read_ranges and write_ranges takes besides its transfers
+  /// (HostSpec::request_time).
+  void set_request_time(double seconds) noexcept { request_time_ = seconds; }
   /// Chunks of the reads and writes of applications started on this host so far.
   std::uint64_t chunk_operations() const noexcept { return chunks_; }
 
@@ -111,6 +139,11 @@ class IoController {
   /// Reads `bytes` of a remote file from its server into this host's fresh memory;
   /// `server_cursor` as serve_read's.
   Task<void> serve_remote(FileId file, std::int64_t bytes, ReadCursor* server_cursor);
+  /// read_ranges once checked.
+  Task<IoResult> read_ranges_of(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group, ReadAdvice advice);
+  Task<IoResult> write_ranges_of(FileId file, std::function<bool(ByteRange&)> next, GroupId group);
+  /// will_need's process.
+  Task<void> prefetch(FileId file, ByteRange range);
   /// A local file's read (read_file).
   Task<IoResult> read_whole_file(FileId file, std::int64_t chunk_size, bool direct, GroupId group);
   /// A remote file's read (read_file): from this host's cache and the server.
@@ -123,21 +156,24 @@ class IoController {
   /// A writer short of `bytes` of memory, with nothing to flush or evict, waits for copies and
   /// writebacks in flight; with none, nothing will ever free memory: throws SimulationError.
   void check_writer_can_wait(FileId file, std::int64_t bytes) const;
-  Task<IoTally> write_chunk_writeback(FileId file, std::int64_t chunk);
+  Task<IoTally> write_chunk_writeback(FileId file, std::int64_t chunk, std::int64_t at = ReadRequest::kWholeFile);
   /// Whether writeback-mode writers are paced (dirty throttling) rather than made to flush.
   bool throttles_writers() const noexcept;
   /// `bytes` of a file written in chunks in writeback mode under dirty throttling
   /// (CacheSettings::dirty_throttling).
   /// `whole_file`: a file's write (write_file), marking the file as being written meanwhile.
-  Task<IoResult> write_file_throttled(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool whole_file);
+  /// `at`: where the bytes go in a file held by range, as write_chunk's.
+  Task<IoResult> write_file_throttled(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool whole_file, std::int64_t at);
   /// write_file chunk by chunk (not throttled), or straight to the disk.
   Task<IoResult> write_file_in_chunks(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool direct);
   /// Copies `bytes` into the cache: the memory transfer, then a new dirty block; `reclaimed`:
   /// how many of its pages the writer evicted clean data for (Memory::write).
   /// Returns the bytes copied: all of them, unless the file's memory group had to make room
   /// and others took the memory meanwhile.
-  Task<std::int64_t> write_to_cache(FileId file, std::int64_t bytes, std::int64_t reclaimed);
-  Task<IoTally> write_chunk_writethrough(FileId file, std::int64_t chunk);
+  Task<std::int64_t> write_to_cache(FileId file, std::int64_t bytes, std::int64_t reclaimed, std::int64_t at);
+  /// A copy of `bytes` into the cache is done: new dirty data, at `at` in a file held by range.
+  void commit_write(FileId file, std::int64_t at, std::int64_t bytes);
+  Task<IoTally> write_chunk_writethrough(FileId file, std::int64_t chunk, std::int64_t at);
   /// A chunk of a client's read of a remote file; `cursor` and `server_cursor`: where the read
   /// left off in this host's cache and in the server's, updated.
   Task<IoTally> read_chunk_remote(FileId file, std::int64_t chunk, ReadCursor& cursor, ReadCursor& server_cursor, GroupId group);
@@ -152,7 +188,9 @@ class IoController {
   /// the part of the chunk to read from the device. A coroutine only for these: most chunk
   /// reads need no more than evict_for_chunk, and a chunk read is the most frequent operation.
   /// Errors name `verb` (e.g. "reading") and the file.
-  Task<std::int64_t> room_for_chunk(FileId file, std::int64_t file_size, std::int64_t bytes, std::int64_t buffer, GroupId group, const char* verb);
+  /// `offset`: as ReadRequest's.
+  Task<std::int64_t> room_for_chunk(FileId file, std::int64_t file_size, std::int64_t bytes, std::int64_t buffer, std::int64_t offset, GroupId group,
+                                    const char* verb);
   /// Waits until memory held by transfers in flight may have been released.
   Task<void> wait_for_progress();
 
@@ -163,6 +201,7 @@ class IoController {
   Flusher* flusher_;
   std::int64_t flushed_ = 0;
   std::uint64_t chunks_ = 0;
+  double request_time_ = 0.0;
   DirtyThrottle throttle_;
   std::optional<Event> progress_;
   std::optional<FreePageReporting> reporting_;  // none: no memory is ever cold

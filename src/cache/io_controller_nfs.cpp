@@ -43,7 +43,7 @@ Task<IoTally> IoController::read_chunk_remote(FileId file, std::int64_t chunk, R
   const FileInfo& info = (*files_)[file];
   const ReadRequest request{.file = file, .file_size = info.size, .bytes = chunk, .anonymous = chunk};
   std::int64_t remote_read = group == kRootGroup ? evict_for_chunk(*cache_, request) : -1;
-  if (remote_read < 0) remote_read = co_await room_for_chunk(file, info.size, chunk, chunk, group, "reading");
+  if (remote_read < 0) remote_read = co_await room_for_chunk(file, info.size, chunk, chunk, ReadRequest::kWholeFile, group, "reading");
   const std::int64_t cache_read = chunk - remote_read;
   cursor = start_chunk(*cache_, request, remote_read, cursor, group, sim_->now());
   if (remote_read > 0) co_await serve_remote(file, remote_read, &server_cursor);
@@ -65,7 +65,7 @@ Task<void> IoController::serve_read(FileId file, std::int64_t bytes, const Route
   const FileInfo& info = (*files_)[file];
   const ReadRequest request{.file = file, .file_size = info.size, .bytes = bytes, .anonymous = 0};  // the client's memory takes the copy
   std::int64_t disk_read = evict_for_chunk(*cache_, request);
-  if (disk_read < 0) disk_read = co_await room_for_chunk(file, info.size, bytes, 0, kRootGroup, "serving");
+  if (disk_read < 0) disk_read = co_await room_for_chunk(file, info.size, bytes, 0, ReadRequest::kWholeFile, kRootGroup, "serving");
   const std::int64_t cache_read = bytes - disk_read;
   const ReadCursor next = start_chunk(*cache_, request, disk_read, cursor != nullptr ? *cursor : ReadCursor{}, kRootGroup, sim_->now());
   if (cursor != nullptr) *cursor = next;

@@ -153,7 +153,7 @@ bool PageCache::extend_tail(ListKind kind, FileId file, std::int64_t bytes, bool
   const BlockId tail_id = list.back();
   if (tail_id == kNoBlock) return false;
   const Block& tail = blocks_[tail_id];
-  if (tail.file != file || tail.state != BlockState::Clean || tail.referenced != referenced) return false;
+  if (tail.file != file || tail.state != BlockState::Clean || tail.referenced != referenced || tail.ranged) return false;
   list.resize(tail_id, tail.size + bytes);
   FileEntry& entry = files_[file];
   (kind == ListKind::Inactive ? entry.inactive_bytes : entry.active_bytes) += bytes;
@@ -164,6 +164,7 @@ bool PageCache::extend_tail(ListKind kind, FileId file, std::int64_t bytes, bool
 void PageCache::destroy(BlockId id) {
   unlink(id);
   if (blocks_[id].state == BlockState::Dirty) dirty_by_age_.erase(blocks_, id);
+  if (blocks_[id].ranged) ranges_.erase(blocks_[id].file, id);
   blocks_[id].size = 0;  // no longer a block (a ReadCursor may still name it)
   blocks_.give_back(id);
 }
@@ -218,6 +219,11 @@ BlockId PageCache::split_front(BlockId id, std::int64_t head_size) {
   tail.entry_time = block.entry_time;
   tail.referenced = block.referenced;
   if (block.state == BlockState::Writeback) tail.writeback_batch = block.writeback_batch;
+  if (block.ranged) {
+    tail.ranged = true;
+    ranges_.insert(block.file, tail_id, ranges_.offset(id) + head_size, tail.size);
+    ranges_.resize(id, head_size);
+  }
   LruList& list = list_of(block.list);
   list.resize(id, head_size);
   list.insert_after(id, tail_id);
@@ -252,7 +258,9 @@ void PageCache::add_new(FileId file, std::int64_t bytes, BlockState state, doubl
     settle();
     return;
   }
-  const BlockId id = new_block(file, bytes, state, now);
+  // A ranged file's data written whole goes after its last cached byte (ranged writes place
+  // their own).
+  const BlockId id = ranged(file) ? new_ranged_block(file, ranged_end(file), bytes, state, now) : new_block(file, bytes, state, now);
   blocks_[id].referenced = referenced;
   append(id, ListKind::Inactive);
   if (state == BlockState::Dirty) {
@@ -295,6 +303,7 @@ void PageCache::commit_dirty(FileId file, std::int64_t bytes, double now) {
 
 ReadCursor PageCache::reaccess(FileId file, std::int64_t bytes, double now, ReadCursor from) {
   PC_ASSERT(bytes >= 0 && bytes <= cached(file));
+  PC_ASSERT_MSG(!ranged(file), "a file held by range is re-accessed by range (read_range)");
   FileEntry& entry = file_entry(file);
   std::int64_t left = bytes;
   std::int64_t merged_clean[2] = {0, 0};  // by the list it goes to

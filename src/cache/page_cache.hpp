@@ -21,6 +21,7 @@
 #include "cache/block_list.hpp"
 #include "cache/block_pool.hpp"
 #include "cache/file_heap.hpp"
+#include "cache/file_ranges.hpp"
 #include "cache/lru_list.hpp"
 #include "cache/policy.hpp"
 #include "cache/tracer.hpp"
@@ -180,6 +181,34 @@ class PageCache {
   /// chunk of the same read starts.
   ReadCursor reaccess(FileId file, std::int64_t bytes, double now, ReadCursor from = {});
 
+  // --- Byte ranges (docs/model.md §6.19) ---------------------------------------------------
+  // A file is held by range from its first access by parts on: its blocks then carry offsets
+  // (FileRanges); whole-file I/O, which never asks which part is cached, pays nothing.
+  /// From now on the file's data is held by range; what it has takes ranges from offset 0,
+  /// least recently used first, inactive list then active. Idempotent.
+  void track_ranges(FileId file);
+  bool ranged(FileId file) const noexcept { return file < ranged_.size() && ranged_[file] != 0; }
+  /// Cached bytes of [offset, offset + bytes) of a ranged file.
+  std::int64_t cached_in(FileId file, std::int64_t offset, std::int64_t bytes) const noexcept;
+  /// A read of the range: each cached part re-accessed as reaccess() does (only the part read
+  /// moves), then each hole new data read as add_read() makes it. Returns the holes' bytes.
+  std::int64_t read_range(FileId file, std::int64_t offset, std::int64_t bytes, double now);
+  /// Readahead: the holes become clean data at the inactive list's MRU end, untouched (as the
+  /// kernel adds readahead pages). Returns the bytes added.
+  std::int64_t read_ahead(FileId file, std::int64_t offset, std::int64_t bytes, double now);
+  /// POSIX_FADV_DONTNEED: the range's clean data is dropped (dirty data and data in writeback
+  /// stay). Returns the bytes dropped.
+  std::int64_t drop_clean_range(FileId file, std::int64_t offset, std::int64_t bytes);
+  /// A write of the range, its copy done: holes become new dirty data, clean data and data in
+  /// writeback dirty again (entered `now`; the write in flight ends for the rest of its data),
+  /// dirty data stays dirty with its entry time; all to the inactive list's MRU end, by offset.
+  /// Returns the holes' bytes.
+  std::int64_t write_range(FileId file, std::int64_t offset, std::int64_t bytes, double now);
+  /// commit_dirty for a ranged file: the reservation of `bytes` ends, written at `offset`.
+  void commit_dirty_at(FileId file, std::int64_t offset, std::int64_t bytes, double now);
+  const FileRanges& ranges() const noexcept { return ranges_; }
+  const Block& block(BlockId id) const noexcept { return blocks_[id]; }
+
   /// Bytes of one file taken for writing to its device.
   struct Flushed {
     FileId file;
@@ -248,6 +277,7 @@ class PageCache {
   void check_groups() const;
   void check_dirty_by_age(std::size_t most) const;
   void check_expiry_scan() const;
+  void check_ranges(std::size_t f, std::size_t most) const;
 
   // A file's lists and counters, in one cache line: with many files an entry is out of cache
   // whenever it is touched.
@@ -281,6 +311,22 @@ class PageCache {
   /// Adds `bytes` to the clean block at the MRU end of `kind` if it is the file's with the
   /// same referenced mark; false if there is no such block.
   bool extend_tail(ListKind kind, FileId file, std::int64_t bytes, bool referenced);
+  /// A block of a ranged file holding [offset, offset + size), indexed, on no list yet.
+  BlockId new_ranged_block(FileId file, std::int64_t offset, std::int64_t size, BlockState state, double now);
+  /// Where a ranged file's last cached byte ends (0: none cached).
+  std::int64_t ranged_end(FileId file) const noexcept;
+  /// The block of a ranged file that holds `offset` or, if none does, the first after it.
+  BlockId block_at_or_after(FileId file, std::int64_t offset) const noexcept;
+  /// The part of `block` from `offset` on (splitting it there if it starts before); `block`
+  /// holds `offset`.
+  BlockId cut_before(BlockId block, std::int64_t offset);
+  /// Moves a ranged block to the MRU end of `to`, merged into the tail there if that is clean
+  /// data of the same file ending where it starts (in the same state and referenced mark).
+  void move_ranged(BlockId block, ListKind to);
+  /// New data of a ranged file, [offset, offset + bytes), at the MRU end of the inactive list:
+  /// clean (marked `referenced`) or dirty (entered at `now`). Merged into the tail there if
+  /// that is the file's data ending at `offset` in the same state, mark and entry time.
+  void add_ranged(FileId file, std::int64_t offset, std::int64_t bytes, BlockState state, double now, bool referenced);
   /// Puts one dirty block in writeback under a new token.
   Flushed take_for_writeback(BlockId block);
   /// A dirty block goes into writeback as part of the write `token` (held, while it is
@@ -347,6 +393,10 @@ class PageCache {
   };
   ExpiryScan expiry_scan_;
   std::vector<FileEntry> files_;
+  // Files held by byte range (track_ranges), by FileId; the offsets of their blocks. Beside
+  // files_: a FileEntry fills its cache line. Empty in a run of whole-file I/O only.
+  std::vector<std::uint8_t> ranged_;
+  FileRanges ranges_;
   // Memory groups: each group's limit and charges; every file's group (only when there are
   // groups: a run without them pays nothing). The walks of a reclaim or flush skip the data
   // of other groups than target_ (kAnyGroup: none skipped).

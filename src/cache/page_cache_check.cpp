@@ -78,6 +78,7 @@ std::size_t PageCache::check_file(std::size_t f, std::size_t most) const {
                 fmt::format("file {} byte counters disagree with its blocks", f));
   PC_ASSERT(dirty_bytes == entry.dirty_bytes);
   PC_ASSERT_MSG(entry.blocks == blocks, fmt::format("file {}: block count disagrees with its lists", f));
+  check_ranges(f, most);
   return blocks;
 }
 

@@ -41,16 +41,31 @@ FileId spared_by_read(const PageCache& cache, FileId file) noexcept {
   return cache.policy().reclaim_may_take_file_being_read() ? kNoFile : file;
 }
 
+FileId spared_by_chunk(const PageCache& cache, const ReadRequest& request) noexcept {
+  // A read by parts may evict the file's own other parts under every model: sparing a file
+  // larger than memory would leave a random reader of it no room at all.
+  return request.offset == ReadRequest::kWholeFile ? spared_by_read(cache, request.file) : kNoFile;
+}
+
 bool nothing_can_be_freed(const PageCache& cache) noexcept { return cache.writeback() == 0 && cache.reserved() == 0; }
 
 ReadPlan plan_read(const PageCache& cache, const ReadRequest& request) noexcept {
-  const std::int64_t from_disk = std::clamp<std::int64_t>(request.file_size - cache.cached(request.file), 0, request.bytes);
+  const std::int64_t from_disk = request.offset == ReadRequest::kWholeFile
+                                     ? std::clamp<std::int64_t>(request.file_size - cache.cached(request.file), 0, request.bytes)
+                                     : request.bytes - cache.cached_in(request.file, request.offset, request.bytes);
   const std::int64_t required = request.anonymous + from_disk;
   return ReadPlan{.from_disk = from_disk,
                   .from_cache = request.bytes - from_disk,
                   .required = required,
                   .room = plan_room(cache, required),
-                  .spared = spared_by_read(cache, request.file)};
+                  .spared = spared_by_chunk(cache, request)};
+}
+
+ReadPlan replan_room(const PageCache& cache, const ReadPlan& plan, const ReadRequest& request) noexcept {
+  ReadPlan again = plan;
+  again.room = plan_room(cache, plan.required);
+  again.spared = spared_by_chunk(cache, request);
+  return again;
 }
 
 WriteStart plan_write_start(const PageCache& cache, std::int64_t chunk) noexcept {

@@ -63,6 +63,10 @@ struct ReadRequest {
   std::int64_t file_size = 0;  ///< the caller's copy: the file's record may be out of cache
   std::int64_t bytes = 0;      ///< the chunk
   std::int64_t anonymous = 0;  ///< application memory the read takes besides the new cache data
+  /// Where the chunk starts in a file held by range (PageCache::track_ranges); kWholeFile: a
+  /// chunk of a whole-file read, which reads what is not cached whatever its place.
+  std::int64_t offset = kWholeFile;
+  static constexpr std::int64_t kWholeFile = -1;
 };
 struct ReadPlan {
   std::int64_t from_disk = 0;   ///< the part not cached: read from the device, then new cache data
@@ -75,6 +79,12 @@ struct ReadPlan {
 /// within the chunk) comes from the device and needs room beside the application's copy.
 /// Evicting may take the file's own data, and then more of the chunk is not cached: plan again.
 ReadPlan plan_read(const PageCache& cache, const ReadRequest& request) noexcept;
+/// What a chunk's room must not be taken from: spared_by_read's for a chunk of a whole-file
+/// read; nothing for a chunk of a file held by range.
+FileId spared_by_chunk(const PageCache& cache, const ReadRequest& request) noexcept;
+/// `plan` for `request` with its room planned again: the same parts from the device and the
+/// cache (the caller knows they are), the room as memory is now.
+ReadPlan replan_room(const PageCache& cache, const ReadPlan& plan, const ReadRequest& request) noexcept;
 
 // --- Algorithm 3: a chunk write in writeback mode, not throttled ------------------------------
 

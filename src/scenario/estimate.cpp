@@ -1,7 +1,9 @@
 #include "scenario/estimate.hpp"
+#include "scenario/estimate_loads.hpp"
 
 #include "cache/policy.hpp"
 #include "scenario/route_index.hpp"
+#include "workload/access_pattern.hpp"
 
 #include <pagecache/units.hpp>
 
@@ -10,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <string_view>
 #include <unordered_map>
 #include <utility>
@@ -19,47 +22,7 @@ namespace pagecache::scenario {
 
 namespace {
 
-// Events per chunk, as the engine counts them: a transfer is a flow, which costs about two
-// events (its completion scheduled, its process woken); a latency is a sleep, one more.
-constexpr double kFlowEvents = 2.0;
-// A chunk read locally: one flow, from the device or from the cache (both when split).
-constexpr double kLocalReadEvents = kFlowEvents;
-// A chunk written into a writeback cache: the copy, and later the writeback of its block,
-// whoever writes it (the writer at the dirty limit, reclaim, background writeback, expiry).
-constexpr double kCachedWriteEvents = 2.0 * kFlowEvents;
-// A chunk written through to the device (writethrough, O_DIRECT).
-constexpr double kDeviceWriteEvents = kFlowEvents;
-// A chunk to or from another host: one flow through the route (hits in the client's cache
-// are one flow through its memory), after the route's latency.
-constexpr double kRemoteEvents = 1.5;
-// A workflow task's start: spawned, woken by its prerequisites, given its cores.
-constexpr double kWorkflowTaskStartEvents = 3.0;
-// A throttled writer pauses 1 s at most (DirtyThrottle::Writer::next).
-constexpr double kMaxPause = 1.0;
-
 std::string bytes_text(double b) { return units::format_size(static_cast<std::int64_t>(std::min(b, 9e18))); }
-
-// What the tasks ask of one host: its devices' bytes, its cores' seconds, and what its page
-// cache must hold and write back.
-struct HostLoad {
-  std::vector<double> disk_read, disk_write;  // bytes per disk, all reads and writes
-  std::vector<double> dirtied;                // bytes per disk written into this host's cache (writeback)
-  double memory_read = 0.0, memory_write = 0.0;
-  double cpu = 0.0;         // core-seconds computed here
-  double anonymous = 0.0;   // application memory held at once by the tasks running here
-  double writers = 0.0;     // write streams into this host's cache at once
-  double dirtied_ops = 0.0; // chunks written into this host's cache
-  double write_rounds = 0.0;  // write phases one after another into this cache (the most of any stream)
-  double group_pauses = 0.0;  // pauses memory groups' own dirty limits impose
-};
-
-// One stream of tasks (an application, or a workflow's tasks that run at once) as it loads the
-// hosts: what it writes where, and how many write phases it has there.
-struct StreamWrites {
-  std::map<std::size_t, double> phases;  // host -> write phases into its cache
-  std::map<std::size_t, double> bytes;   // host -> bytes dirtied there
-  std::map<std::size_t, double> ops;     // host -> chunks dirtied there
-};
 
 class Estimator {
  public:
@@ -72,15 +35,22 @@ class Estimator {
       host_index_.emplace(s.hosts[h].name, h);
       throttles_.push_back(s.hosts[h].cache.write_mode == WriteMode::Writeback && cache::make_policy(s.hosts[h].cache)->throttles_writers());
     }
-    // Where each file is, found once: a scenario may have 10^6 of them.
+    // Where each file and file set is, found once: a scenario may have 10^6 files.
+    const auto place = [&](const std::string& host, const std::string& disk) {
+      const std::size_t h = host_index_.at(host);
+      const auto& disks = s.hosts[h].disks;
+      const auto d = std::find_if(disks.begin(), disks.end(), [&](const DiskSpec& x) { return x.name == disk; }) - disks.begin();
+      return std::make_pair(h, static_cast<std::size_t>(d));
+    };
     place_.reserve(s.files.size());
     file_index_.reserve(s.files.size());
     for (std::size_t f = 0; f < s.files.size(); ++f) {
-      const std::size_t h = host_index_.at(s.files[f].host);
-      const auto& disks = s.hosts[h].disks;
-      const auto d = std::find_if(disks.begin(), disks.end(), [&](const DiskSpec& x) { return x.name == s.files[f].disk; }) - disks.begin();
-      place_.push_back({h, static_cast<std::size_t>(d)});
+      place_.push_back(place(s.files[f].host, s.files[f].disk));
       file_index_.emplace(s.files[f].name, f);
+    }
+    for (std::size_t f = 0; f < s.file_sets.size(); ++f) {
+      set_place_.push_back(place(s.file_sets[f].host, s.file_sets[f].disk));
+      set_index_.emplace(s.file_sets[f].name, f);
     }
   }
 
@@ -126,42 +96,45 @@ class Estimator {
     double operations = 0.0;
     double read_bytes = 0.0;
     const auto chunks = [&](double bytes) { return std::ceil(bytes / static_cast<double>(t.chunk_size)); };
+    // A file read or written (or a file set's samples): `bytes` in `ops` chunks, stored at (fh, fd).
+    const auto move = [&](std::size_t fh, std::size_t fd, double bytes, double ops, bool writing) {
+      HostLoad& server = loads_[fh];
+      (writing ? server.disk_write : server.disk_read)[fd] += bytes;
+      (writing ? loads_[h].memory_write : loads_[h].memory_read) += bytes;
+      const bool remote = fh != h;
+      // The server's cache takes what is written to it, unless a local write bypasses it.
+      const bool dirties = writing && s_.hosts[fh].cache.write_mode == WriteMode::Writeback && (remote || !t.direct_io);
+      if (remote) {
+        const Route& route = route_of(h, fh);
+        for (const std::size_t l : route.links) link_bytes_[l] += bytes;
+        if (route.latency > 0.0) {
+          if (latency == 0.0 || s_.links[route.slowest].latency > s_.links[slowest].latency) slowest = route.slowest;
+          latency += ops * route.latency;
+        }
+        e_.transfer_events += ops * (kRemoteEvents + (route.latency > 0.0 ? 1.0 : 0.0));
+        if (dirties) e_.transfer_events += ops * kCachedWriteEvents;
+      } else if (!writing) {
+        e_.transfer_events += ops * kLocalReadEvents;
+      } else {
+        e_.transfer_events += ops * (dirties ? kCachedWriteEvents : kDeviceWriteEvents);
+      }
+      if (dirties) {
+        server.dirtied[fd] += bytes;
+        server.dirtied_ops += ops;
+        writes.bytes[fh] += bytes;
+        writes.ops[fh] += ops;
+      }
+      operations += ops;
+    };
     for (int writing = 0; writing < 2; ++writing) {
       for (const std::string& name : writing ? t.writes : t.reads) {
         const std::size_t f = file_index_.at(name);
         const double bytes = static_cast<double>(s_.files[f].size);
-        const double ops = chunks(bytes);
-        const auto [fh, fd] = place_[f];
-        HostLoad& server = loads_[fh];
-        (writing ? server.disk_write : server.disk_read)[fd] += bytes;
-        (writing ? loads_[h].memory_write : loads_[h].memory_read) += bytes;
         if (!writing) read_bytes += bytes;
-        const bool remote = fh != h;
-        // The server's cache takes what is written to it, unless a local write bypasses it.
-        const bool dirties = writing && s_.hosts[fh].cache.write_mode == WriteMode::Writeback && (remote || !t.direct_io);
-        if (remote) {
-          const Route& route = route_of(h, fh);
-          for (const std::size_t l : route.links) link_bytes_[l] += bytes;
-          if (route.latency > 0.0) {
-            if (latency == 0.0 || s_.links[route.slowest].latency > s_.links[slowest].latency) slowest = route.slowest;
-            latency += ops * route.latency;
-          }
-          e_.transfer_events += ops * (kRemoteEvents + (route.latency > 0.0 ? 1.0 : 0.0));
-          if (dirties) e_.transfer_events += ops * kCachedWriteEvents;
-        } else if (!writing) {
-          e_.transfer_events += ops * kLocalReadEvents;
-        } else {
-          e_.transfer_events += ops * (dirties ? kCachedWriteEvents : kDeviceWriteEvents);
-        }
-        if (dirties) {
-          server.dirtied[fd] += bytes;
-          server.dirtied_ops += ops;
-          writes.bytes[fh] += bytes;
-          writes.ops[fh] += ops;
-        }
-        operations += ops;
+        move(place_[f].first, place_[f].second, bytes, chunks(bytes), writing != 0);
       }
     }
+    const double largest_sample = add_accesses(t, move, operations);
     // One write phase per host whose cache it writes into.
     std::map<std::size_t, bool> written;
     for (const std::string& name : t.writes) {
@@ -174,7 +147,53 @@ class Estimator {
     if (t.fsync) e_.transfer_events += kFlowEvents * static_cast<double>(t.writes.size());
     e_.transfer_events += static_cast<double>(t.deletes.size());
     loads_[h].cpu += t.compute * static_cast<double>(t.cores);
-    return {operations, std::max(static_cast<double>(t.memory), read_bytes)};
+    return {operations, std::max(static_cast<double>(t.memory), read_bytes + largest_sample)};
+  }
+
+  // A task's accesses: each sample a read of a whole file of its set (`move`, add_task's) and an
+  // event at least. Returns the largest sample.
+  template <typename Move>
+  double add_accesses(const TaskSpec& t, const Move& move, double& operations) {
+    const double before = operations;
+    double most = -1.0, largest = 0.0;
+    std::optional<std::size_t> busiest;
+    for (std::size_t i = 0; i < t.accesses.size(); ++i) {
+      const AccessSpec& a = t.accesses[i];
+      if (!a.file.empty()) {
+        const double ops_before = operations;
+        largest = std::max(largest, add_file_access(a, move));
+        if (operations - ops_before > most) {
+          most = operations - ops_before;
+          busiest = i;
+        }
+        continue;
+      }
+      const std::size_t set = set_index_.at(a.file_set);
+      const double samples = static_cast<double>(a.count > 0 ? a.count : s_.file_sets[set].count) * static_cast<double>(a.repeat);
+      const double size = static_cast<double>(s_.file_sets[set].size), ops_before = operations;
+      move(set_place_[set].first, set_place_[set].second, samples * size, samples * std::max(1.0, std::ceil(size / static_cast<double>(t.chunk_size))), false);
+      e_.transfer_events += samples;  // each sample's start
+      if (operations - ops_before > most) {
+        most = operations - ops_before;
+        busiest = i;
+      }
+      largest = std::max(largest, size);
+    }
+    if (operations > most_ops_) access_of_most_ops_ = operations - before > before ? busiest : std::nullopt;
+    return largest;
+  }
+
+  // An access of parts of one file: each request an operation as a chunk's (`move`, add_task's),
+  // read or written where the file is. Returns the buffer a read holds meanwhile (a request's).
+  template <typename Move>
+  double add_file_access(const AccessSpec& a, const Move& move) {
+    const std::size_t f = file_index_.at(a.file);
+    const workload::RequestPattern pattern = workload::request_pattern(a);
+    const double epochs = static_cast<double>(a.repeat);
+    const double requests = static_cast<double>(workload::RequestStream(pattern).per_epoch()) * epochs;
+    const bool writing = a.mode != AccessMode::Read;
+    move(place_[f].first, place_[f].second, workload::bytes_per_epoch(pattern) * epochs, requests, writing);
+    return writing ? 0.0 : static_cast<double>(a.request);
   }
 
   void note_operations(double ops, TaskAt at) {
@@ -182,6 +201,7 @@ class Estimator {
     if (ops > most_ops_) {
       most_ops_ = ops;
       e_.most_operations = at;
+      e_.most_operations_access = access_of_most_ops_;
     }
   }
 
@@ -394,9 +414,12 @@ class Estimator {
   std::unordered_map<std::string_view, std::size_t> host_index_;  // a cluster's 10^5 hosts: no scan per name
   std::unordered_map<std::string_view, std::size_t> file_index_;
   std::vector<std::pair<std::size_t, std::size_t>> place_;  // per file: its host and disk
+  std::unordered_map<std::string_view, std::size_t> set_index_;
+  std::vector<std::pair<std::size_t, std::size_t>> set_place_;  // per file set: its host and disk
   std::map<std::pair<std::size_t, std::size_t>, Route> routes_;
   RouteIndex route_index_{s_};
   double most_ops_ = -1.0;
+  std::optional<std::size_t> access_of_most_ops_;  // of the task add_task saw last
 };
 
 }  // namespace

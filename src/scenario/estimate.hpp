@@ -8,6 +8,7 @@
 #include <pagecache/scenario.hpp>
 
 #include <cstddef>
+#include <optional>
 #include <string>
 
 namespace pagecache::scenario {
@@ -48,6 +49,8 @@ struct RunEstimate {
   /// Each file's bytes over its task's chunk size, for every read and write.
   double chunk_operations = 0.0;
   TaskAt most_operations;  ///< the task with the most
+  /// Its access (AccessSpec, by index) with the most, if its accesses make most of them.
+  std::optional<std::size_t> most_operations_access;
 
   /// Events, by source:
   /// - each chunk's transfers (device, memory, route and its latency) and the writeback of the

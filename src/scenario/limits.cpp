@@ -6,6 +6,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstddef>
+#include <optional>
 #include <limits>
 #include <string_view>
 #include <utility>
@@ -43,6 +45,72 @@ std::pair<const Origin*, const char*> chunk_key(const Origin& task, const Origin
   if (task.has("chunk_size")) return {&task, "chunk_size"};
   if (owner.has("chunk_size")) return {&owner, "chunk_size"};
   return {&task, "chunk_size"};
+}
+
+// A task's access (its [[...access]] table number `i`), where it is written; the task's table
+// for a task not read from TOML.
+Origin access_origin(const Origin& task, std::size_t i) {
+  const toml::array* list = task.table != nullptr ? task.table->get_as<toml::array>("access") : nullptr;
+  if (list == nullptr || i >= list->size() || !list->get(i)->is_table()) return task;
+  return Origin{list->get(i)->as_table(), fmt::format("{}.access[{}]", task.path, i), task.file};
+}
+
+const Origin& task_origin(const Origins& o, const TaskAt& t) {
+  return t.workflow ? o.workflow_tasks[t.owner][t.task] : o.app_task(t.owner, t.task);
+}
+
+// Files, file sets' included (read_file_sets checked each set as it came, against those before).
+void check_files(const Scenario& s, const Origins& o, const ScenarioLimits& limits) {
+  double files = static_cast<double>(s.files.size());
+  for (const FileSetSpec& set : s.file_sets) files += static_cast<double>(set.count);
+  if (files <= static_cast<double>(limits.max_files)) return;
+  const std::string message = fmt::format("{:.0f} files, more than the {} a run may have{}", files, limits.max_files, limits_hint(limits));
+  // Most likely a file set's count: blame the largest.
+  const auto set = std::max_element(s.file_sets.begin(), s.file_sets.end(), [](const FileSetSpec& a, const FileSetSpec& b) { return a.count < b.count; });
+  if (set != s.file_sets.end() && static_cast<double>(set->count) > files / 2) {
+    o.file_sets[static_cast<std::size_t>(set - s.file_sets.begin())].fail("count", message);
+  }
+  o.root.fail_table(message);
+}
+
+// Timeline rows, held in memory until written: three per task, and an access's one per epoch,
+// blamed on the access with the most.
+void check_timeline_rows(const Scenario& s, const Origins& o, const ScenarioLimits& limits, std::size_t tasks) {
+  double rows = 3.0 * static_cast<double>(tasks), most = 0.0;
+  std::optional<std::pair<TaskAt, std::size_t>> blamed;
+  const auto note = [&](const std::vector<TaskSpec>& of, bool workflow, std::size_t owner) {
+    for (std::size_t t = 0; t < of.size(); ++t) {
+      for (std::size_t i = 0; i < of[t].accesses.size(); ++i) {
+        const double epochs = static_cast<double>(of[t].accesses[i].repeat);
+        rows += epochs;
+        if (epochs > most) {
+          most = epochs;
+          blamed = {TaskAt{workflow, owner, t}, i};
+        }
+      }
+    }
+  };
+  for (std::size_t a = 0; a < s.apps.size(); ++a) note(s.apps[a].tasks, false, a);
+  for (std::size_t w = 0; w < s.workflows.size(); ++w) note(s.workflows[w].tasks, true, w);
+  if (rows <= 3.0 * static_cast<double>(limits.max_tasks) || !blamed) return;
+  access_origin(task_origin(o, blamed->first), blamed->second)
+      .fail("repeat", fmt::format("the timeline would hold {:.3g} rows (three per task, one per access and epoch), more than the {} a run may "
+                                  "have{}",
+                                  rows, 3 * limits.max_tasks, limits_hint(limits)));
+}
+
+// Too many events, most of them for an access's epochs over a file set: its count and repeat
+// make them.
+[[noreturn]] void fail_epochs(const Origin& access, const RunEstimate& e, const ScenarioLimits& limits) {
+  // Of one file, the requests per epoch are the count, else the region over the request size.
+  const char* key = access.has("file") && !access.has("count") && !access.has("repeat") ? "request"
+                    : access.has("repeat") || !access.has("count")                     ? "repeat"
+                                                                                        : "count";
+  access.fail(key,
+              fmt::format("the run would take about {:.3g} events, {:.3g} of them for {:.3g} chunk operations (each file's bytes over its "
+                          "task's chunk size, for every read and write, and every file or request of an access in each epoch), more "
+                          "than the {:.3g} a run may take{}: fewer epochs, or files or requests per epoch, make fewer",
+                          e.events(), e.transfer_events, e.chunk_operations, limits.max_events, limits_hint(limits)));
 }
 
 // The key that sets the longest stretch, where it is written.
@@ -88,9 +156,7 @@ void check_limits(const Scenario& s, const Origins& o, const ScenarioLimits& lim
   if (static_cast<double>(tasks) > static_cast<double>(limits.max_tasks)) {
     o.root.fail_table(fmt::format("{} tasks, more than the {} a run may have{}", tasks, limits.max_tasks, hint));
   }
-  if (static_cast<double>(s.files.size()) > static_cast<double>(limits.max_files)) {
-    o.root.fail_table(fmt::format("{} files, more than the {} a run may have{}", s.files.size(), limits.max_files, hint));
-  }
+  check_files(s, o, limits);
   if (static_cast<double>(s.hosts.size()) > static_cast<double>(limits.max_hosts)) {
     // Most likely a host group's count: blame it.
     const auto group = std::find_if(o.host_groups.begin(), o.host_groups.end(),
@@ -99,6 +165,8 @@ void check_limits(const Scenario& s, const Origins& o, const ScenarioLimits& lim
     if (group != o.host_groups.end()) o.hosts[group->second.first].fail("count", message);
     o.root.fail_table(message);
   }
+
+  check_timeline_rows(s, o, limits, tasks);
 
   const RunEstimate e = estimate_run(s);
   const double simulated = e.longest.seconds;
@@ -115,6 +183,7 @@ void check_limits(const Scenario& s, const Origins& o, const ScenarioLimits& lim
     const double largest = std::max({e.transfer_events, e.throttle_events, e.flusher_events, e.sampler_events});
     if (largest == e.transfer_events) {
       const TaskAt& t = e.most_operations;
+      if (e.most_operations_access) fail_epochs(access_origin(task_origin(o, t), *e.most_operations_access), e, limits);
       const auto [origin, key] = t.workflow ? chunk_key(o.workflow_tasks[t.owner][t.task], o.workflows[t.owner])
                                             : chunk_key(o.app_task(t.owner, t.task), o.app(t.owner));
       origin->fail(key, fmt::format("the run would take about {:.3g} events, {:.3g} of them for {:.3g} chunk operations (each file's "

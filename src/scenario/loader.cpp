@@ -61,6 +61,7 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
   scenario::read_start(r, file, s);
 
   scenario::read_files(r, file, s, origins);
+  scenario::read_file_sets(r, file, limits, s, origins);
   // A workflow file before [pipelines], whose files' origins are all that table's (Origins::file).
   scenario::read_json_workflow(r, file, limits, s, origins);
   scenario::read_pipelines(r, file, limits, s, origins);

@@ -25,7 +25,7 @@ MemoryLimits read_memory_limits(TomlReader& r, const char* whose, MemoryLimits i
 }
 
 TaskSpec read_task(const toml::table& table, std::string path, std::size_t index, std::int64_t default_chunk, const std::string& file,
-                   bool in_workflow, MemoryLimits workflow_limits) {
+                   AccessTargets& targets, bool in_workflow, MemoryLimits workflow_limits) {
   TomlReader r(table, std::move(path), file);
   TaskSpec t;
   t.name = r.name("name", std::to_string(index + 1));
@@ -35,16 +35,20 @@ TaskSpec read_task(const toml::table& table, std::string path, std::size_t index
   }
   t.memory = r.optional_size("memory").value_or(0);
   t.reads = r.names("read");
+  t.chunk_size = r.optional_size("chunk_size").value_or(default_chunk);  // an access's default request
+  if (t.chunk_size <= 0) r.fail("chunk_size", "must be > 0");
+  t.accesses = read_accesses(r, targets, t.chunk_size);
   t.compute = r.optional_duration("compute").value_or(0.0);
   t.writes = r.names("write");
-  t.chunk_size = r.optional_size("chunk_size").value_or(default_chunk);
-  if (t.chunk_size <= 0) r.fail("chunk_size", "must be > 0");
   if (in_workflow) {
     t.after = r.names("after");
     t.memory_limits = read_memory_limits(r, "the task's", workflow_limits);
   }
   t.fsync = r.optional_bool("fsync").value_or(false);
   t.direct_io = r.optional_bool("direct_io").value_or(false);
+  if (t.direct_io && std::any_of(t.accesses.begin(), t.accesses.end(), [](const AccessSpec& a) { return !a.file.empty(); })) {
+    r.fail("direct_io", "accesses of parts of a file (file = \"NAME\") through O_DIRECT are not modelled yet");
+  }
   t.deletes = r.names("delete");
   r.finish();
   return t;
@@ -134,6 +138,7 @@ void read_pipelines(TomlReader& r, const std::string& file, const ScenarioLimits
 
 void read_apps(TomlReader& r, const std::string& file, Scenario& s, Origins& origins) {
   const auto apps = r.tables("apps");
+  AccessTargets targets(s);
   for (std::size_t i = 0; i < apps.size(); ++i) {
     TomlReader a(*apps[i], r.child_path("apps", i), file);
     origins.apps.push_back({apps[i], a.path(), &file});
@@ -150,7 +155,7 @@ void read_apps(TomlReader& r, const std::string& file, Scenario& s, Origins& ori
     if (tasks.empty()) a.fail_table("an application needs at least one [[" + a.path() + ".tasks]]");
     for (std::size_t t = 0; t < tasks.size(); ++t) {
       task_origins.push_back({tasks[t], a.child_path("tasks", t), &file});
-      app.tasks.push_back(read_task(*tasks[t], a.child_path("tasks", t), t, chunk, file, false));
+      app.tasks.push_back(read_task(*tasks[t], a.child_path("tasks", t), t, chunk, file, targets, false));
     }
     a.finish();
     s.apps.push_back(std::move(app));

@@ -91,6 +91,8 @@ void read_free_page_reporting(TomlReader& r, HostConfig& h) {
   if (!(h.page_reporting_delay >= 0.0)) r.fail("page_reporting_delay", "must be >= 0 s");
   h.memory_freed_at_start = r.optional_size("memory_freed_at_start").value_or(h.memory_freed_at_start);
   if (h.memory_freed_at_start < 0) r.fail("memory_freed_at_start", "must be >= 0");
+  h.request_time = r.optional_duration("request_time").value_or(h.request_time);
+  if (!(h.request_time >= 0.0 && h.request_time <= 1.0)) r.fail("request_time", "must be >= 0 s and at most 1 s (a system call's time)");
 }
 
 // A disk's requests and write cache (DiskBandwidth): each absent or 0, not modelled. A table

@@ -146,6 +146,7 @@ void keep_what_the_run_uses(const SgPlatform& platform, const std::set<std::size
     }
   }
   for (const FileSpec& f : s.files) stores.insert(f.host);
+  for (const FileSetSpec& f : s.file_sets) stores.insert(f.host);
   std::set<std::pair<std::string, std::string>> pairs;
   for (const std::string& a : runs) {
     for (const std::string& b : stores) pairs.emplace(a, b);

@@ -21,6 +21,7 @@ class ReachCheck {
  public:
   ReachCheck(const Scenario& s, const std::map<std::string, const FileSpec*>& files) : routes_(s), files_(files) {
     for (const HostConfig& h : s.hosts) host_names_.insert(h.name);
+    for (const FileSetSpec& set : s.file_sets) set_hosts_.emplace(set.name, &set.host);
   }
 
   // The tasks of `owner` (an application or a workflow), which may run on any of `hosts`.
@@ -45,6 +46,16 @@ class ReachCheck {
           else servers.try_emplace(server, &t.name, &it->first);
         }
       }
+      for (const AccessSpec& a : t.accesses) {
+        if (!a.file.empty()) {
+          local(where, owner, t, a.file, t.host.empty() ? hosts : std::vector<std::string>{t.host});
+          continue;
+        }
+        const auto it = set_hosts_.find(a.file_set);
+        if (it == set_hosts_.end()) throw ConfigError(fmt::format("{}: {}, task '{}': unknown file set '{}'", where, owner, t.name, a.file_set));
+        if (!t.host.empty()) reach(where, owner, t.name, a.file_set, t.host, *it->second);
+        else servers.try_emplace(*it->second, &t.name, &it->first);
+      }
     }
     for (const auto& [server, first] : servers) {
       for (const std::string& host : hosts) reach(where, owner, *first.first, *first.second, host, server);
@@ -52,6 +63,23 @@ class ReachCheck {
   }
 
  private:
+  // Reads and writes by part (Host::read_ranges) are of a file of the task's own host: one it
+  // might read over a route is refused.
+  void local(const std::string& where, const std::string& owner, const TaskSpec& t, const std::string& file_name,
+             const std::vector<std::string>& hosts) {
+    const auto it = files_.find(file_name);
+    if (it == files_.end()) throw ConfigError(fmt::format("{}: {}, task '{}': unknown file '{}'", where, owner, t.name, file_name));
+    const std::string& server = it->second->host;
+    for (const std::string& host : hosts) {
+      if (host != server) {
+        throw ConfigError(fmt::format("{}: {}, task '{}': file '{}' is on host '{}' and the task may run on '{}': an access of parts of a "
+                                      "file (file = \"{}\") is of a file of the task's own host (pcsim does not model reads by part over "
+                                      "the network)",
+                                      where, owner, t.name, file_name, server, host, file_name));
+      }
+    }
+  }
+
   void reach(const std::string& where, const std::string& owner, const std::string& task, const std::string& file_name, const std::string& host,
              const std::string& server) {
     if (server == host || !reachable_.emplace(host, server).second) return;
@@ -72,6 +100,7 @@ class ReachCheck {
   const RouteIndex routes_;
   const std::map<std::string, const FileSpec*>& files_;
   std::set<std::string> host_names_;
+  std::map<std::string, const std::string*> set_hosts_;  // file set -> the host storing it
   std::set<std::pair<std::string, std::string>> reachable_;  // (host, server) pairs already checked
 };
 

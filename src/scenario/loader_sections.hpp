@@ -21,6 +21,8 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <string_view>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -90,6 +92,8 @@ void read_network(TomlReader& r, Scenario& s, const std::string& file, Origins& 
 
 /// The [[files]] tables.
 void read_files(TomlReader& r, const std::string& file, Scenario& s, Origins& origins);
+/// The [[file_sets]] tables (after the hosts).
+void read_file_sets(TomlReader& r, const std::string& file, const ScenarioLimits& limits, Scenario& s, Origins& origins);
 /// Each file of `s` named once and on a disk of its host that it fits; returns them by name.
 std::map<std::string, const FileSpec*> check_files(const Scenario& s, const Origins& origins);
 /// The files on each disk fit its capacity at the start and at the end of the run.
@@ -100,9 +104,28 @@ void check_disk_space(const Scenario& s, const Origins& origins);
 /// memory_max / memory_high: the limits of a memory group (`whose`: whose, for the message).
 /// Absent: `inherited` (a workflow's for its tasks), unless memory_max is given here.
 MemoryLimits read_memory_limits(TomlReader& r, const char* whose, MemoryLimits inherited = {});
-/// A [[apps.tasks]] or [[workflow.tasks]] table (`in_workflow`: the latter's keys too).
+/// What tasks' accesses may name: the file sets, and the files, indexed by name when first
+/// asked (most scenarios have no access of one file; some have 10^6 files).
+class AccessTargets {
+ public:
+  explicit AccessTargets(const Scenario& s) : sets_(s.file_sets), files_(s.files) {}
+  const std::vector<FileSetSpec>& sets() const noexcept { return sets_; }
+  /// The file named `name`, or nullptr.
+  const FileSpec* file(const std::string& name);
+
+ private:
+  const std::vector<FileSetSpec>& sets_;
+  const std::vector<FileSpec>& files_;
+  std::unordered_map<std::string_view, const FileSpec*> index_;
+};
+
+/// A [[apps.tasks]] or [[workflow.tasks]] table (`in_workflow`: the latter's keys too); its
+/// accesses name the file sets and files of `targets`.
 TaskSpec read_task(const toml::table& table, std::string path, std::size_t index, std::int64_t default_chunk, const std::string& file,
-                   bool in_workflow, MemoryLimits workflow_limits = {});
+                   AccessTargets& targets, bool in_workflow, MemoryLimits workflow_limits = {});
+/// A task's [[access]] tables (loader_access.cpp), each over a set or a file of `targets`; an
+/// access of one file requests `chunk_size` bytes at a time unless it says otherwise.
+std::vector<AccessSpec> read_accesses(TomlReader& task, AccessTargets& targets, std::int64_t chunk_size);
 /// [pipelines]: applications and files made by the pattern it describes.
 void read_pipelines(TomlReader& r, const std::string& file, const ScenarioLimits& limits, Scenario& s, Origins& origins);
 /// The [[apps]] tables.

@@ -173,9 +173,10 @@ void read_workflow(TomlReader& r, const std::string& file, Scenario& s, Origins&
     const MemoryLimits memory_limits = read_memory_limits(wr, "each task's");
     const auto tasks = wr.tables("tasks");
     if (tasks.empty()) wr.fail_table("a workflow needs at least one [[workflow.tasks]]");
+    AccessTargets targets(s);
     for (std::size_t t = 0; t < tasks.size(); ++t) {
       task_origins.push_back({tasks[t], wr.child_path("tasks", t), &file});
-      workflow.tasks.push_back(read_task(*tasks[t], wr.child_path("tasks", t), t, chunk, file, true, memory_limits));
+      workflow.tasks.push_back(read_task(*tasks[t], wr.child_path("tasks", t), t, chunk, file, targets, true, memory_limits));
     }
     check_workflow_acyclic(workflow, origins.workflows.back(), task_origins);
     wr.finish();

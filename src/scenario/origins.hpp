@@ -52,6 +52,7 @@ struct Origins {
   std::vector<Origin> links;
   std::vector<Origin> routes;
   std::vector<Origin> files;  ///< the [[files]] tables
+  std::vector<Origin> file_sets;  ///< the [[file_sets]] tables
   std::optional<Origin> pipelines;
   std::size_t pipeline_apps = 0;
   std::vector<Origin> apps;  ///< the [[apps]] tables, after the pipelines' applications

@@ -37,6 +37,27 @@ std::string list(const std::vector<std::string>& items) {
   return toml_text(array);
 }
 
+// An access of parts of one file: its pattern's keys only.
+void write_file_access(std::string& out, const std::string& table, const AccessSpec& a) {
+  out += fmt::format("\n[[{}.access]]\nfile = {}\npattern = {}\nmode = {}\n", table, quoted(a.file), quoted(to_string(a.pattern)),
+                     quoted(to_string(a.mode)));
+  if (a.mode == AccessMode::Read) out += fmt::format("advice = {}\n", quoted(to_string(a.advice)));
+  out += fmt::format("request = {}\n", quoted(units::format_size(a.request)));
+  if (a.pattern == AccessPattern::Ranges) {
+    std::string ranges;
+    for (const auto& [offset, length] : a.ranges) {
+      ranges += fmt::format("{}[{}, {}]", ranges.empty() ? "" : ", ", quoted(units::format_size(offset)), quoted(units::format_size(length)));
+    }
+    out += fmt::format("ranges = [{}]\n", ranges);
+  } else {
+    out += fmt::format("offset = {}\nlength = {}\n", quoted(units::format_size(a.offset)), quoted(units::format_size(a.length)));
+    if (a.pattern == AccessPattern::Strided) out += fmt::format("stride = {}\n", quoted(units::format_size(a.stride)));
+    if (a.pattern == AccessPattern::Random) out += fmt::format("seed = {}\nreplacement = {}\n", a.seed, a.replacement);
+    out += fmt::format("count = {}\n", a.count);
+  }
+  out += fmt::format("repeat = {}\n", a.repeat);
+}
+
 void write_task(std::string& out, const std::string& table, const TaskSpec& t, bool in_workflow) {
   out += fmt::format("\n[[{}]]\nname = {}\n", table, quoted(t.name));
   if (in_workflow && !t.host.empty()) out += fmt::format("host = {}\n", quoted(t.host));
@@ -47,6 +68,15 @@ void write_task(std::string& out, const std::string& table, const TaskSpec& t, b
   if (in_workflow) out += fmt::format("after = {}\n", list(t.after));
   if (t.memory_limits.max > 0) out += fmt::format("memory_max = {}\n", quoted(units::format_size(t.memory_limits.max)));
   if (t.memory_limits.high > 0) out += fmt::format("memory_high = {}\n", quoted(units::format_size(t.memory_limits.high)));
+  for (const AccessSpec& a : t.accesses) {
+    if (!a.file.empty()) {
+      write_file_access(out, table, a);
+      continue;
+    }
+    out += fmt::format("\n[[{}.access]]\nfiles = {}\npattern = {}\n", table, quoted(a.file_set), quoted(to_string(a.pattern)));
+    if (a.pattern == AccessPattern::Random) out += fmt::format("seed = {}\nreplacement = {}\n", a.seed, a.replacement);
+    out += fmt::format("count = {}\nrepeat = {}\n", a.count, a.repeat);
+  }
 }
 
 // A platform file shown alone may not give what a run needs (load_platform): the key is left
@@ -68,6 +98,7 @@ void write_memory(std::string& out, const HostConfig& h) {
   if (h.memory_bandwidth.reclaimed_write > 0.0) {
     out += fmt::format("memory_reclaimed_write_bw = {}\n", quoted(units::format_bandwidth(h.memory_bandwidth.reclaimed_write)));
   }
+  if (h.request_time > 0.0) out += fmt::format("request_time = {}\n", quoted(units::format_duration(h.request_time)));
   if (h.memory_bandwidth.cold_fault > 0.0) {
     out += fmt::format("memory_cold_fault_bw = {}\npage_reporting_delay = {}\nmemory_freed_at_start = {}\n",
                        quoted(units::format_bandwidth(h.memory_bandwidth.cold_fault)), quoted(units::format_duration(h.page_reporting_delay)),
@@ -153,6 +184,11 @@ std::string to_toml(const Scenario& s) {
   write_network(out, s);
   for (const FileSpec& f : s.files) {
     out += fmt::format("\n[[files]]\nname = {}\nsize = {}\nhost = {}\ndisk = {}\ncached = {}\n", quoted(f.name),
+                       quoted(units::format_size(f.size)), quoted(f.host), quoted(f.disk), f.cached);
+  }
+  // A set is one table, whatever its count: 10^6 files are not listed.
+  for (const FileSetSpec& f : s.file_sets) {
+    out += fmt::format("\n[[file_sets]]\nname = {}\ncount = {}\nsize = {}\nhost = {}\ndisk = {}\ncached = {}\n", quoted(f.name), f.count,
                        quoted(units::format_size(f.size)), quoted(f.host), quoted(f.disk), f.cached);
   }
   write_work(out, s);

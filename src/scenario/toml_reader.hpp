@@ -92,6 +92,11 @@ class TomlReader {
     if (v && (*v < low || *v > high)) fail(key, fmt::format("must be between {} and {}, got {}", low, high, *v));
     return v;
   }
+  std::int64_t required_integer(const std::string& key) {
+    const auto v = optional_integer(key);
+    if (!v) fail_missing(key, "an integer");
+    return *v;
+  }
 
   std::optional<double> optional_number(const std::string& key) {
     const toml::node* node = take(key);

@@ -1,5 +1,7 @@
 #include "workload/plans.hpp"
 
+#include "workload/access_pattern.hpp"
+
 #include <pagecache/error.hpp>
 #include <pagecache/units.hpp>
 
@@ -29,6 +31,12 @@ void check_memory_groups(const Scenario& scenario) {
 
 Plans::Plans(const Scenario& scenario, const Platform& platform, const FileIndex& files) {
   TaskIndex names;  // the task names met so far: a run of pipelines has a few
+  sets_ = platform.file_sets();
+  set_names_.reserve(scenario.file_sets.size());  // set_index_ views its strings
+  for (const FileSetSpec& set : scenario.file_sets) {
+    set_names_.push_back(set.name);
+    set_index_.emplace(set_names_.back(), static_cast<std::uint32_t>(set_names_.size() - 1));
+  }
   reserve(scenario);
   plan_applications(scenario.apps, platform, files, names);
   first_workflow_task_ = tasks_.size();
@@ -103,6 +111,61 @@ void Plans::plan_task(const TaskSpec& task, const std::vector<PlacedFile>& place
   plan.compute = task.compute;
   plan.fsync = task.fsync;
   plan.direct_io = task.direct_io;
+  plan_accesses(task, plan, placed, files);
+}
+
+// Scenarios built in code skip the loader's checks: what the run relies on is checked here.
+void Plans::plan_accesses(const TaskSpec& task, TaskPlan& plan, const std::vector<PlacedFile>& placed, const FileIndex& files) {
+  plan.accesses = static_cast<std::uint32_t>(accesses_.size());
+  for (const AccessSpec& a : task.accesses) {
+    if (a.repeat < 1) throw ConfigError(fmt::format("task '{}': an access needs repeat >= 1", task.name));
+    if (!a.file.empty()) {
+      if (task.direct_io) throw ConfigError(fmt::format("task '{}': accesses of parts of a file with direct_io are not modelled", task.name));
+      plan_file_access(task, a, accesses_.emplace_back(), placed, files);
+      epochs_ += static_cast<std::size_t>(a.repeat);
+      continue;
+    }
+    const auto set = set_index_.find(a.file_set);
+    if (set == set_index_.end()) throw ConfigError(fmt::format("task '{}': no file set named '{}'", task.name, a.file_set));
+    if (a.count < 0 || a.repeat < 1) {
+      throw ConfigError(fmt::format("task '{}': an access of file set '{}' needs count >= 0 and repeat >= 1", task.name, a.file_set));
+    }
+    AccessPlan& access = accesses_.emplace_back();
+    access.set = sets_[set->second];
+    access.set_index = set->second;
+    const bool random = a.pattern == AccessPattern::Random;
+    access.order = !random ? SampleOrder::Kind::InOrder : a.replacement ? SampleOrder::Kind::WithReplacement : SampleOrder::Kind::Shuffled;
+    access.seed = a.seed;
+    access.count = a.count > 0 ? a.count : access.set.count;
+    access.repeat = a.repeat;
+    if (a.replacement && !random) throw ConfigError(fmt::format("task '{}': draws with replacement need the random pattern", task.name));
+    if (access.order != SampleOrder::Kind::WithReplacement && access.count > access.set.count) {
+      throw ConfigError(fmt::format("task '{}': {} files per epoch of file set '{}', which has {}", task.name, access.count, a.file_set,
+                                    access.set.count));
+    }
+    epochs_ += static_cast<std::size_t>(a.repeat);
+  }
+  plan.accesses_end = static_cast<std::uint32_t>(accesses_.size());
+}
+
+void Plans::plan_file_access(const TaskSpec& task, const AccessSpec& a, AccessPlan& access, const std::vector<PlacedFile>& placed,
+                             const FileIndex& files) const {
+  const auto it = files.find(a.file);
+  if (it == files.end()) throw ConfigError(fmt::format("task '{}': no file named '{}'", task.name, a.file));
+  access.of_file = true;
+  access.file = it->second;
+  access.requests = request_pattern(a);
+  const PlacedFile& file = placed[it->second];
+  const std::string problem = pattern_problem(access.requests, file.host->file_size(file.ref));
+  if (!problem.empty()) throw ConfigError(fmt::format("task '{}', access of file '{}': {}", task.name, a.file, problem));
+  if (a.replacement && a.pattern != AccessPattern::Random) {
+    throw ConfigError(fmt::format("task '{}': draws with replacement need the random pattern", task.name));
+  }
+  access.writing = a.mode != AccessMode::Read;
+  access.advice = a.advice == AccessAdvice::Random       ? ReadAdvice::Random
+                  : a.advice == AccessAdvice::Sequential ? ReadAdvice::Sequential
+                                                         : ReadAdvice::Normal;
+  access.repeat = a.repeat;
 }
 
 WorkflowHosts place_workflow(const WorkflowSpec& w, const Platform& platform, Simulator& sim) {

@@ -5,6 +5,8 @@
 
 #include "workload/core_scheduler.hpp"
 #include "workload/platform.hpp"
+#include "workload/request_pattern.hpp"
+#include "workload/sample_order.hpp"
 
 #include <pagecache/host.hpp>
 #include <pagecache/scenario.hpp>
@@ -28,6 +30,8 @@ struct TaskPlan {
   std::uint32_t writes = 0;
   std::uint32_t deletes = 0;
   std::uint32_t end = 0;
+  std::uint32_t accesses = 0;  // its accesses: Plans::access(i) for i in [accesses, accesses_end)
+  std::uint32_t accesses_end = 0;
   std::int64_t chunk_size = 0;
   std::int64_t memory = 0;  // held besides the buffers of what it reads
   double compute = 0.0;
@@ -35,6 +39,22 @@ struct TaskPlan {
   bool fsync = false;
   bool direct_io = false;
   GroupRef group;  // its application's memory group, if it has one
+};
+
+/// An access (AccessSpec) as its run reads it: its set's files, the order it visits them in; or
+/// its file and the requests it makes of it.
+struct AccessPlan {
+  bool of_file = false;
+  std::uint32_t file = 0;    // of_file: in Platform::files()
+  RequestPattern requests;   // of_file
+  bool writing = false;      // of_file: writes (in place or appends), else reads
+  ReadAdvice advice = ReadAdvice::Normal;
+  PlacedFileSet set;
+  std::uint32_t set_index = 0;  // in the scenario's file sets (Plans::set_name)
+  SampleOrder::Kind order = SampleOrder::Kind::InOrder;
+  std::uint64_t seed = 0;
+  std::int64_t count = 0;  // files per epoch
+  std::int64_t repeat = 1;
 };
 
 /// An application as its run reads it: its tasks' plans are `tasks` from `first`.
@@ -54,12 +74,17 @@ class Plans {
   /// Per application, in order; the workflows' task plans, in their order, from workflow_tasks().
   const std::vector<AppPlan>& apps() const noexcept { return apps_; }
   const TaskPlan* workflow_tasks() const noexcept { return tasks_.data() + first_workflow_task_; }
-  std::size_t task_count() const noexcept { return tasks_.size(); }
   std::span<const TaskPlan> tasks_of(const AppPlan& app) const noexcept { return {tasks_.data() + app.first, app.tasks}; }
 
   const std::string& task_name(const TaskPlan& plan) const noexcept { return task_names_[plan.name]; }
   /// The file of a task's list, `f` in [reads, end) of its plan: its index in Platform::files().
   std::uint32_t file(std::uint32_t f) const noexcept { return planned_files_[f]; }
+  const AccessPlan& access(std::uint32_t i) const noexcept { return accesses_[i]; }
+  const std::string& set_name(const AccessPlan& access) const noexcept { return set_names_[access.set_index]; }
+  /// The run's timeline rows: three per task, one per access and epoch; and of them the I/O
+  /// phases (after which the cache contents are recorded).
+  std::size_t timeline_rows() const noexcept { return 3 * tasks_.size() + epochs_; }
+  std::size_t io_phases() const noexcept { return 2 * tasks_.size() + epochs_; }
 
  private:
   using TaskIndex = std::unordered_map<std::string_view, std::uint32_t>;  // in task_names_
@@ -68,12 +93,20 @@ class Plans {
   void plan_applications(const std::vector<AppSpec>& apps, const Platform& platform, const FileIndex& files, TaskIndex& names);
   void plan_workflows(const std::vector<WorkflowSpec>& workflows, const Platform& platform, const FileIndex& files, TaskIndex& names);
   void plan_task(const TaskSpec& task, const std::vector<PlacedFile>& placed, const FileIndex& files, TaskIndex& names);
+  void plan_accesses(const TaskSpec& task, TaskPlan& plan, const std::vector<PlacedFile>& placed, const FileIndex& files);
+  void plan_file_access(const TaskSpec& task, const AccessSpec& a, AccessPlan& access, const std::vector<PlacedFile>& placed,
+                        const FileIndex& files) const;
 
   std::vector<AppPlan> apps_;
   std::vector<TaskPlan> tasks_;  // per task, apps' then workflows', in order
   std::size_t first_workflow_task_ = 0;
   std::vector<std::string> task_names_;       // what TaskPlan::name names, each name once
   std::vector<std::uint32_t> planned_files_;  // the files of the tasks' lists, in Platform::files()
+  std::vector<AccessPlan> accesses_;          // the tasks' accesses, task after task
+  std::vector<std::string> set_names_;        // per file set
+  std::unordered_map<std::string_view, std::uint32_t> set_index_;  // in set_names_
+  std::vector<PlacedFileSet> sets_;           // per file set
+  std::size_t epochs_ = 0;                    // of all accesses
 };
 
 /// The hosts a workflow's tasks may run on, and the scheduler of their cores: the workflow's

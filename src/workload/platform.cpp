@@ -4,6 +4,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cstdint>
+
 namespace pagecache::workload {
 
 Platform::Platform(Simulator& sim, FairShare& share, const Scenario& scenario, FileIndex& files) {
@@ -11,12 +14,13 @@ Platform::Platform(Simulator& sim, FairShare& share, const Scenario& scenario, F
   for (const HostConfig& config : scenario.hosts) add_host(sim, share, config, disks);
   add_links(share, scenario);
   place_files(scenario.files, disks, files);
+  place_file_sets(scenario.file_sets, disks);
 }
 
 void Platform::add_host(Simulator& sim, FairShare& share, const HostConfig& config, Disks& disks) {
   auto host = std::make_unique<Host>(sim, share,
                                      HostSpec{config.name, config.cores, config.memory, config.memory_bandwidth, config.cache, config.memory_in_use,
-                                              config.page_reporting_delay, config.memory_freed_at_start});
+                                              config.page_reporting_delay, config.memory_freed_at_start, config.request_time});
   std::map<std::string, DiskRef> named;
   for (const DiskSpec& d : config.disks) {
     named[d.name] = host->add_disk(config.name + ":" + d.name,  // named as the host's cpu and memory are
@@ -67,6 +71,26 @@ void Platform::place_files(const std::vector<FileSpec>& specs, const Disks& disk
       throw ConfigError(fmt::format("two files named '{}'", f.name));
     }
     file_order_.push_back({&host, host.add_file(f.name, f.size, disk->second, f.cached)});
+  }
+}
+
+// A set's files are its host's files like any other (each read whole through the page cache),
+// but have no FileSpec and no entry in the index by name: tasks reach them through their set.
+void Platform::place_file_sets(const std::vector<FileSetSpec>& specs, const Disks& disks) {
+  std::size_t total = file_order_.size();
+  for (const FileSetSpec& set : specs) total += static_cast<std::size_t>(std::max<std::int64_t>(set.count, 0));
+  if (total > UINT32_MAX) throw ConfigError(fmt::format("{} files: a run may have at most {}", total, UINT32_MAX));
+  file_order_.reserve(total);
+  sets_.reserve(specs.size());
+  for (const FileSetSpec& set : specs) {
+    if (set.count < 1) throw ConfigError(fmt::format("file set '{}': count must be >= 1", set.name));
+    Host& host = host_named(set.host, "file set", set.name);
+    const auto disk = disks.at(set.host).find(set.disk);
+    if (disk == disks.at(set.host).end()) throw ConfigError(fmt::format("file set '{}': host '{}' has no disk named '{}'", set.name, set.host, set.disk));
+    sets_.push_back({static_cast<std::uint32_t>(file_order_.size()), static_cast<std::uint32_t>(set.count)});
+    for (std::int64_t i = 0; i < set.count; ++i) {
+      file_order_.push_back({&host, host.add_file(fmt::format("{}/{}", set.name, i), set.size, disk->second, set.cached)});
+    }
   }
 }
 

@@ -28,6 +28,12 @@ struct PlacedFile {
   FileRef ref;
 };
 
+/// A file set's files: Platform::files() from `first`, `count` of them, in the set's order.
+struct PlacedFileSet {
+  std::uint32_t first = 0;
+  std::uint32_t count = 0;
+};
+
 /// The scenario's files by name (views of the scenario's names): their index in Platform::files().
 using FileIndex = std::unordered_map<std::string_view, std::uint32_t>;
 
@@ -49,8 +55,10 @@ class Platform {
   /// The hosts and their names, in the scenario's order.
   const std::vector<Host*>& hosts() const noexcept { return host_list_; }
   const std::vector<std::string>& host_names() const noexcept { return host_order_; }
-  /// The scenario's files, in its order.
+  /// The scenario's files, in its order, then the files of its file sets, set by set.
   const std::vector<PlacedFile>& files() const noexcept { return file_order_; }
+  /// The scenario's file sets, in its order.
+  const std::vector<PlacedFileSet>& file_sets() const noexcept { return sets_; }
 
   /// The file as seen from `client`: its own, or the server's through the route between them
   /// (registered once per host and file, when first used).
@@ -65,6 +73,7 @@ class Platform {
   void add_host(Simulator& sim, FairShare& share, const HostConfig& config, Disks& disks);
   void add_links(FairShare& share, const Scenario& scenario);
   void place_files(const std::vector<FileSpec>& specs, const Disks& disks, FileIndex& files);
+  void place_file_sets(const std::vector<FileSetSpec>& specs, const Disks& disks);
   FileRef remote_file(Host& client, const PlacedFile& stored);
 
   std::map<std::string, std::unique_ptr<Host>> hosts_;
@@ -74,7 +83,8 @@ class Platform {
   std::deque<Link> links_storage_;
   std::deque<Route> routes_storage_;
   std::map<std::pair<std::string, std::string>, const Route*> routes_;
-  std::vector<PlacedFile> file_order_;  // the scenario's files, in its order
+  std::vector<PlacedFile> file_order_;  // the scenario's files, in its order, then its sets'
+  std::vector<PlacedFileSet> sets_;
   std::map<std::tuple<const Host*, const Host*, std::uint32_t>, FileRef> remote_files_;  // (client, server, server's file)
 };
 

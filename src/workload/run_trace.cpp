@@ -10,10 +10,9 @@ namespace pagecache::workload {
 
 namespace {
 
-// A row per file after each of the two I/O phases of every task, unless that is too many:
-// empty, or why not.
-std::string why_cache_contents_not_recorded(const RunOptions& options, std::size_t tasks, std::size_t files) {
-  const std::size_t phases = 2 * tasks;
+// A row per file after each I/O phase (two per task, and one per access and epoch), unless that
+// is too many: empty, or why not.
+std::string why_cache_contents_not_recorded(const RunOptions& options, std::size_t phases, std::size_t files) {
   const std::size_t rows = phases * files;
   if (!options.cache_contents) return "switched off";
   if (rows > options.max_cache_rows) {
@@ -24,13 +23,14 @@ std::string why_cache_contents_not_recorded(const RunOptions& options, std::size
 
 }  // namespace
 
-RunTrace::RunTrace(const RunOptions& options, FairShare& share, const Platform& platform, std::size_t tasks)
-    : RunTrace(options, share, platform, tasks, why_cache_contents_not_recorded(options, tasks, platform.files().size())) {}
+RunTrace::RunTrace(const RunOptions& options, FairShare& share, const Platform& platform, std::size_t rows, std::size_t io_phases)
+    : RunTrace(options, share, platform, rows, io_phases, why_cache_contents_not_recorded(options, io_phases, platform.files().size())) {}
 
-RunTrace::RunTrace(const RunOptions& options, FairShare& share, const Platform& platform, std::size_t tasks, std::string not_recorded)
+RunTrace::RunTrace(const RunOptions& options, FairShare& share, const Platform& platform, std::size_t rows, std::size_t io_phases,
+                   std::string not_recorded)
     : platform_(platform),
       record_cache_(not_recorded.empty()),
-      recorder_(3 * tasks, record_cache_ ? 2 * tasks * platform.files().size() : 0, std::move(not_recorded)) {
+      recorder_(rows, record_cache_ ? io_phases * platform.files().size() : 0, std::move(not_recorded)) {
   std::vector<TraceSink*> all{&recorder_};
   all.insert(all.end(), options.consumers.begin(), options.consumers.end());
   sink_ = all.size() == 1 ? all.front() : &fanouts_.emplace_back(std::move(all));

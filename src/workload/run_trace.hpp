@@ -38,8 +38,9 @@ inline void add_moved(Moved& sum, const IoResult& r) {
 class RunTrace {
  public:
   /// Attaches the recorder and `options`' consumers to the devices of `share` and `platform`
-  /// and reports the start, for a run of `tasks` tasks (the recorder's rows are reserved).
-  RunTrace(const RunOptions& options, FairShare& share, const Platform& platform, std::size_t tasks);
+  /// and reports the start, for a run of `rows` timeline rows, `io_phases` of them I/O phases
+  /// (the recorder's rows are reserved).
+  RunTrace(const RunOptions& options, FairShare& share, const Platform& platform, std::size_t rows, std::size_t io_phases);
   RunTrace(const RunTrace&) = delete;
   RunTrace& operator=(const RunTrace&) = delete;
 
@@ -56,7 +57,8 @@ class RunTrace {
 
  private:
   void record_cache_contents(std::uint32_t phase);
-  RunTrace(const RunOptions& options, FairShare& share, const Platform& platform, std::size_t tasks, std::string not_recorded);
+  RunTrace(const RunOptions& options, FairShare& share, const Platform& platform, std::size_t rows, std::size_t io_phases,
+           std::string not_recorded);
 
   const Platform& platform_;
   bool record_cache_;

@@ -9,6 +9,22 @@ namespace pagecache {
 
 const char* to_string(Profile profile) { return profile == Profile::Paper ? "paper" : "linux"; }
 
+const char* to_string(AccessPattern pattern) {
+  switch (pattern) {
+    case AccessPattern::Random: return "random";
+    case AccessPattern::Strided: return "strided";
+    case AccessPattern::Ranges: return "ranges";
+    case AccessPattern::Sequential: break;
+  }
+  return "sequential";
+}
+
+const char* to_string(AccessMode mode) { return mode == AccessMode::Write ? "write" : mode == AccessMode::Append ? "append" : "read"; }
+
+const char* to_string(AccessAdvice advice) {
+  return advice == AccessAdvice::Sequential ? "sequential" : advice == AccessAdvice::Random ? "random" : "normal";
+}
+
 CacheSettings settings_for(Profile profile) {
   return profile == Profile::Paper ? CacheSettings::paper() : CacheSettings::kernel();
 }

@@ -307,3 +307,22 @@ TEST_CASE("units people type are read, and near misses named with the right spel
   refused(run_edited("gbps", "read_bw = \"100 MB/s\"", "read_bw = \"1 Gbps\""), {"(did you mean 'Gbit/s'?)"});
   refused(run_edited("mb", "read_bw = \"100 MB/s\"", "read_bw = \"100 MB\""), {"a bandwidth is a size per second (did you mean 'MB/s'?)"});
 }
+
+TEST_CASE("a file set's count and an access's epochs that would fill the memory are refused at once", "[cli][hostile][file_sets]") {
+  const std::string set = "[[file_sets]]\nname = \"s\"\nsize = \"1 kB\"\ncount = ";
+  const std::string access = "[[apps]]\n[[apps.tasks]]\n[[apps.tasks.access]]\nfiles = \"s\"\n";
+  refused(run_edited("set_count", "", set + "1000000000000"), {"s.toml:19:9: key 'file_sets[0].count'", "more than the 2000000"});
+  refused(run_edited("set_count_forced", "", set + "1000000000000", {"--force"}), {"key 'file_sets[0].count'", "more than the 1000000000"});
+  refused(run_edited("epochs", "", set + "10\n" + access + "repeat = 1000000000000"), {"key 'apps[0].tasks[0].access[0].repeat'", "timeline"});
+  refused(run_edited("draws", "", set + "10\n" + access + "pattern = \"random\"\nreplacement = true\ncount = 1000000000000"),
+          {"key 'apps[0].tasks[0].access[0].count'", "events"});
+}
+
+TEST_CASE("an access of one file whose requests or epochs would fill the memory is refused at once, naming its key", "[cli][hostile][access]") {
+  const std::string file = "[[files]]\nname = \"big\"\nsize = \"5 GB\"\n[[apps]]\n[[apps.tasks]]\n[[apps.tasks.access]]\nfile = \"big\"\n";
+  refused(run_edited("bytes", "", file + "request = \"1 B\""), {"key 'apps[0].tasks[0].access[0].request'", "events"});
+  refused(run_edited("file_epochs", "", file + "repeat = 1000000000000"), {"key 'apps[0].tasks[0].access[0].repeat'", "timeline"});
+  refused(run_edited("file_draws", "", file + "pattern = \"random\"\nrequest = \"4 KiB\"\nreplacement = true\ncount = 1000000000000"),
+          {"key 'apps[0].tasks[0].access[0].count'", "events"});
+  refused(run_edited("file_slots", "", file + "pattern = \"random\"\nrequest = \"1 B\""), {"key 'apps[0].tasks[0].access[0].request'", "2^32 - 1"});
+}

@@ -270,3 +270,105 @@ TEST_CASE("the README's picture is of the report.html today's pcsim run writes",
   CHECK(sha256(out / "pcsim-out" / "report.html") == page[1].str());
   CHECK(sha256(docs / "report-exp1.png") == picture[1].str());
 }
+
+TEST_CASE("the README's training epochs: epoch times and shares from the page cache at 0.8x, 1.0x and 1.2x memory", "[cli][docs][file_sets]") {
+  const auto f = figures(
+      R"(With the data set at 0.8x memory \(8,000 files, as shipped\) epoch 1 takes ([0-9.]+) s from disk and epoch 2 ([0-9.]+) s, )"
+      R"(([0-9.]+) % of it from the page cache; at 1.0x \(`--set file_sets.0.count=10000`\) epoch 2 takes ([0-9.]+) s, ([0-9.]+) % from )"
+      R"(the cache; at 1.2x \(`--set file_sets.0.count=12000`\) ([0-9.]+) s, ([0-9.]+) % from the cache: .* Sequential epochs at 1.2x )"
+      R"(\(`--set apps.0.tasks.0.access.0.pattern=sequential` too\) find ([0-9.]+) % in the cache, .* and epoch 2 takes ([0-9.]+) s, as epoch 1\.)");
+  const std::string scenario = (fs::path(PCSIM_SOURCE_DIR) / "scenarios/examples/training-epochs.toml").string();
+  // The epoch rows of a run with `sets`: [epoch] -> row.
+  const auto epochs = [&](const std::string& name, const std::vector<std::string>& sets) {
+    const fs::path out = fresh("training-" + name);
+    std::vector<std::string> args{"run", scenario, "--out", out.string(), "--quiet"};
+    for (const std::string& s : sets) args.insert(args.end(), {"--set", s});
+    run_pcsim(args);
+    std::map<int, pagecache::testing::CsvRow> rows;
+    for (const auto& row : read_csv((out / "timeline.csv").string())) {
+      std::smatch m;
+      const std::string task = row.at("task");
+      if (std::regex_match(task, m, std::regex(R"(train:images\[epoch ([0-9]+)\])"))) rows.emplace(std::stoi(m[1].str()), row);
+    }
+    REQUIRE(rows.size() == 3);
+    return rows;
+  };
+  const auto cached_pct = [](const pagecache::testing::CsvRow& row) { return 100.0 * std::stod(row.at("cache_bytes")) / std::stod(row.at("bytes")); };
+  const auto at_08 = epochs("0.8", {});
+  check_figure("0.8x epoch 1", f[0], duration(at_08.at(1)));
+  check_figure("0.8x epoch 2", f[1], duration(at_08.at(2)));
+  check_figure("0.8x epoch 2 from cache", f[2], cached_pct(at_08.at(2)));
+  const auto at_10 = epochs("1.0", {"file_sets.0.count=10000"});
+  check_figure("1.0x epoch 2", f[3], duration(at_10.at(2)));
+  check_figure("1.0x epoch 2 from cache", f[4], cached_pct(at_10.at(2)));
+  const auto at_12 = epochs("1.2", {"file_sets.0.count=12000"});
+  check_figure("1.2x epoch 2", f[5], duration(at_12.at(2)));
+  check_figure("1.2x epoch 2 from cache", f[6], cached_pct(at_12.at(2)));
+  const auto sequential = epochs("1.2-sequential", {"file_sets.0.count=12000", "apps.0.tasks.0.access.0.pattern=sequential"});
+  check_figure("1.2x sequential epoch 2 from cache", f[7], cached_pct(sequential.at(2)));
+  check_figure("1.2x sequential epoch 2", f[8], duration(sequential.at(2)));
+  // The physics, whatever the README says: a data set that fits is read from memory from epoch
+  // 2 on; one that does not is read in order from disk every epoch.
+  CHECK(at_08.at(2).at("disk_bytes") == "0");
+  CHECK(sequential.at(2).at("cache_bytes") == "0");
+  CHECK(duration(sequential.at(2)) == Approx(duration(sequential.at(1))));
+}
+
+namespace {
+
+// The epoch rows of `scenario` (scenarios/examples/) run with `sets`, task `task`: [epoch] -> row.
+std::map<int, pagecache::testing::CsvRow> access_epochs(const std::string& scenario, const std::string& task, const std::string& name,
+                                                        const std::vector<std::string>& sets) {
+  const fs::path out = fresh(name);
+  std::vector<std::string> args{"run", (fs::path(PCSIM_SOURCE_DIR) / "scenarios/examples" / scenario).string(), "--out", out.string(), "--quiet"};
+  for (const std::string& s : sets) args.insert(args.end(), {"--set", s});
+  run_pcsim(args);
+  std::map<int, pagecache::testing::CsvRow> rows;
+  for (const auto& row : read_csv((out / "timeline.csv").string())) {
+    std::smatch m;
+    const std::string label = row.at("task");
+    if (std::regex_match(label, m, std::regex(task + R"(\[epoch ([0-9]+)\])"))) rows.emplace(std::stoi(m[1].str()), row);
+  }
+  REQUIRE(rows.size() == 2);
+  return rows;
+}
+
+double cached_share(const pagecache::testing::CsvRow& row) { return std::stod(row.at("cache_bytes")) / std::stod(row.at("bytes")); }
+
+}  // namespace
+
+TEST_CASE("the README's hyperslab reads: epoch 2 from memory when the block fits, from disk when it does not", "[cli][docs][access]") {
+  const auto f = figures(R"(Epoch 1 takes ([0-9.]+) s from disk, each request a disk request \(strided requests are not read ahead\), and )"
+                         R"(epoch 2 ([0-9.]+) s, ([0-9.]+) % from the page cache, .* no longer fits: epoch 2 finds ([0-9.]+) % in the cache )"
+                         R"(and takes ([0-9.]+) s, as epoch 1\.)");
+  const auto fits = access_epochs("hyperslab-reads.toml", "slab:array", "hyperslab", {});
+  check_figure("epoch 1", f[0], duration(fits.at(1)));
+  check_figure("epoch 2", f[1], duration(fits.at(2)));
+  check_figure("epoch 2 from cache", f[2], 100.0 * cached_share(fits.at(2)));
+  const auto wide = access_epochs("hyperslab-reads.toml", "slab:array", "hyperslab-wide", {"apps.0.tasks.0.access.0.request=\"200 kB\""});
+  check_figure("wide epoch 2 from cache", f[3], 100.0 * cached_share(wide.at(2)));
+  check_figure("wide epoch 2", f[4], duration(wide.at(2)));
+  // The physics: epoch 1 misses everything, each request a disk request of its pages (80 us
+  // and its bytes at 2 GB/s); a block that fits is read from memory in epoch 2.
+  CHECK(fits.at(1).at("cache_bytes") == "0");
+  CHECK(duration(fits.at(1)) == Approx(100'000 * 80e-6 + std::stod(fits.at(1).at("disk_bytes")) / 2e9).epsilon(0.001));
+  CHECK(fits.at(2).at("disk_bytes") == "0");
+  CHECK(duration(wide.at(2)) == Approx(duration(wide.at(1))));
+}
+
+TEST_CASE("the README's key-value reads: the share from the cache is the share of the file it holds", "[cli][docs][access]") {
+  const auto f = figures(R"(in epoch 2 ([0-9.]+) % of the bytes come from the page cache, as the share of the file it holds \(256 MB of 1 GB, )"
+                         R"(([0-9.]+) %\), and a read takes ([0-9.]+) us on average\. With `advice = "random"`)");
+  const auto normal = access_epochs("key-value-random.toml", "get:db", "key-value", {});
+  check_figure("epoch 2 from cache", f[0], 100.0 * cached_share(normal.at(2)));
+  check_figure("memory over file", f[1], 100.0 * 256e6 / 1e9);
+  check_figure("time per read", f[2], duration(normal.at(2)) / 500'000 * 1e6);
+  // The physics: the hit share is the cache's share of the file, within a point.
+  CHECK(cached_share(normal.at(2)) == Approx(0.256).margin(0.01));
+  // POSIX_FADV_RANDOM changes nothing: random requests are not read ahead under normal advice.
+  const auto random = access_epochs("key-value-random.toml", "get:db", "key-value-fadv", {"apps.0.tasks.0.access.0.advice=random"});
+  for (const int e : {1, 2}) {
+    CHECK(random.at(e).at("end_s") == normal.at(e).at("end_s"));
+    CHECK(random.at(e).at("cache_bytes") == normal.at(e).at("cache_bytes"));
+  }
+}

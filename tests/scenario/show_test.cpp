@@ -297,3 +297,16 @@ TEST_CASE("a host's speed shows as flop/s that read back to the same double, and
   }
   CHECK(to_toml(parse_scenario(kScenario, "plain.toml")).find("speed =") == std::string::npos);
 }
+
+TEST_CASE("a host's request_time is read, refused out of range naming its key, and shown only when set", "[scenario][show]") {
+  std::string text = kScenario;
+  text.replace(text.find("name = \"h1\"\n"), 12, "name = \"h1\"\nrequest_time = \"20 us\"\n");
+  const Scenario s = parse_scenario(text, "request.toml");
+  CHECK(s.hosts[0].request_time == Catch::Detail::Approx(20e-6));
+  CHECK(s.hosts[1].request_time == 0.0);
+  CHECK(parse_scenario(to_toml(s), "request.toml").hosts[0].request_time == s.hosts[0].request_time);
+  CHECK(to_toml(parse_scenario(kScenario, "plain.toml")).find("request_time") == std::string::npos);
+  std::string negative = kScenario;
+  negative.replace(negative.find("name = \"h1\"\n"), 12, "name = \"h1\"\nrequest_time = \"2 s\"\n");
+  CHECK_THROWS_WITH(parse_scenario(negative, "bad.toml"), Catch::Contains("bad.toml:4") && Catch::Contains("request_time"));
+}

@@ -1,0 +1,223 @@
+// Accesses of parts of one file, run: reads hit exactly what is cached (a cached file, a range
+// read before, a range written before), random reads under POSIX_FADV_RANDOM read only what
+// they ask for, an append's data is in the cache for the read after it, and a strided
+// hyperslab that fits the cache is read from it in epoch 2.
+
+#include <pagecache/run.hpp>
+#include <pagecache/scenario.hpp>
+#include <pagecache/scenario_file.hpp>
+
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace pagecache {
+namespace {
+
+constexpr double kMemoryBw = 10e9;
+constexpr double kDiskBw = 500e6;
+constexpr double kLatency = 100e-6;
+constexpr std::int64_t kMiB = 1 << 20;
+
+// A 1 GB host whose disk takes kLatency per request; file "hot" (8 MiB, cached at the start)
+// and "cold" (8 MiB) and "big" (64 MiB), then one task whose accesses are `accesses` (TOML of
+// [[apps.tasks.access]] tables).
+Scenario with_accesses(const std::string& profile, const std::string& accesses) {
+  return parse_scenario(fmt::format(R"(profile = "{}"
+[[hosts]]
+name = "node"
+memory = "1 GB"
+memory_read_bw = "10 GB/s"
+memory_write_bw = "10 GB/s"
+[[hosts.disks]]
+name = "ssd"
+read_bw = "500 MB/s"
+write_bw = "400 MB/s"
+request_latency = "100 us"
+[[files]]
+name = "hot"
+size = "8 MiB"
+cached = true
+[[files]]
+name = "cold"
+size = "8 MiB"
+[[files]]
+name = "big"
+size = "64 MiB"
+[[apps]]
+name = "app"
+[[apps.tasks]]
+name = "t"
+{}
+)",
+                                    profile, accesses),
+                        "<test>");
+}
+
+// The rows of the accesses' epochs, in order.
+std::vector<PhaseRow> epoch_rows(const RunResult& r) {
+  std::vector<PhaseRow> rows;
+  for (const PhaseRow& p : r.timeline) {
+    if (r.task_name(p).find("[epoch ") != std::string::npos) rows.push_back(p);
+  }
+  return rows;
+}
+
+const char* kRandomWhole = "pattern = \"random\"\nrequest = \"4 KiB\"\nadvice = \"random\"\nseed = 3\n";
+
+TEST_CASE("random reads of a cached file hit every request, of an uncached one none, and read no more than asked", "[workload][access]") {
+  for (const char* profile : {"linux", "paper"}) {
+    INFO(profile);
+    const RunResult r = run_scenario(with_accesses(profile, fmt::format("[[apps.tasks.access]]\nfile = \"hot\"\n{0}\n[[apps.tasks.access]]\nfile = "
+                                                                        "\"cold\"\n{0}",
+                                                                        kRandomWhole)));
+    const std::vector<PhaseRow> e = epoch_rows(r);
+    REQUIRE(e.size() == 2);
+    CHECK(r.task_name(e[0]) == "t:hot[epoch 1]");
+    CHECK(r.task_name(e[1]) == "t:cold[epoch 1]");
+    for (const PhaseRow& p : e) {
+      CHECK(p.phase == PhaseKind::Read);
+      CHECK(p.bytes == 8 * kMiB);
+    }
+    CHECK(e[0].cache_bytes == 8 * kMiB);
+    CHECK(e[0].disk_bytes == 0);
+    CHECK(e[1].cache_bytes == 0);
+    CHECK(e[1].disk_bytes == 8 * kMiB);  // no readahead: each 4 KiB page once
+    // Each of the 2048 misses one disk request.
+    CHECK(e[1].end - e[1].start == Approx(2048 * (kLatency + 4096 / kDiskBw)).epsilon(0.01));
+  }
+}
+
+TEST_CASE("random reads hit exactly the part of a file read before", "[workload][access]") {
+  // The first half read in order (no readahead past it: advice random), then every page at random.
+  const RunResult r = run_scenario(with_accesses(
+      "linux", fmt::format("[[apps.tasks.access]]\nfile = \"cold\"\nlength = \"4 MiB\"\nrequest = \"1 MiB\"\nadvice = \"random\"\n"
+                           "[[apps.tasks.access]]\nfile = \"cold\"\n{}repeat = 2",
+                           kRandomWhole)));
+  const std::vector<PhaseRow> e = epoch_rows(r);
+  REQUIRE(e.size() == 3);
+  CHECK(e[0].disk_bytes == 4 * kMiB);
+  CHECK(e[1].cache_bytes == 4 * kMiB);  // the half read before, exactly
+  CHECK(e[1].disk_bytes == 4 * kMiB);
+  CHECK(r.task_name(e[2]) == "t:cold[epoch 2]");
+  CHECK(e[2].cache_bytes == 8 * kMiB);  // all of it cached by now
+}
+
+TEST_CASE("a read after a write by range hits what was written, and only that", "[workload][access]") {
+  const RunResult r = run_scenario(with_accesses(
+      "linux", fmt::format("[[apps.tasks.access]]\nfile = \"cold\"\nmode = \"write\"\npattern = \"ranges\"\nranges = [[\"1 MiB\", \"2 MiB\"]]\n"
+                           "request = \"256 KiB\"\n[[apps.tasks.access]]\nfile = \"cold\"\n{}",
+                           kRandomWhole)));
+  const std::vector<PhaseRow> e = epoch_rows(r);
+  REQUIRE(e.size() == 2);
+  CHECK(e[0].phase == PhaseKind::Write);
+  CHECK(e[0].bytes == 2 * kMiB);
+  CHECK(e[0].cache_bytes == 2 * kMiB);  // into the cache (writeback)
+  CHECK(e[1].phase == PhaseKind::Read);
+  CHECK(e[1].cache_bytes == 2 * kMiB);
+  CHECK(e[1].disk_bytes == 6 * kMiB);
+  CHECK(r.summary.write.bytes == 2 * kMiB);
+  CHECK(r.summary.read.bytes == 8 * kMiB);
+}
+
+TEST_CASE("appends write the file from their offset, and a read after them finds it cached", "[workload][access]") {
+  for (const char* profile : {"linux", "paper"}) {
+    INFO(profile);
+    const RunResult r = run_scenario(with_accesses(
+        profile, "[[apps.tasks.access]]\nfile = \"cold\"\nmode = \"append\"\noffset = \"2 MiB\"\nrequest = \"100 kB\"\n"
+                 "[[apps.tasks.access]]\nfile = \"cold\"\noffset = \"2 MiB\"\nrequest = \"1 MiB\"\n"));
+    const std::vector<PhaseRow> e = epoch_rows(r);
+    REQUIRE(e.size() == 2);
+    CHECK(e[0].phase == PhaseKind::Write);
+    CHECK(e[0].bytes == 6 * kMiB);  // 62 appends of 100 kB, the last shorter
+    CHECK(e[1].bytes == 6 * kMiB);
+    CHECK(e[1].cache_bytes == 6 * kMiB);
+    CHECK(e[1].disk_bytes == 0);
+  }
+}
+
+TEST_CASE("a strided hyperslab that fits the cache is read from disk in epoch 1 and from memory in epoch 2", "[workload][access]") {
+  for (const char* profile : {"linux", "paper"}) {
+    INFO(profile);
+    const RunResult r = run_scenario(with_accesses(
+        profile, "[[apps.tasks.access]]\nfile = \"big\"\npattern = \"strided\"\nrequest = \"64 KiB\"\nstride = \"1 MiB\"\nrepeat = 2\n"));
+    const std::vector<PhaseRow> e = epoch_rows(r);
+    REQUIRE(e.size() == 2);
+    const std::int64_t slab = 64 * 64 * 1024;
+    CHECK(r.task_name(e[1]) == "t:big[epoch 2]");
+    CHECK(e[0].bytes == slab);
+    CHECK(e[0].disk_bytes == slab);  // strided requests are not read ahead
+    CHECK(e[0].end - e[0].start == Approx(64 * (kLatency + 65536 / kDiskBw)).epsilon(0.01));
+    CHECK(e[1].cache_bytes == slab);
+    CHECK(e[1].disk_bytes == 0);
+    CHECK(e[1].end - e[1].start == Approx(static_cast<double>(slab) / kMemoryBw).epsilon(0.01));
+  }
+}
+
+TEST_CASE("a seed fixes a random access's requests: the same run twice gives the same rows", "[workload][access]") {
+  const std::string keys =
+      "[[apps.tasks.access]]\nfile = \"big\"\npattern = \"random\"\nrequest = \"4 KiB\"\nreplacement = true\ncount = 3000\nseed = 11\nrepeat = 2";
+  const RunResult a = run_scenario(with_accesses("linux", keys));
+  const RunResult b = run_scenario(with_accesses("linux", keys));
+  const std::vector<PhaseRow> ea = epoch_rows(a), eb = epoch_rows(b);
+  REQUIRE(ea.size() == 2);
+  for (std::size_t i = 0; i < 2; ++i) {
+    CHECK(ea[i].cache_bytes == eb[i].cache_bytes);
+    CHECK(ea[i].end == eb[i].end);
+  }
+  CHECK(ea[1].cache_bytes > ea[0].cache_bytes);  // epoch 2 draws some of epoch 1's pages again
+}
+
+}  // namespace
+}  // namespace pagecache
+
+namespace pagecache {
+namespace {
+
+TEST_CASE("a workflow task's access of one file runs on its host and reports its epochs", "[workload][access]") {
+  const RunResult r = run_scenario(parse_scenario(R"([[hosts]]
+name = "node"
+memory = "1 GB"
+memory_read_bw = "10 GB/s"
+memory_write_bw = "10 GB/s"
+[[hosts.disks]]
+name = "ssd"
+read_bw = "500 MB/s"
+write_bw = "400 MB/s"
+[[files]]
+name = "log"
+size = "4 MiB"
+[workflow]
+name = "wf"
+[[workflow.tasks]]
+name = "writer"
+[[workflow.tasks.access]]
+file = "log"
+mode = "append"
+request = "64 KiB"
+[[workflow.tasks]]
+name = "reader"
+after = ["writer"]
+[[workflow.tasks.access]]
+file = "log"
+pattern = "random"
+request = "64 KiB"
+repeat = 2
+)",
+                                                  "<test>"));
+  std::vector<PhaseRow> e;
+  for (const PhaseRow& p : r.timeline) {
+    if (r.task_name(p).find("[epoch ") != std::string::npos) e.push_back(p);
+  }
+  REQUIRE(e.size() == 3);
+  CHECK(r.task_name(e[0]) == "writer:log[epoch 1]");
+  CHECK(e[0].phase == PhaseKind::Write);
+  CHECK(r.task_name(e[2]) == "reader:log[epoch 2]");
+  for (const std::size_t i : {1, 2}) CHECK(e[i].cache_bytes == 4 * kMiB);  // the appended log, from the cache
+}
+
+}  // namespace
+}  // namespace pagecache

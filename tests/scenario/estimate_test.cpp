@@ -9,6 +9,8 @@
 #include <pagecache/run.hpp>
 #include <pagecache/scenario_file.hpp>
 
+#include "support/unchecked_runs.hpp"
+
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 
@@ -28,26 +30,9 @@ using Overrides = std::vector<std::pair<std::string, std::string>>;
 
 const fs::path kSource = PCSIM_SOURCE_DIR;
 
-// The runs here are counted, not checked: the page cache's invariants, checked after every
-// operation in debug builds, are other tests' business, and at these sizes (a cluster's 32,000
-// applications) would take hours. Made while it lives, the hosts' caches do not check.
-class UncheckedRuns {
- public:
-  UncheckedRuns() {
-    if (const char* value = std::getenv(kName)) saved_ = value;
-    ::setenv(kName, "0", 1);
-  }
-  ~UncheckedRuns() {
-    if (saved_) ::setenv(kName, saved_->c_str(), 1);
-    else ::unsetenv(kName);
-  }
-  UncheckedRuns(const UncheckedRuns&) = delete;
-  UncheckedRuns& operator=(const UncheckedRuns&) = delete;
-
- private:
-  static constexpr const char* kName = "PAGECACHE_CHECK_INVARIANTS";
-  std::optional<std::string> saved_;
-};
+// The runs here are counted, not checked: the page cache's invariants are other tests'
+// business, and at these sizes (a cluster's 32,000 applications) would take hours.
+using test::UncheckedRuns;
 
 // The run's events over the estimate's, checked to be within a factor of 3 either way, with
 // the estimate's sources for the message. False if the run failed (a scenario may be meant

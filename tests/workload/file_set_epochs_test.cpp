@@ -7,6 +7,8 @@
 #include <pagecache/scenario.hpp>
 #include <pagecache/scenario_file.hpp>
 
+#include "support/unchecked_runs.hpp"
+
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 
@@ -50,6 +52,13 @@ files = "images"
                         "<test>");
 }
 
+// Tens of thousands of file reads: a debug build's check after each operation would walk
+// every file's blocks each time (test::UncheckedRuns).
+RunResult run_unchecked(const Scenario& s) {
+  const test::UncheckedRuns unchecked;
+  return run_scenario(s);
+}
+
 // The timeline's rows of the epochs, in order (the task's own read, compute and write left out).
 std::vector<PhaseRow> epoch_rows(const RunResult& r) {
   std::vector<PhaseRow> rows;
@@ -62,7 +71,7 @@ std::vector<PhaseRow> epoch_rows(const RunResult& r) {
 TEST_CASE("a data set at 0.8x memory is read from disk once, then from the page cache", "[workload][file_sets]") {
   for (const char* profile : {"linux", "paper"}) {
     INFO(profile);
-    const RunResult r = run_scenario(epochs(profile, 8000, "pattern = \"random\"\nseed = 1\nrepeat = 3"));
+    const RunResult r = run_unchecked(epochs(profile, 8000, "pattern = \"random\"\nseed = 1\nrepeat = 3"));
     const std::vector<PhaseRow> e = epoch_rows(r);
     REQUIRE(e.size() == 3);
     CHECK(r.task_name(e[0]) == "train:images[epoch 1]");
@@ -82,7 +91,7 @@ TEST_CASE("a data set at 0.8x memory is read from disk once, then from the page 
 TEST_CASE("a data set at 1.2x memory read in order comes from disk every epoch (LRU thrashing)", "[workload][file_sets]") {
   for (const char* profile : {"linux", "paper"}) {
     INFO(profile);
-    const RunResult r = run_scenario(epochs(profile, 12'000, "repeat = 2"));
+    const RunResult r = run_unchecked(epochs(profile, 12'000, "repeat = 2"));
     const std::vector<PhaseRow> e = epoch_rows(r);
     REQUIRE(e.size() == 2);
     const std::int64_t bytes = 12'000 * kFile;
@@ -97,7 +106,7 @@ TEST_CASE("a data set at 1.2x memory read in order comes from disk every epoch (
 TEST_CASE("a data set at 1.2x memory read shuffled finds part of epoch 2 in the cache, less than it holds", "[workload][file_sets]") {
   for (const char* profile : {"linux", "paper"}) {
     INFO(profile);
-    const RunResult r = run_scenario(epochs(profile, 12'000, "pattern = \"random\"\nseed = 42\nrepeat = 2"));
+    const RunResult r = run_unchecked(epochs(profile, 12'000, "pattern = \"random\"\nseed = 42\nrepeat = 2"));
     const std::vector<PhaseRow> e = epoch_rows(r);
     REQUIRE(e.size() == 2);
     // Epoch 2 starts with at most the memory's 10,000 files of 12,000 cached, and each miss
@@ -115,7 +124,7 @@ TEST_CASE("a data set at 1.2x memory read shuffled finds part of epoch 2 in the 
 
 TEST_CASE("each epoch without replacement reads every file of the set once", "[workload][file_sets]") {
   // At 0.5x nothing is evicted: after epoch 1, a file read is wholly cached, one not read is not.
-  const RunResult r = run_scenario(epochs("linux", 5000, "pattern = \"random\"\nseed = 9"));
+  const RunResult r = run_unchecked(epochs("linux", 5000, "pattern = \"random\"\nseed = 9"));
   const std::vector<PhaseRow> e = epoch_rows(r);
   REQUIRE(e.size() == 1);
   CHECK(e[0].bytes == 5000 * kFile);  // 5,000 reads of a whole file
@@ -133,7 +142,7 @@ TEST_CASE("each epoch without replacement reads every file of the set once", "[w
 }
 
 TEST_CASE("with replacement, an epoch's draws repeat some files and leave others unread", "[workload][file_sets]") {
-  const RunResult r = run_scenario(epochs("linux", 5000, "pattern = \"random\"\nreplacement = true\nseed = 9"));
+  const RunResult r = run_unchecked(epochs("linux", 5000, "pattern = \"random\"\nreplacement = true\nseed = 9"));
   const std::vector<PhaseRow> e = epoch_rows(r);
   REQUIRE(e.size() == 1);
   CHECK(e[0].bytes == 5000 * kFile);
@@ -145,7 +154,7 @@ TEST_CASE("with replacement, an epoch's draws repeat some files and leave others
 
 TEST_CASE("the same seed gives the same run, another seed another", "[workload][file_sets]") {
   const auto epoch2 = [](int seed) {
-    const RunResult r = run_scenario(epochs("linux", 12'000, fmt::format("pattern = \"random\"\nseed = {}\nrepeat = 2", seed)));
+    const RunResult r = run_unchecked(epochs("linux", 12'000, fmt::format("pattern = \"random\"\nseed = {}\nrepeat = 2", seed)));
     return epoch_rows(r).at(1).cache_bytes;
   };
   CHECK(epoch2(5) == epoch2(5));
@@ -153,7 +162,7 @@ TEST_CASE("the same seed gives the same run, another seed another", "[workload][
 }
 
 TEST_CASE("a workflow task reads a file set of another host over its link, and caches it", "[workload][file_sets]") {
-  const RunResult r = run_scenario(parse_scenario(R"(
+  const RunResult r = run_unchecked(parse_scenario(R"(
 [[hosts]]
 name = "client"
 memory = "1 GB"

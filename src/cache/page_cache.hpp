@@ -323,6 +323,10 @@ class PageCache {
   /// Moves a ranged block to the MRU end of `to`, merged into the tail there if that is clean
   /// data of the same file ending where it starts (in the same state and referenced mark).
   void move_ranged(BlockId block, ListKind to);
+  /// The holes of [offset, end) of a ranged file as new clean data (add_ranged), by offset;
+  /// throws SimulationError if one does not fit in free memory. Returns the bytes added.
+  /// `first`, if given: block_at_or_after(file, offset), already looked up.
+  std::int64_t fill_holes(FileId file, std::int64_t offset, std::int64_t end, double now, bool referenced, const BlockId* first = nullptr);
   /// New data of a ranged file, [offset, offset + bytes), at the MRU end of the inactive list:
   /// clean (marked `referenced`) or dirty (entered at `now`). Merged into the tail there if
   /// that is the file's data ending at `offset` in the same state, mark and entry time.

@@ -126,9 +126,9 @@ std::int64_t PageCache::read_range(FileId file, std::int64_t offset, std::int64_
   const std::int64_t end = offset + bytes;
   // The cached parts, by offset, each block cut to the part read; then the holes between them.
   std::int64_t at = offset;
+  std::int64_t held_to = offset;  // [offset, held_to) cached without a hole
   const BlockId first = block_at_or_after(file, offset);
   const bool none_cached = first == kNoBlock || ranges_.offset(first) >= end;
-  std::int64_t held_to = offset;  // [offset, held_to) cached without a hole
   for (BlockId id = first; !none_cached && id != kNoBlock && ranges_.offset(id) < end;) {
     id = cut_before(id, std::max(at, ranges_.offset(id)));
     if (ranges_.offset(id) + blocks_[id].size > end) split_front(id, end - ranges_.offset(id));
@@ -147,39 +147,32 @@ std::int64_t PageCache::read_range(FileId file, std::int64_t offset, std::int64_
     }
     id = next;
   }
-  std::int64_t missing = 0;
-  at = held_to;
-  for (bool again = false; at < end; again = true) {
-    // Nothing cached in the range: the index is as the first look-up found it.
-    const BlockId id = !again && none_cached ? first : block_at_or_after(file, at);  // none_cached: at == offset
-    const std::int64_t hole_end = id == kNoBlock ? end : std::min(end, ranges_.offset(id));
-    if (hole_end > at) {
-      if (hole_end - at > free()) throw SimulationError(fmt::format("cannot cache {} bytes: only {} free", hole_end - at, free()));
-      add_ranged(file, at, hole_end - at, BlockState::Clean, now, first_touch_);
-      missing += hole_end - at;
-    }
-    at = id == kNoBlock ? end : ranges_.offset(id) + blocks_[id].size;
-  }
+  // The holes after the cached prefix; with nothing cached, from the first look-up's answer.
+  const std::int64_t missing = fill_holes(file, held_to, end, now, first_touch_, none_cached ? &first : nullptr);
   if (missing > 0) policy_->missed(*this, file, missing);
   balance();  // after every read, under every policy
   settle();
   return missing;
 }
 
-std::int64_t PageCache::read_ahead(FileId file, std::int64_t offset, std::int64_t bytes, double now) {
-  PC_ASSERT(ranged(file) && offset >= 0 && bytes >= 0);
-  const std::int64_t end = offset + bytes;
+std::int64_t PageCache::fill_holes(FileId file, std::int64_t offset, std::int64_t end, double now, bool referenced, const BlockId* first) {
   std::int64_t added = 0;
-  for (std::int64_t at = offset; at < end;) {
-    const BlockId id = block_at_or_after(file, at);
+  for (std::int64_t at = offset; at < end; first = nullptr) {
+    const BlockId id = first != nullptr ? *first : block_at_or_after(file, at);
     const std::int64_t hole_end = id == kNoBlock ? end : std::min(end, ranges_.offset(id));
     if (hole_end > at) {
       if (hole_end - at > free()) throw SimulationError(fmt::format("cannot cache {} bytes: only {} free", hole_end - at, free()));
-      add_ranged(file, at, hole_end - at, BlockState::Clean, now, false);
+      add_ranged(file, at, hole_end - at, BlockState::Clean, now, referenced);
       added += hole_end - at;
     }
     at = id == kNoBlock ? end : ranges_.offset(id) + blocks_[id].size;
   }
+  return added;
+}
+
+std::int64_t PageCache::read_ahead(FileId file, std::int64_t offset, std::int64_t bytes, double now) {
+  PC_ASSERT(ranged(file) && offset >= 0 && bytes >= 0);
+  const std::int64_t added = fill_holes(file, offset, offset + bytes, now, false);
   if (added > 0) settle();
   return added;
 }

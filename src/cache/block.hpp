@@ -30,6 +30,8 @@ namespace pagecache::cache {
 using FileId = std::uint32_t;
 using BlockId = std::uint32_t;
 inline constexpr BlockId kNoBlock = std::numeric_limits<BlockId>::max();
+/// Memory is handed out, and a file held by range is cached and freed, in pages.
+inline constexpr std::int64_t kPageSize = 4096;
 
 enum class BlockState : std::uint8_t { Clean, Dirty, Writeback };
 enum class ListKind : std::uint8_t { Inactive, Active };

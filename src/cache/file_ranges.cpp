@@ -28,6 +28,13 @@ int keys_below(const std::int64_t* keys, int count, std::int64_t key) noexcept {
 
 }  // namespace
 
+void FileRanges::fetch(NodeId n) const noexcept {
+  // Every line of the node at once: a visit then waits for one miss, not for one per line
+  // (the count, then the keys it scans, then the id and end it picks).
+  const char* p = reinterpret_cast<const char*>(&nodes_[n]);
+  for (std::size_t line = 0; line < sizeof(Node); line += 64) __builtin_prefetch(p + line);
+}
+
 int FileRanges::child_for(const Node& n, std::int64_t key) const noexcept {
   // The last child whose least key is <= key; child 0 takes everything below keys[1].
   return keys_at_or_below(n.keys + 1, n.count - 1, key);
@@ -49,12 +56,14 @@ FileRanges::NodeId FileRanges::leaf_for(FileId file, std::int64_t offset) const 
   if (n == kNoNode) return kNoNode;
   std::int64_t low = std::numeric_limits<std::int64_t>::min();
   std::int64_t high = std::numeric_limits<std::int64_t>::max();
+  fetch(n);
   while (!nodes_[n].leaf) {
     const Node& inner = nodes_[n];
     const int child = child_for(inner, offset);
     if (child > 0) low = inner.keys[child];
     if (child + 1 < inner.count) high = inner.keys[child + 1];
     n = inner.ids[child];
+    fetch(n);
   }
   finger_ = Finger{.file = file, .leaf = n, .generation = nodes_[n].generation, .splits = splits_, .low = low, .high = high};
   return n;
@@ -73,10 +82,15 @@ FileRanges::Around FileRanges::around(FileId file, std::int64_t offset) const no
   Around found;
   // A leaf's least key may be above `offset` (its lower entries erased): the floor is then the
   // previous leaf's last entry; likewise the next leaf's first is the one above.
-  if (pos > 0) found.floor = leaf.ids[pos - 1];
-  else if (leaf.prev != kNoNode) found.floor = nodes_[leaf.prev].ids[nodes_[leaf.prev].count - 1];
-  if (pos < leaf.count) found.above = leaf.ids[pos];
-  else if (leaf.next != kNoNode) found.above = nodes_[leaf.next].ids[0];
+  const auto take = [](const Node& node, int i, BlockId& id, std::int64_t& start, std::int64_t& stop) {
+    id = node.ids[i];
+    start = node.keys[i];
+    stop = node.ends[i];
+  };
+  if (pos > 0) take(leaf, pos - 1, found.floor, found.floor_offset, found.floor_end);
+  else if (leaf.prev != kNoNode) take(nodes_[leaf.prev], nodes_[leaf.prev].count - 1, found.floor, found.floor_offset, found.floor_end);
+  if (pos < leaf.count) take(leaf, pos, found.above, found.above_offset, found.above_end);
+  else if (leaf.next != kNoNode) take(nodes_[leaf.next], 0, found.above, found.above_offset, found.above_end);
   return found;
 }
 
@@ -120,6 +134,7 @@ FileRanges::Split FileRanges::split_node(NodeId n) {
   r.count = static_cast<std::uint16_t>(l.count - keep);
   std::copy(l.keys + keep, l.keys + l.count, r.keys);
   std::copy(l.ids + keep, l.ids + l.count, r.ids);
+  if (l.leaf) std::copy(l.ends + keep, l.ends + l.count, r.ends);
   l.count = static_cast<std::uint16_t>(keep);
   if (l.leaf) {
     r.prev = n;
@@ -130,7 +145,7 @@ FileRanges::Split FileRanges::split_node(NodeId n) {
   return {r.keys[0], right};
 }
 
-FileRanges::Split FileRanges::insert_below(NodeId n, int level, std::int64_t key, BlockId block) {
+FileRanges::Split FileRanges::insert_below(NodeId n, int level, std::int64_t key, std::int64_t end, BlockId block) {
   int pos = 0;
   std::uint32_t id = block;
   if (level == 0) {
@@ -139,7 +154,8 @@ FileRanges::Split FileRanges::insert_below(NodeId n, int level, std::int64_t key
     PC_ASSERT_MSG(pos == leaf.count || leaf.keys[pos] != key, fmt::format("two blocks at offset {}", key));
   } else {
     const int child = child_for(nodes_[n], key);
-    const Split below = insert_below(nodes_[n].ids[child], level - 1, key, block);
+    fetch(nodes_[n].ids[child]);
+    const Split below = insert_below(nodes_[n].ids[child], level - 1, key, end, block);
     if (below.node == kNoNode) return {};
     key = below.key;
     id = below.node;
@@ -158,6 +174,10 @@ FileRanges::Split FileRanges::insert_below(NodeId n, int level, std::int64_t key
   std::copy_backward(node.ids + pos, node.ids + node.count, node.ids + node.count + 1);
   node.keys[pos] = key;
   node.ids[pos] = id;
+  if (node.leaf) {
+    std::copy_backward(node.ends + pos, node.ends + node.count, node.ends + node.count + 1);
+    node.ends[pos] = end;
+  }
   ++node.count;
   // An entry put first in the right half is that half's least key.
   if (split.node == n && pos == 0) split.key = key;
@@ -177,10 +197,10 @@ void FileRanges::insert(FileId file, BlockId block, std::int64_t offset, std::in
   const Finger& f = finger_;
   if (f.leaf != kNoNode && f.file == file && f.splits == splits_ && nodes_[f.leaf].generation == f.generation && offset >= f.low &&
       offset < f.high && nodes_[f.leaf].count < kFan) {
-    insert_below(f.leaf, 0, offset, block);
+    insert_below(f.leaf, 0, offset, offset + size, block);
     return;
   }
-  const Split split = insert_below(t.root, t.height - 1, offset, block);
+  const Split split = insert_below(t.root, t.height - 1, offset, offset + size, block);
   if (split.node == kNoNode) return;
   // The root split: a new root above both halves.
   const NodeId root = new_node(false);
@@ -193,6 +213,15 @@ void FileRanges::insert(FileId file, BlockId block, std::int64_t offset, std::in
   ++trees_[file].height;
 }
 
+void FileRanges::resize(FileId file, BlockId block, std::int64_t size) noexcept {
+  Span& span = spans_[block];
+  span.end = span.offset + size;
+  Node& leaf = nodes_[leaf_for(file, span.offset)];
+  const int pos = keys_below(leaf.keys, leaf.count, span.offset);
+  PC_ASSERT(pos < leaf.count && leaf.ids[pos] == block);
+  leaf.ends[pos] = span.end;
+}
+
 bool FileRanges::erase_below(NodeId n, int level, std::int64_t key, BlockId block, bool is_root) {
   int pos = 0;
   if (level == 0) {
@@ -201,11 +230,13 @@ bool FileRanges::erase_below(NodeId n, int level, std::int64_t key, BlockId bloc
     PC_ASSERT_MSG(pos < leaf.count && leaf.ids[pos] == block, fmt::format("block {} is not indexed at offset {}", block, key));
   } else {
     pos = child_for(nodes_[n], key);
+    fetch(nodes_[n].ids[pos]);
     if (!erase_below(nodes_[n].ids[pos], level - 1, key, block, false)) return false;
   }
   Node& node = nodes_[n];
   std::copy(node.keys + pos + 1, node.keys + node.count, node.keys + pos);
   std::copy(node.ids + pos + 1, node.ids + node.count, node.ids + pos);
+  if (node.leaf) std::copy(node.ends + pos + 1, node.ends + node.count, node.ends + pos);
   --node.count;
   if (node.count > 0 || is_root) return node.count == 0;
   if (node.leaf) {
@@ -260,6 +291,8 @@ std::size_t FileRanges::check_node(NodeId n, int level, std::int64_t low, std::i
                     fmt::format("offset index: offset {} out of order", node.keys[i]));
       PC_ASSERT_MSG(spans_[node.ids[i]].offset == node.keys[i],
                     fmt::format("block {}: offset {} indexed at {}", node.ids[i], spans_[node.ids[i]].offset, node.keys[i]));
+      PC_ASSERT_MSG(spans_[node.ids[i]].end == node.ends[i],
+                    fmt::format("block {}: end {} indexed as {}", node.ids[i], spans_[node.ids[i]].end, node.ends[i]));
     }
     return node.count;
   }

@@ -4,8 +4,10 @@
 // their lists; this is a second order over the same ids.
 //
 // A B+ tree per file, keyed by offset, of up to 32 entries per node (an offset and a BlockId
-// each), its leaves linked both ways; each block's offset also in a side array by BlockId, so
-// that offset() costs one load. Chosen over a treap (16 bytes per block, but some 28 levels,
+// each; in leaves the block's end too, so that a look-up learns a block's span from the leaf it
+// reads anyway), its leaves linked both ways; each block's span also in a side array by
+// BlockId, so that offset() costs one load. A node is fetched whole on a visit (prefetches of
+// all its lines: one miss's wait, not one per line). Chosen over a treap (16 bytes per block, but some 28 levels,
 // each a cache miss, under 10^6 blocks read at random: most of the time of such a run) and a
 // std::map (a 48-byte allocation per block, as deep). A file's blocks hold disjoint ranges of
 // non-zero size, so their offsets are distinct: the index asserts it. Nodes emptied by erases
@@ -33,16 +35,22 @@ class FileRanges {
   /// under random access).
   std::int64_t offset(BlockId block) const noexcept { return spans_[block].offset; }
   std::int64_t end(BlockId block) const noexcept { return spans_[block].end; }
-  /// The block's size changed (its offset did not).
-  void resize(BlockId block, std::int64_t size) noexcept { spans_[block].end = spans_[block].offset + size; }
+  /// `block` of `file` has a new size (its offset did not change).
+  void resize(FileId file, BlockId block, std::int64_t size) noexcept;
 
   /// The block of `file` with the greatest offset <= `offset` (the one that holds `offset`, if
   /// any does), or kNoBlock.
   BlockId floor(FileId file, std::int64_t offset) const noexcept { return around(file, offset).floor; }
-  /// floor(file, offset) and the block after it (the least offset > `offset`), in one descent.
+  /// floor(file, offset) and the block after it (the least offset > `offset`), in one descent,
+  /// with where the floor ends and the one above starts: read from the leaf, where the side
+  /// array would cost a cache miss each under random access.
   struct Around {
     BlockId floor = kNoBlock;
     BlockId above = kNoBlock;
+    std::int64_t floor_offset = 0;  // when floor != kNoBlock
+    std::int64_t floor_end = 0;
+    std::int64_t above_offset = 0;  // when above != kNoBlock
+    std::int64_t above_end = 0;
   };
   Around around(FileId file, std::int64_t offset) const noexcept;
   /// The block of `file` with the least offset >= `offset`, or kNoBlock.
@@ -71,16 +79,18 @@ class FileRanges {
   using NodeId = std::uint32_t;
   static constexpr NodeId kNoNode = std::numeric_limits<NodeId>::max();
   static constexpr int kFan = 32;
-  struct Node {
+  // Aligned, and its count and kind first, so that a visit starts with the line it scans first.
+  struct alignas(64) Node {
+    std::uint16_t count = 0;
+    bool leaf = true;
+    std::uint32_t generation = 0;  // bumped when the node is freed: a finger to it is stale
+    NodeId prev = kNoNode;  // leaves: the file's leaves in order
+    NodeId next = kNoNode;
     // Leaf: its blocks' offsets, ascending, and their ids. Inner: keys[i] (i >= 1) is the least
     // offset child i may hold, every offset of child i - 1 below it; keys[0] is unused.
     std::int64_t keys[kFan];
     std::uint32_t ids[kFan];
-    NodeId prev = kNoNode;  // leaves: the file's leaves in order
-    NodeId next = kNoNode;
-    std::uint32_t generation = 0;  // bumped when the node is freed: a finger to it is stale
-    std::uint16_t count = 0;
-    bool leaf = true;
+    std::int64_t ends[kFan];  // leaf: where each block ends (unused in inner nodes)
   };
   // The leaf the last descent ended in, and the offsets it covers ([low, high): its separators
   // on the way down). A chunk read looks up the same offset three or four times (its plan,
@@ -114,7 +124,7 @@ class FileRanges {
   NodeId edge_leaf(FileId file, bool rightmost) const noexcept;
   NodeId new_node(bool leaf);
   /// Inserts under node `n`, `level` levels above the leaves; returns the node split off, if any.
-  Split insert_below(NodeId n, int level, std::int64_t key, BlockId block);
+  Split insert_below(NodeId n, int level, std::int64_t key, std::int64_t end, BlockId block);
   /// Moves the upper half of full node `n` into a new node, returned with its least key.
   Split split_node(NodeId n);
   /// Erases `key` under node `n`; returns whether `n` is now empty (and was freed, unless root).
@@ -125,6 +135,8 @@ class FileRanges {
   /// The leaf of the file's tree whose range holds `offset` (kNoNode: no tree), by the finger
   /// if it holds, else by a descent that sets it.
   NodeId leaf_for(FileId file, std::int64_t offset) const noexcept;
+  /// Starts loading node `n` into the cache, all of it.
+  void fetch(NodeId n) const noexcept;
   void free_node(NodeId n);
 
   std::vector<Node> nodes_;

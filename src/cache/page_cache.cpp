@@ -222,7 +222,7 @@ BlockId PageCache::split_front(BlockId id, std::int64_t head_size) {
   if (block.ranged) {
     tail.ranged = true;
     ranges_.insert(block.file, tail_id, ranges_.offset(id) + head_size, tail.size);
-    ranges_.resize(id, head_size);
+    ranges_.resize(block.file, id, head_size);
   }
   LruList& list = list_of(block.list);
   list.resize(id, head_size);

@@ -187,6 +187,9 @@ class PageCache {
   /// From now on the file's data is held by range; what it has takes ranges from offset 0,
   /// least recently used first, inactive list then active. Idempotent.
   void track_ranges(FileId file);
+  /// Reclaim and aging take such files' data in whole pages of `bytes` > 0 (kPageSize unless
+  /// set; a reference model whose bytes stand for pages sets 1). Before any data is cached.
+  void set_page_size(std::int64_t bytes) noexcept { page_size_ = bytes; }
   bool ranged(FileId file) const noexcept { return file < ranged_.size() && ranged_[file] != 0; }
   /// Cached bytes of [offset, offset + bytes) of a ranged file.
   std::int64_t cached_in(FileId file, std::int64_t offset, std::int64_t bytes) const noexcept;
@@ -315,18 +318,26 @@ class PageCache {
   BlockId new_ranged_block(FileId file, std::int64_t offset, std::int64_t size, BlockState state, double now);
   /// Where a ranged file's last cached byte ends (0: none cached).
   std::int64_t ranged_end(FileId file) const noexcept;
+  /// A block of a ranged file and where it starts and ends (kNoBlock: none).
+  struct Located {
+    BlockId id = kNoBlock;
+    std::int64_t offset = 0;
+    std::int64_t end = 0;
+  };
   /// The block of a ranged file that holds `offset` or, if none does, the first after it.
-  BlockId block_at_or_after(FileId file, std::int64_t offset) const noexcept;
-  /// The part of `block` from `offset` on (splitting it there if it starts before); `block`
-  /// holds `offset`.
-  BlockId cut_before(BlockId block, std::int64_t offset);
-  /// Moves a ranged block to the MRU end of `to`, merged into the tail there if that is clean
-  /// data of the same file ending where it starts (in the same state and referenced mark).
-  void move_ranged(BlockId block, ListKind to);
+  Located block_at_or_after(FileId file, std::int64_t offset) const noexcept;
+  /// The part of `block` from `offset` on (splitting it there if it starts before), and the
+  /// part of that up to `end` (splitting it there if it goes on): [offset, min(end, block's
+  /// end)). `block` holds `offset`.
+  Located cut(Located block, std::int64_t offset, std::int64_t end);
+  /// Moves ranged `block`, which starts at `offset`, to the MRU end of `to`, merged into the
+  /// tail there if that is clean data of the same file ending where it starts (in the same
+  /// state and referenced mark).
+  void move_ranged(BlockId block, std::int64_t offset, ListKind to);
   /// The holes of [offset, end) of a ranged file as new clean data (add_ranged), by offset;
   /// throws SimulationError if one does not fit in free memory. Returns the bytes added.
   /// `first`, if given: block_at_or_after(file, offset), already looked up.
-  std::int64_t fill_holes(FileId file, std::int64_t offset, std::int64_t end, double now, bool referenced, const BlockId* first = nullptr);
+  std::int64_t fill_holes(FileId file, std::int64_t offset, std::int64_t end, double now, bool referenced, const Located* first = nullptr);
   /// New data of a ranged file, [offset, offset + bytes), at the MRU end of the inactive list:
   /// clean (marked `referenced`) or dirty (entered at `now`). Merged into the tail there if
   /// that is the file's data ending at `offset` in the same state, mark and entry time.
@@ -345,6 +356,12 @@ class PageCache {
   /// Cuts the first `head_size` bytes of `block` off into a new block placed right after it,
   /// in every list, holding the rest; returns `block`, now the head.
   BlockId split_front(BlockId block, std::int64_t head_size);
+  /// The first `bytes` (> 0) of `block`, to evict or age, as a block of their own (split_front
+  /// unless that is all of it); for a file held by range, up to the next page boundary.
+  BlockId front_part(BlockId block, std::int64_t bytes);
+  /// The first `bytes` (> 0) of `block` to evict, as a block (split_front unless that is all
+  /// of it); a ranged file's, rounded up to whole pages of the file.
+  BlockId front_to_evict(BlockId block, std::int64_t bytes);
   /// On in debug builds, off otherwise; the environment variable PAGECACHE_CHECK_INVARIANTS
   /// (0 or 1) overrides it, e.g. to run large simulations quickly in a debug build.
   static bool checking_by_default();
@@ -401,6 +418,7 @@ class PageCache {
   // files_: a FileEntry fills its cache line. Empty in a run of whole-file I/O only.
   std::vector<std::uint8_t> ranged_;
   FileRanges ranges_;
+  std::int64_t page_size_ = kPageSize;
   // Memory groups: each group's limit and charges; every file's group (only when there are
   // groups: a run without them pays nothing). The walks of a reclaim or flush skip the data
   // of other groups than target_ (kAnyGroup: none skipped).

@@ -32,10 +32,10 @@ std::int64_t PageCache::ranged_end(FileId file) const noexcept {
   return last == kNoBlock ? 0 : ranges_.end(last);
 }
 
-BlockId PageCache::block_at_or_after(FileId file, std::int64_t offset) const noexcept {
+PageCache::Located PageCache::block_at_or_after(FileId file, std::int64_t offset) const noexcept {
   const FileRanges::Around at = ranges_.around(file, offset);
-  if (at.floor != kNoBlock && ranges_.end(at.floor) > offset) return at.floor;
-  return at.above;
+  if (at.floor != kNoBlock && at.floor_end > offset) return {at.floor, at.floor_offset, at.floor_end};
+  return {at.above, at.above_offset, at.above_end};
 }
 
 std::int64_t PageCache::cached_in(FileId file, std::int64_t offset, std::int64_t bytes) const noexcept {
@@ -44,13 +44,10 @@ std::int64_t PageCache::cached_in(FileId file, std::int64_t offset, std::int64_t
   std::int64_t cached = 0;
   // Each step down the index is a few cache misses under random access: the next block is
   // looked up only when the range goes past this one.
-  for (BlockId id = block_at_or_after(file, offset); id != kNoBlock;) {
-    const std::int64_t start = ranges_.offset(id);
-    if (start >= end) break;
-    const std::int64_t stop = start + blocks_[id].size;
-    cached += std::min(end, stop) - std::max(offset, start);
-    if (stop >= end) break;
-    id = ranges_.next(file, id);
+  for (Located at = block_at_or_after(file, offset); at.id != kNoBlock && at.offset < end;) {
+    cached += std::min(end, at.end) - std::max(offset, at.offset);
+    if (at.end >= end) break;
+    at = block_at_or_after(file, at.end);
   }
   return cached;
 }
@@ -62,31 +59,35 @@ BlockId PageCache::new_ranged_block(FileId file, std::int64_t offset, std::int64
   return id;
 }
 
-BlockId PageCache::cut_before(BlockId id, std::int64_t offset) {
-  const std::int64_t head = offset - ranges_.offset(id);
-  PC_ASSERT(head >= 0 && head < blocks_[id].size);
-  if (head == 0) return id;
-  const FileId file = blocks_[id].file;
-  split_front(id, head);
-  return ranges_.next(file, id);
+PageCache::Located PageCache::cut(Located block, std::int64_t offset, std::int64_t end) {
+  PC_ASSERT(offset >= block.offset && offset < block.end && end > offset);
+  if (offset > block.offset) {
+    // The part from `offset` is the new block right after the head, in its list too.
+    split_front(block.id, offset - block.offset);
+    block = {list_of(blocks_[block.id].list).next(block.id), offset, block.end};
+  }
+  if (block.end > end) {
+    split_front(block.id, end - block.offset);
+    block.end = end;
+  }
+  return block;
 }
 
-void PageCache::move_ranged(BlockId id, ListKind to) {
+void PageCache::move_ranged(BlockId id, std::int64_t offset, ListKind to) {
   Block& block = blocks_[id];
   unlink(id);
   block.referenced = false;
   const BlockId tail_id = list_of(to).back();
   if (block.state == BlockState::Clean && tail_id != kNoBlock) {
     const Block& tail = blocks_[tail_id];
-    if (tail.file == block.file && tail.ranged && tail.state == BlockState::Clean && !tail.referenced &&
-        ranges_.offset(tail_id) + tail.size == ranges_.offset(id)) {
+    if (tail.file == block.file && tail.ranged && tail.state == BlockState::Clean && !tail.referenced && ranges_.end(tail_id) == offset) {
       // Contiguous clean data of the file, one after the other at the MRU end: one block.
       const std::int64_t size = block.size;
       block.size = 0;
       ranges_.erase(block.file, id);
       blocks_.give_back(id);
       list_of(to).resize(tail_id, tail.size + size);
-      ranges_.resize(tail_id, tail.size);
+      ranges_.resize(tail.file, tail_id, tail.size);
       FileEntry& entry = files_[tail.file];
       (to == ListKind::Inactive ? entry.inactive_bytes : entry.active_bytes) += size;
       charge(tail.file, size);
@@ -104,7 +105,7 @@ void PageCache::add_ranged(FileId file, std::int64_t offset, std::int64_t bytes,
     if (tail.file == file && tail.ranged && tail.state == state && tail.referenced == referenced &&
         (state == BlockState::Clean || tail.entry_time == now) && ranges_.offset(tail_id) + tail.size == offset) {
       list.resize(tail_id, tail.size + bytes);
-      ranges_.resize(tail_id, tail.size);
+      ranges_.resize(file, tail_id, tail.size);
       FileEntry& entry = files_[file];
       entry.inactive_bytes += bytes;
       charge(file, bytes);
@@ -125,27 +126,24 @@ std::int64_t PageCache::read_range(FileId file, std::int64_t offset, std::int64_
   PC_ASSERT(ranged(file) && offset >= 0 && bytes >= 0);
   const std::int64_t end = offset + bytes;
   // The cached parts, by offset, each block cut to the part read; then the holes between them.
-  std::int64_t at = offset;
+  // Spans come from the look-ups (the side array would be a cache miss per block).
   std::int64_t held_to = offset;  // [offset, held_to) cached without a hole
-  const BlockId first = block_at_or_after(file, offset);
-  const bool none_cached = first == kNoBlock || ranges_.offset(first) >= end;
-  for (BlockId id = first; !none_cached && id != kNoBlock && ranges_.offset(id) < end;) {
-    id = cut_before(id, std::max(at, ranges_.offset(id)));
-    if (ranges_.offset(id) + blocks_[id].size > end) split_front(id, end - ranges_.offset(id));
-    if (ranges_.offset(id) == held_to) held_to += blocks_[id].size;
-    at = ranges_.offset(id) + blocks_[id].size;
-    const BlockId next = at < end ? ranges_.next(file, id) : kNoBlock;
-    Block& block = blocks_[id];
+  const Located first = block_at_or_after(file, offset);
+  const bool none_cached = first.id == kNoBlock || first.offset >= end;
+  for (Located at = first; !none_cached && at.id != kNoBlock && at.offset < end;) {
+    const Located part = cut(at, std::max(offset, at.offset), end);
+    if (part.offset == held_to) held_to = part.end;
+    at = part.end < end ? block_at_or_after(file, part.end) : Located{};
+    Block& block = blocks_[part.id];
     if (block.list == ListKind::Active) {
-      move_ranged(id, ListKind::Active);
+      move_ranged(part.id, part.offset, ListKind::Active);
     } else {
       switch (policy_->reread(block)) {
         case Policy::Reread::Mark: block.referenced = true; break;
-        case Policy::Reread::Activate: move_ranged(id, ListKind::Active); break;
-        case Policy::Reread::Refresh: move_ranged(id, ListKind::Inactive); break;
+        case Policy::Reread::Activate: move_ranged(part.id, part.offset, ListKind::Active); break;
+        case Policy::Reread::Refresh: move_ranged(part.id, part.offset, ListKind::Inactive); break;
       }
     }
-    id = next;
   }
   // The holes after the cached prefix; with nothing cached, from the first look-up's answer.
   const std::int64_t missing = fill_holes(file, held_to, end, now, first_touch_, none_cached ? &first : nullptr);
@@ -155,17 +153,17 @@ std::int64_t PageCache::read_range(FileId file, std::int64_t offset, std::int64_
   return missing;
 }
 
-std::int64_t PageCache::fill_holes(FileId file, std::int64_t offset, std::int64_t end, double now, bool referenced, const BlockId* first) {
+std::int64_t PageCache::fill_holes(FileId file, std::int64_t offset, std::int64_t end, double now, bool referenced, const Located* first) {
   std::int64_t added = 0;
   for (std::int64_t at = offset; at < end; first = nullptr) {
-    const BlockId id = first != nullptr ? *first : block_at_or_after(file, at);
-    const std::int64_t hole_end = id == kNoBlock ? end : std::min(end, ranges_.offset(id));
+    const Located next = first != nullptr ? *first : block_at_or_after(file, at);
+    const std::int64_t hole_end = next.id == kNoBlock ? end : std::min(end, next.offset);
     if (hole_end > at) {
       if (hole_end - at > free()) throw SimulationError(fmt::format("cannot cache {} bytes: only {} free", hole_end - at, free()));
       add_ranged(file, at, hole_end - at, BlockState::Clean, now, referenced);
       added += hole_end - at;
     }
-    at = id == kNoBlock ? end : ranges_.offset(id) + blocks_[id].size;
+    at = next.id == kNoBlock ? end : next.end;
   }
   return added;
 }
@@ -181,15 +179,13 @@ std::int64_t PageCache::drop_clean_range(FileId file, std::int64_t offset, std::
   PC_ASSERT(ranged(file) && offset >= 0 && bytes >= 0);
   const std::int64_t end = offset + bytes;
   std::int64_t dropped = 0;
-  for (BlockId id = block_at_or_after(file, offset); id != kNoBlock && ranges_.offset(id) < end;) {
-    id = cut_before(id, std::max(offset, ranges_.offset(id)));
-    if (ranges_.end(id) > end) split_front(id, end - ranges_.offset(id));
-    const BlockId next = ranges_.end(id) < end ? ranges_.next(file, id) : kNoBlock;
-    if (blocks_[id].state == BlockState::Clean) {
-      dropped += blocks_[id].size;
-      destroy(id);
+  for (Located at = block_at_or_after(file, offset); at.id != kNoBlock && at.offset < end;) {
+    const Located part = cut(at, std::max(offset, at.offset), end);
+    at = part.end < end ? block_at_or_after(file, part.end) : Located{};
+    if (blocks_[part.id].state == BlockState::Clean) {
+      dropped += part.end - part.offset;
+      destroy(part.id);
     }
-    id = next;
   }
   settle();
   if (dropped > 0 && progress_hook_) progress_hook_();
@@ -201,8 +197,8 @@ std::int64_t PageCache::write_range(FileId file, std::int64_t offset, std::int64
   const std::int64_t end = offset + bytes;
   std::int64_t missing = 0;
   for (std::int64_t at = offset; at < end;) {
-    BlockId id = block_at_or_after(file, at);
-    const std::int64_t hole_end = id == kNoBlock ? end : std::min(end, ranges_.offset(id));
+    const Located next = block_at_or_after(file, at);
+    const std::int64_t hole_end = next.id == kNoBlock ? end : std::min(end, next.offset);
     if (hole_end > at) {
       if (hole_end - at > free()) throw SimulationError(fmt::format("cannot cache {} bytes: only {} free", hole_end - at, free()));
       add_ranged(file, at, hole_end - at, BlockState::Dirty, now, false);
@@ -211,15 +207,13 @@ std::int64_t PageCache::write_range(FileId file, std::int64_t offset, std::int64
       continue;
     }
     // A cached part: cut to what the write covers.
-    id = cut_before(id, at);
-    if (ranges_.offset(id) + blocks_[id].size > end) split_front(id, end - ranges_.offset(id));
-    const std::int64_t size = blocks_[id].size;
-    if (blocks_[id].state != BlockState::Dirty) {
+    const Located part = cut(next, at, end);
+    if (blocks_[part.id].state != BlockState::Dirty) {
       // Its pages are written anew: the same memory, now dirty data entered now.
-      destroy(id);
-      add_ranged(file, at, size, BlockState::Dirty, now, false);
+      destroy(part.id);
+      add_ranged(file, at, part.end - part.offset, BlockState::Dirty, now, false);
     }
-    at += size;
+    at = part.end;
   }
   peak_dirty_ = std::max(peak_dirty_, dirty());
   settle();

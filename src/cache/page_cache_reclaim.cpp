@@ -22,7 +22,7 @@ std::int64_t PageCache::evict_clean(ListKind kind, std::int64_t budget, FileId e
   PC_ASSERT(!spare_written || index_clean_);
   std::int64_t evicted = 0;
   auto take = [&](BlockId id) {
-    const BlockId victim = blocks_[id].size > budget - evicted ? split_front(id, budget - evicted) : id;
+    const BlockId victim = front_part(id, budget - evicted);
     const FileId file = blocks_[victim].file;
     const std::int64_t size = blocks_[victim].size;
     evicted += size;
@@ -54,6 +54,16 @@ std::int64_t PageCache::evict_clean(ListKind kind, std::int64_t budget, FileId e
   return evicted;
 }
 
+BlockId PageCache::front_part(BlockId id, std::int64_t bytes) {
+  if (blocks_[id].ranged) {
+    // Up to a page boundary of the file: a page is freed or aged whole, and cutting one in two
+    // at every eviction (a memory that is not a number of pages) would make a block of each.
+    const std::int64_t start = ranges_.offset(id);
+    bytes = (start + bytes + page_size_ - 1) / page_size_ * page_size_ - start;
+  }
+  return blocks_[id].size > bytes ? split_front(id, bytes) : id;
+}
+
 std::int64_t PageCache::deactivate_oldest(std::int64_t budget, FileId excluded, bool spare_written) {
   std::int64_t evicted = 0;
   // The oldest active data of the target: the list's front, or with a group target the first
@@ -69,7 +79,7 @@ std::int64_t PageCache::deactivate_oldest(std::int64_t budget, FileId excluded, 
     append(oldest, ListKind::Inactive);
     const bool spared = block.file == excluded || (spare_written && files_[block.file].writers > 0);
     if (block.state != BlockState::Clean || spared) continue;
-    const BlockId victim = block.size > budget - evicted ? split_front(oldest, budget - evicted) : oldest;
+    const BlockId victim = front_part(oldest, budget - evicted);
     const FileId file = blocks_[victim].file;
     const std::int64_t size = blocks_[victim].size;
     evicted += size;
@@ -131,7 +141,7 @@ void PageCache::balance() {
   while (to_move > 0) {
     const BlockId front = active_.front();
     PC_ASSERT(front != kNoBlock);
-    const BlockId id = blocks_[front].size > to_move ? split_front(front, to_move) : front;
+    const BlockId id = front_part(front, to_move);
     to_move -= blocks_[id].size;
     unlink(id);
     blocks_[id].referenced = false;

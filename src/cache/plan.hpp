@@ -15,9 +15,6 @@
 
 namespace pagecache::cache {
 
-/// Memory is handed out in pages.
-inline constexpr std::int64_t kPageSize = 4096;
-
 // --- The dirty thresholds ---------------------------------------------------------------------
 
 /// The dirty thresholds, in bytes (mm/page-writeback.c, domain_dirty_limits).

@@ -154,7 +154,7 @@ TEST_CASE("Random inserts, erases, splits and look-ups agree with std::map") {
         const std::int64_t head = 1 + static_cast<std::int64_t>(rng() % static_cast<std::uint64_t>(it->second.size - 1));
         const BlockId tail = take_id();
         index.insert(file, tail, it->first + head, it->second.size - head);
-        index.resize(it->second.id, head);
+        index.resize(file, it->second.id, head);
         ref[it->first + head] = {tail, it->second.size - head};
         it->second.size = head;
         break;
@@ -163,8 +163,18 @@ TEST_CASE("Random inserts, erases, splits and look-ups agree with std::map") {
         REQUIRE(index.floor(file, at) == floor_of(ref, at));
         REQUIRE(index.ceiling(file, at) == ceiling_of(ref, at));
         const auto above = ref.upper_bound(at);
-        REQUIRE(index.around(file, at).above == (above == ref.end() ? kNoBlock : above->second.id));
-        REQUIRE(index.around(file, at).floor == floor_of(ref, at));
+        const FileRanges::Around found = index.around(file, at);
+        REQUIRE(found.above == (above == ref.end() ? kNoBlock : above->second.id));
+        if (above != ref.end()) {
+          REQUIRE(found.above_offset == above->first);
+          REQUIRE(found.above_end == above->first + above->second.size);
+        }
+        REQUIRE(found.floor == floor_of(ref, at));
+        if (above != ref.begin()) {
+          const auto floor = std::prev(above);
+          REQUIRE(found.floor_offset == floor->first);
+          REQUIRE(found.floor_end == floor->first + floor->second.size);
+        }
         if (!ref.empty()) {
           const auto it = pick(ref);
           REQUIRE(index.offset(it->second.id) == it->first);

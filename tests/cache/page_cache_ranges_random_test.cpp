@@ -267,6 +267,7 @@ struct Counts {
 Counts run_random(const CacheSettings& settings, std::uint64_t seed, int steps) {
   constexpr std::int64_t kTotal = 160;
   PageCache cache(kTotal, settings);
+  cache.set_page_size(1);  // bytes stand for pages
   cache.set_checking(true);
   Reference ref(kTotal, settings, cache.policy().read_is_first_touch());
   std::mt19937_64 rng(seed);

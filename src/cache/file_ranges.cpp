@@ -82,21 +82,17 @@ FileRanges::Around FileRanges::around(FileId file, std::int64_t offset) const no
   Around found;
   // A leaf's least key may be above `offset` (its lower entries erased): the floor is then the
   // previous leaf's last entry; likewise the next leaf's first is the one above.
-  const auto take = [](const Node& node, int i, BlockId& id, std::int64_t& start, std::int64_t& stop) {
-    id = node.ids[i];
-    start = node.keys[i];
-    stop = node.ends[i];
-  };
-  if (pos > 0) take(leaf, pos - 1, found.floor, found.floor_offset, found.floor_end);
-  else if (leaf.prev != kNoNode) take(nodes_[leaf.prev], nodes_[leaf.prev].count - 1, found.floor, found.floor_offset, found.floor_end);
-  if (pos < leaf.count) take(leaf, pos, found.above, found.above_offset, found.above_end);
-  else if (leaf.next != kNoNode) take(nodes_[leaf.next], 0, found.above, found.above_offset, found.above_end);
+  const auto entry = [](const Node& node, int i) { return Located{node.ids[i], node.keys[i], node.ends[i]}; };
+  if (pos > 0) found.floor = entry(leaf, pos - 1);
+  else if (leaf.prev != kNoNode) found.floor = entry(nodes_[leaf.prev], nodes_[leaf.prev].count - 1);
+  if (pos < leaf.count) found.above = entry(leaf, pos);
+  else if (leaf.next != kNoNode) found.above = entry(nodes_[leaf.next], 0);
   return found;
 }
 
 BlockId FileRanges::ceiling(FileId file, std::int64_t offset) const noexcept {
   const Around at = around(file, offset);
-  return at.floor != kNoBlock && spans_[at.floor].offset == offset ? at.floor : at.above;
+  return at.floor.id != kNoBlock && at.floor.offset == offset ? at.floor.id : at.above.id;
 }
 
 BlockId FileRanges::first(FileId file) const noexcept {

@@ -40,27 +40,36 @@ class FileRanges {
 
   /// The block of `file` with the greatest offset <= `offset` (the one that holds `offset`, if
   /// any does), or kNoBlock.
-  BlockId floor(FileId file, std::int64_t offset) const noexcept { return around(file, offset).floor; }
+  BlockId floor(FileId file, std::int64_t offset) const noexcept { return around(file, offset).floor.id; }
+  /// A block and where it starts and ends (id kNoBlock: none).
+  struct Located {
+    BlockId id = kNoBlock;
+    std::int64_t offset = 0;
+    std::int64_t end = 0;
+  };
   /// floor(file, offset) and the block after it (the least offset > `offset`), in one descent,
-  /// with where the floor ends and the one above starts: read from the leaf, where the side
-  /// array would cost a cache miss each under random access.
+  /// with their spans: read from the leaf, where the side array would cost a cache miss each
+  /// under random access.
   struct Around {
-    BlockId floor = kNoBlock;
-    BlockId above = kNoBlock;
-    std::int64_t floor_offset = 0;  // when floor != kNoBlock
-    std::int64_t floor_end = 0;
-    std::int64_t above_offset = 0;  // when above != kNoBlock
-    std::int64_t above_end = 0;
+    Located floor;
+    Located above;
   };
   Around around(FileId file, std::int64_t offset) const noexcept;
+  /// The block of `file` that holds `offset` or, if none does, the first after it.
+  Located at_or_after(FileId file, std::int64_t offset) const noexcept {
+    const Around at = around(file, offset);
+    return at.floor.id != kNoBlock && at.floor.end > offset ? at.floor : at.above;
+  }
   /// The block of `file` with the least offset >= `offset`, or kNoBlock.
   BlockId ceiling(FileId file, std::int64_t offset) const noexcept;
   /// The block of `file` with the least offset, or kNoBlock.
   BlockId first(FileId file) const noexcept;
   /// The block of `file` with the greatest offset, or kNoBlock.
   BlockId last(FileId file) const noexcept;
+  /// Where the file's last block ends (0: none).
+  std::int64_t file_end(FileId file) const noexcept { return last(file) == kNoBlock ? 0 : spans_[last(file)].end; }
   /// The block after `block` by offset in its file, or kNoBlock.
-  BlockId next(FileId file, BlockId block) const noexcept { return around(file, spans_[block].offset).above; }
+  BlockId next(FileId file, BlockId block) const noexcept { return around(file, spans_[block].offset).above.id; }
   bool empty(FileId file) const noexcept { return tree(file).root == kNoNode; }
 
   /// Calls `visit(block)` for every block of `file`, by offset (invariant checks, tests).

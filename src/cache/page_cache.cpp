@@ -260,7 +260,7 @@ void PageCache::add_new(FileId file, std::int64_t bytes, BlockState state, doubl
   }
   // A ranged file's data written whole goes after its last cached byte (ranged writes place
   // their own).
-  const BlockId id = ranged(file) ? new_ranged_block(file, ranged_end(file), bytes, state, now) : new_block(file, bytes, state, now);
+  const BlockId id = ranged(file) ? new_ranged_block(file, ranges_.file_end(file), bytes, state, now) : new_block(file, bytes, state, now);
   blocks_[id].referenced = referenced;
   append(id, ListKind::Inactive);
   if (state == BlockState::Dirty) {

@@ -12,10 +12,9 @@
 // Invariants (checked by check_invariants(), and after every operation when
 // set_checking(true)): total = free + anonymous + cached, free >= 0, 0 <= dirty <= cached,
 // cached = inactive + active, every list's byte counter equals its block sum, every block is
-// in exactly one LRU list and in its file's list for that LRU list; with the clean index,
-// every clean block is in its file's clean list for that LRU
-// list, and every file not being written that has clean data there is in reclaimable_
-// (when the policy spares files being written).
+// in exactly one LRU list and in its file's list for that LRU list; with the clean index, every
+// clean block is in its file's clean list for that LRU list, and every file not being written
+// that has clean data there is in reclaimable_ (when the policy spares files being written).
 
 #include "cache/block.hpp"
 #include "cache/block_list.hpp"
@@ -139,8 +138,7 @@ class PageCache {
   }
   /// What the group may still take before its limit, as far as free memory allows.
   std::int64_t group_room(GroupId group) const noexcept;
-  /// What the group may still take before its limit (free memory aside); the root group's
-  /// is unlimited.
+  /// What the group may still take before its limit (free memory aside); the root's: unlimited.
   std::int64_t group_headroom(GroupId group) const noexcept {
     return groups_.empty() || group == kRootGroup ? std::numeric_limits<std::int64_t>::max() : groups_[group].max - group_usage(group);
   }
@@ -182,13 +180,12 @@ class PageCache {
   ReadCursor reaccess(FileId file, std::int64_t bytes, double now, ReadCursor from = {});
 
   // --- Byte ranges (docs/model.md §6.19) ---------------------------------------------------
-  // A file is held by range from its first access by parts on: its blocks then carry offsets
-  // (FileRanges); whole-file I/O, which never asks which part is cached, pays nothing.
+  // From a file's first access by parts, its blocks carry offsets (FileRanges); whole-file I/O pays nothing.
   /// From now on the file's data is held by range; what it has takes ranges from offset 0,
   /// least recently used first, inactive list then active. Idempotent.
   void track_ranges(FileId file);
-  /// Reclaim and aging take such files' data in whole pages of `bytes` > 0 (kPageSize unless
-  /// set; a reference model whose bytes stand for pages sets 1). Before any data is cached.
+  /// Reclaim and aging take such files' data in whole pages of `bytes` > 0 (kPageSize unless set;
+  /// a reference model whose bytes stand for pages sets 1). Before any data is cached.
   void set_page_size(std::int64_t bytes) noexcept { page_size_ = bytes; }
   bool ranged(FileId file) const noexcept { return file < ranged_.size() && ranged_[file] != 0; }
   /// Cached bytes of [offset, offset + bytes) of a ranged file.
@@ -316,27 +313,16 @@ class PageCache {
   bool extend_tail(ListKind kind, FileId file, std::int64_t bytes, bool referenced);
   /// A block of a ranged file holding [offset, offset + size), indexed, on no list yet.
   BlockId new_ranged_block(FileId file, std::int64_t offset, std::int64_t size, BlockState state, double now);
-  /// Where a ranged file's last cached byte ends (0: none cached).
-  std::int64_t ranged_end(FileId file) const noexcept;
-  /// A block of a ranged file and where it starts and ends (kNoBlock: none).
-  struct Located {
-    BlockId id = kNoBlock;
-    std::int64_t offset = 0;
-    std::int64_t end = 0;
-  };
-  /// The block of a ranged file that holds `offset` or, if none does, the first after it.
-  Located block_at_or_after(FileId file, std::int64_t offset) const noexcept;
-  /// The part of `block` from `offset` on (splitting it there if it starts before), and the
-  /// part of that up to `end` (splitting it there if it goes on): [offset, min(end, block's
-  /// end)). `block` holds `offset`.
+  using Located = FileRanges::Located;
+  /// [offset, min(end, its end)) of `block`, which holds `offset`, as a block of its own (cut
+  /// off on either side as needed).
   Located cut(Located block, std::int64_t offset, std::int64_t end);
-  /// Moves ranged `block`, which starts at `offset`, to the MRU end of `to`, merged into the
-  /// tail there if that is clean data of the same file ending where it starts (in the same
-  /// state and referenced mark).
+  /// Moves ranged `block`, which starts at `offset`, to the MRU end of `to`, merged into the tail
+  /// there if that is clean data of the same file ending at `offset` (same state and mark).
   void move_ranged(BlockId block, std::int64_t offset, ListKind to);
   /// The holes of [offset, end) of a ranged file as new clean data (add_ranged), by offset;
   /// throws SimulationError if one does not fit in free memory. Returns the bytes added.
-  /// `first`, if given: block_at_or_after(file, offset), already looked up.
+  /// `first`, if given: FileRanges::at_or_after(file, offset), already looked up.
   std::int64_t fill_holes(FileId file, std::int64_t offset, std::int64_t end, double now, bool referenced, const Located* first = nullptr);
   /// New data of a ranged file, [offset, offset + bytes), at the MRU end of the inactive list:
   /// clean (marked `referenced`) or dirty (entered at `now`). Merged into the tail there if

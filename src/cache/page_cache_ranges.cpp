@@ -27,27 +27,16 @@ void PageCache::track_ranges(FileId file) {
   if (checking_) check_invariants();
 }
 
-std::int64_t PageCache::ranged_end(FileId file) const noexcept {
-  const BlockId last = ranges_.last(file);
-  return last == kNoBlock ? 0 : ranges_.end(last);
-}
-
-PageCache::Located PageCache::block_at_or_after(FileId file, std::int64_t offset) const noexcept {
-  const FileRanges::Around at = ranges_.around(file, offset);
-  if (at.floor != kNoBlock && at.floor_end > offset) return {at.floor, at.floor_offset, at.floor_end};
-  return {at.above, at.above_offset, at.above_end};
-}
-
 std::int64_t PageCache::cached_in(FileId file, std::int64_t offset, std::int64_t bytes) const noexcept {
   PC_ASSERT(ranged(file) && offset >= 0 && bytes >= 0);
   const std::int64_t end = offset + bytes;
   std::int64_t cached = 0;
   // Each step down the index is a few cache misses under random access: the next block is
   // looked up only when the range goes past this one.
-  for (Located at = block_at_or_after(file, offset); at.id != kNoBlock && at.offset < end;) {
+  for (Located at = ranges_.at_or_after(file, offset); at.id != kNoBlock && at.offset < end;) {
     cached += std::min(end, at.end) - std::max(offset, at.offset);
     if (at.end >= end) break;
-    at = block_at_or_after(file, at.end);
+    at = ranges_.at_or_after(file, at.end);
   }
   return cached;
 }
@@ -128,12 +117,12 @@ std::int64_t PageCache::read_range(FileId file, std::int64_t offset, std::int64_
   // The cached parts, by offset, each block cut to the part read; then the holes between them.
   // Spans come from the look-ups (the side array would be a cache miss per block).
   std::int64_t held_to = offset;  // [offset, held_to) cached without a hole
-  const Located first = block_at_or_after(file, offset);
+  const Located first = ranges_.at_or_after(file, offset);
   const bool none_cached = first.id == kNoBlock || first.offset >= end;
   for (Located at = first; !none_cached && at.id != kNoBlock && at.offset < end;) {
     const Located part = cut(at, std::max(offset, at.offset), end);
     if (part.offset == held_to) held_to = part.end;
-    at = part.end < end ? block_at_or_after(file, part.end) : Located{};
+    at = part.end < end ? ranges_.at_or_after(file, part.end) : Located{};
     Block& block = blocks_[part.id];
     if (block.list == ListKind::Active) {
       move_ranged(part.id, part.offset, ListKind::Active);
@@ -156,7 +145,7 @@ std::int64_t PageCache::read_range(FileId file, std::int64_t offset, std::int64_
 std::int64_t PageCache::fill_holes(FileId file, std::int64_t offset, std::int64_t end, double now, bool referenced, const Located* first) {
   std::int64_t added = 0;
   for (std::int64_t at = offset; at < end; first = nullptr) {
-    const Located next = first != nullptr ? *first : block_at_or_after(file, at);
+    const Located next = first != nullptr ? *first : ranges_.at_or_after(file, at);
     const std::int64_t hole_end = next.id == kNoBlock ? end : std::min(end, next.offset);
     if (hole_end > at) {
       if (hole_end - at > free()) throw SimulationError(fmt::format("cannot cache {} bytes: only {} free", hole_end - at, free()));
@@ -179,9 +168,9 @@ std::int64_t PageCache::drop_clean_range(FileId file, std::int64_t offset, std::
   PC_ASSERT(ranged(file) && offset >= 0 && bytes >= 0);
   const std::int64_t end = offset + bytes;
   std::int64_t dropped = 0;
-  for (Located at = block_at_or_after(file, offset); at.id != kNoBlock && at.offset < end;) {
+  for (Located at = ranges_.at_or_after(file, offset); at.id != kNoBlock && at.offset < end;) {
     const Located part = cut(at, std::max(offset, at.offset), end);
-    at = part.end < end ? block_at_or_after(file, part.end) : Located{};
+    at = part.end < end ? ranges_.at_or_after(file, part.end) : Located{};
     if (blocks_[part.id].state == BlockState::Clean) {
       dropped += part.end - part.offset;
       destroy(part.id);
@@ -197,7 +186,7 @@ std::int64_t PageCache::write_range(FileId file, std::int64_t offset, std::int64
   const std::int64_t end = offset + bytes;
   std::int64_t missing = 0;
   for (std::int64_t at = offset; at < end;) {
-    const Located next = block_at_or_after(file, at);
+    const Located next = ranges_.at_or_after(file, at);
     const std::int64_t hole_end = next.id == kNoBlock ? end : std::min(end, next.offset);
     if (hole_end > at) {
       if (hole_end - at > free()) throw SimulationError(fmt::format("cannot cache {} bytes: only {} free", hole_end - at, free()));

@@ -164,17 +164,20 @@ TEST_CASE("Random inserts, erases, splits and look-ups agree with std::map") {
         REQUIRE(index.ceiling(file, at) == ceiling_of(ref, at));
         const auto above = ref.upper_bound(at);
         const FileRanges::Around found = index.around(file, at);
-        REQUIRE(found.above == (above == ref.end() ? kNoBlock : above->second.id));
+        REQUIRE(found.above.id == (above == ref.end() ? kNoBlock : above->second.id));
         if (above != ref.end()) {
-          REQUIRE(found.above_offset == above->first);
-          REQUIRE(found.above_end == above->first + above->second.size);
+          REQUIRE(found.above.offset == above->first);
+          REQUIRE(found.above.end == above->first + above->second.size);
         }
-        REQUIRE(found.floor == floor_of(ref, at));
+        REQUIRE(found.floor.id == floor_of(ref, at));
         if (above != ref.begin()) {
           const auto floor = std::prev(above);
-          REQUIRE(found.floor_offset == floor->first);
-          REQUIRE(found.floor_end == floor->first + floor->second.size);
+          REQUIRE(found.floor.offset == floor->first);
+          REQUIRE(found.floor.end == floor->first + floor->second.size);
         }
+        // The block holding `at`, else the first after it.
+        const bool held = above != ref.begin() && std::prev(above)->first + std::prev(above)->second.size > at;
+        REQUIRE(index.at_or_after(file, at).id == (held ? std::prev(above)->second.id : found.above.id));
         if (!ref.empty()) {
           const auto it = pick(ref);
           REQUIRE(index.offset(it->second.id) == it->first);

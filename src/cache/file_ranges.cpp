@@ -69,6 +69,15 @@ FileRanges::NodeId FileRanges::leaf_for(FileId file, std::int64_t offset) const 
   return n;
 }
 
+void FileRanges::prefetch_leaf(FileId file, BlockId block) const noexcept {
+  const Tree& t = tree(file);
+  NodeId n = t.root;
+  if (n == kNoNode) return;
+  // By the height, not the nodes' kind: reading the leaf's would wait for it.
+  for (int level = t.height - 1; level > 0; --level) n = nodes_[n].ids[child_for(nodes_[n], spans_[block].offset)];
+  fetch(n);
+}
+
 void FileRanges::free_node(NodeId n) {
   ++nodes_[n].generation;
   free_nodes_.push_back(n);

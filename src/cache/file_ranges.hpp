@@ -71,6 +71,10 @@ class FileRanges {
   /// The block after `block` by offset in its file, or kNoBlock.
   BlockId next(FileId file, BlockId block) const noexcept { return around(file, spans_[block].offset).above.id; }
   bool empty(FileId file) const noexcept { return tree(file).root == kNoNode; }
+  /// Start loading what erasing `block` of `file` will read: its leaf (a descent through inner
+  /// nodes, which stay cached), and, for a block whose turn comes later, its span.
+  void prefetch_leaf(FileId file, BlockId block) const noexcept;
+  void prefetch_span(BlockId block) const noexcept { __builtin_prefetch(&spans_[block]); }
 
   /// Calls `visit(block)` for every block of `file`, by offset (invariant checks, tests).
   template <class Visit>

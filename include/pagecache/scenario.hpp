@@ -195,6 +195,9 @@ struct AppSpec {
   std::int64_t memory_max = 0;
   /// memory.high (0: none; needs memory_max): above it the group reclaims its own data.
   std::int64_t memory_high = 0;
+  /// Applications listed before it that must have ended before it starts (as fio's stonewall
+  /// and wait_for order jobs); by name, each naming one of them. Empty: it starts at 0.
+  std::vector<std::string> after;
 };
 
 /// A workflow: a DAG of tasks, each started when its inputs are ready (the tasks that write

@@ -115,7 +115,7 @@ void expand_pipelines(const toml::table& table, Scenario& s, const std::string& 
   for (std::int64_t i = 1; i <= count; ++i) {
     auto file_name = [&](std::int64_t k) { return count == 1 ? fmt::format("file_{}", k) : fmt::format("p{}_file_{}", i, k); };
     for (std::int64_t k = 1; k <= tasks + 1; ++k) s.files.push_back({file_name(k), size, files_host, disk, k == 1 && cached});
-    AppSpec app{std::to_string(i), host_of(i), {}, memory_limits.max, memory_limits.high};
+    AppSpec app{std::to_string(i), host_of(i), {}, memory_limits.max, memory_limits.high, {}};
     app.tasks.reserve(static_cast<std::size_t>(tasks));
     for (std::int64_t k = 1; k <= tasks; ++k) {
       TaskSpec& task = app.tasks.emplace_back();
@@ -128,6 +128,18 @@ void expand_pipelines(const toml::table& table, Scenario& s, const std::string& 
     s.apps.push_back(std::move(app));
   }
   origins.pipeline_apps = static_cast<std::size_t>(count);
+}
+
+// Each name in `after` is one application listed before this one: waiting only on earlier
+// ones, the order can have no cycle.
+void check_after(TomlReader& a, const AppSpec& app, const std::vector<AppSpec>& before) {
+  for (const std::string& name : app.after) {
+    const auto named = std::count_if(before.begin(), before.end(), [&](const AppSpec& b) { return b.name == name; });
+    if (named == 0) {
+      a.fail("after", fmt::format("application '{}' comes after '{}', which is not an application listed before it", app.name, name));
+    }
+    if (named > 1) a.fail("after", fmt::format("application '{}' comes after '{}', which names {} applications listed before it", app.name, name, named));
+  }
 }
 
 }  // namespace
@@ -151,6 +163,8 @@ void read_apps(TomlReader& r, const std::string& file, Scenario& s, Origins& ori
     const MemoryLimits memory_limits = read_memory_limits(a, "the application's");
     app.memory_max = memory_limits.max;
     app.memory_high = memory_limits.high;
+    app.after = a.names("after");
+    check_after(a, app, s.apps);
     const auto tasks = a.tables("tasks");
     if (tasks.empty()) a.fail_table("an application needs at least one [[" + a.path() + ".tasks]]");
     for (std::size_t t = 0; t < tasks.size(); ++t) {

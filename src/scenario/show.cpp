@@ -162,6 +162,7 @@ void write_work(std::string& out, const Scenario& s) {
     out += fmt::format("\n[[apps]]\nname = {}\nhost = {}\n", quoted(a.name), quoted(a.host));
     if (a.memory_max > 0) out += fmt::format("memory_max = {}\n", quoted(units::format_size(a.memory_max)));
     if (a.memory_high > 0) out += fmt::format("memory_high = {}\n", quoted(units::format_size(a.memory_high)));
+    if (!a.after.empty()) out += fmt::format("after = {}\n", list(a.after));
     for (const TaskSpec& t : a.tasks) write_task(out, "apps.tasks", t, false);
   }
   for (const WorkflowSpec& w : s.workflows) {

@@ -61,7 +61,14 @@ void Plans::reserve(const Scenario& scenario) {
 }
 
 void Plans::plan_applications(const std::vector<AppSpec>& apps, const Platform& platform, const FileIndex& files, TaskIndex& names) {
+  std::unordered_map<std::string_view, std::uint32_t> earlier;  // only if some application waits (the loader checked the names)
+  const bool waits = std::any_of(apps.begin(), apps.end(), [](const AppSpec& app) { return !app.after.empty(); });
   for (const AppSpec& app : apps) {
+    if (!app.after.empty()) {
+      AppWait& wait = app_waits_.emplace_back(AppWait{static_cast<std::uint32_t>(apps_.size()), {}});
+      for (const std::string& name : app.after) wait.after.push_back(earlier.at(name));
+    }
+    if (waits) earlier.emplace(app.name, static_cast<std::uint32_t>(apps_.size()));
     Host& host = platform.host_named(app.host, "application", app.name);
     // An application with a memory limit is a memory group of its host (a job's cgroup).
     const GroupRef group = app.memory_max > 0 ? host.add_memory_group(app.memory_max, app.memory_high) : GroupRef{};

@@ -65,6 +65,12 @@ struct AppPlan {
   std::uint32_t tasks;
 };
 
+/// An application that starts after others have ended (AppSpec::after), by index in apps().
+struct AppWait {
+  std::uint32_t app;
+  std::vector<std::uint32_t> after;
+};
+
 class Plans {
  public:
   /// Plans every task of `scenario` on `platform` (which gives the applications' memory groups);
@@ -73,6 +79,8 @@ class Plans {
 
   /// Per application, in order; the workflows' task plans, in their order, from workflow_tasks().
   const std::vector<AppPlan>& apps() const noexcept { return apps_; }
+  /// The applications that wait for others, in order (few or none: kept apart from AppPlan).
+  const std::vector<AppWait>& app_waits() const noexcept { return app_waits_; }
   const TaskPlan* workflow_tasks() const noexcept { return tasks_.data() + first_workflow_task_; }
   std::span<const TaskPlan> tasks_of(const AppPlan& app) const noexcept { return {tasks_.data() + app.first, app.tasks}; }
 
@@ -98,6 +106,7 @@ class Plans {
                         const FileIndex& files) const;
 
   std::vector<AppPlan> apps_;
+  std::vector<AppWait> app_waits_;
   std::vector<TaskPlan> tasks_;  // per task, apps' then workflows', in order
   std::size_t first_workflow_task_ = 0;
   std::vector<std::string> task_names_;       // what TaskPlan::name names, each name once

@@ -102,10 +102,32 @@ RunResult Runner::run() {
 }
 
 void Runner::start_applications() {
-  for (const AppPlan& app : plans_.apps()) {
-    ++running_;
-    sim_.spawn(run_tasks(app.name, plans_.tasks_of(app), *app.host, true));
+  const std::vector<AppPlan>& apps = plans_.apps();
+  const std::vector<AppWait>& waits = plans_.app_waits();
+  if (!waits.empty()) {
+    for (std::size_t i = 0; i < apps.size(); ++i) app_done_.emplace_back(sim_);
   }
+  auto wait = waits.begin();
+  for (std::size_t i = 0; i < apps.size(); ++i) {
+    ++running_;
+    if (waits.empty()) {
+      sim_.spawn(run_tasks(apps[i].name, plans_.tasks_of(apps[i]), *apps[i].host, true));
+      continue;
+    }
+    std::vector<Event*> before;
+    if (wait != waits.end() && wait->app == i) {
+      for (const std::uint32_t a : wait->after) before.push_back(&app_done_[a]);
+      ++wait;
+    }
+    sim_.spawn(run_app_in_order(i, std::move(before)));
+  }
+}
+
+Task<void> Runner::run_app_in_order(std::size_t index, std::vector<Event*> before) {
+  for (Event* event : before) co_await event->wait();
+  const AppPlan& app = plans_.apps()[index];
+  co_await run_tasks(app.name, plans_.tasks_of(app), *app.host, true);
+  app_done_[index].trigger();
 }
 
 void Runner::start_workflows() {

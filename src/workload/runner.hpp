@@ -48,6 +48,8 @@ class Runner {
   void summarize(std::chrono::steady_clock::time_point wall_start);
 
   Task<void> run_tasks(const std::string& app, std::span<const TaskPlan> plans, Host& host, bool ends_app);
+  /// Application `index` once `before` have ended; then its end is app_done_[index].
+  Task<void> run_app_in_order(std::size_t index, std::vector<Event*> before);
   Task<void> run_accesses(const std::string& app, const TaskPlan& plan, Host& host, bool ends_app);
   Task<void> read_file_set(const std::string& app, const TaskPlan& plan, const AccessPlan& access, Host& host);
   Task<void> access_file(const std::string& app, const TaskPlan& plan, const AccessPlan& access, Host& host, bool ends_app);
@@ -68,6 +70,7 @@ class Runner {
   DeletedFiles deleted_;
   std::optional<RunTrace> trace_;                // from the run's start
   std::deque<WorkflowHosts> workflow_hosts_;     // per workflow
+  std::deque<Event> app_done_;  // per application, when some application waits (else empty)
   std::deque<std::deque<Event>> workflow_done_;  // per workflow, its tasks' ends in workflow order
   int running_ = 0;                              // processes not yet ended: applications, workflow tasks
 };

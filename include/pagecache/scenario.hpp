@@ -149,6 +149,12 @@ struct AccessSpec {
   std::vector<std::pair<std::int64_t, std::int64_t>> ranges;  ///< ranges: (offset, length) each
   AccessMode mode = AccessMode::Read;
   AccessAdvice advice = AccessAdvice::Normal;  ///< reads only
+  /// One file, random: each epoch a draw of its own (true), or every epoch epoch 1's requests
+  /// again (false: fio's randrepeat, which reseeds at each loop).
+  bool reshuffle = true;
+  /// One file: before each epoch the region's clean cached data is dropped (POSIX_FADV_DONTNEED
+  /// over it, or over each range), as fio's invalidate=1 does each time a job opens its file.
+  bool invalidate = false;
 };
 
 /// One task: read files, compute, write files, then release its buffers.

@@ -13,7 +13,7 @@ namespace pagecache::scenario {
 namespace {
 
 // The keys of an access of one file, each refused on an access of a file set.
-constexpr const char* kFileKeys[] = {"request", "offset", "length", "stride", "ranges", "mode", "advice"};
+constexpr const char* kFileKeys[] = {"request", "offset", "length", "stride", "ranges", "mode", "advice", "reshuffle", "invalidate"};
 
 AccessSpec read_set_access(TomlReader& a, const std::vector<FileSetSpec>& sets) {
   AccessSpec spec;
@@ -157,9 +157,11 @@ AccessSpec read_file_access(TomlReader& a, AccessTargets& targets, std::int64_t 
   spec.advice = choice(a, "advice", kAdvice, AccessAdvice::Normal);
   if (a.has("advice") && spec.mode != AccessMode::Read) a.fail("advice", "posix_fadvise advice is for reads (mode = \"read\")");
   const bool random = spec.pattern == AccessPattern::Random;
-  for (const char* key : {"seed", "replacement"}) {
+  for (const char* key : {"seed", "replacement", "reshuffle"}) {
     if (a.has(key) && !random) a.fail(key, "a key of pattern = \"random\"");
   }
+  spec.reshuffle = a.optional_bool("reshuffle").value_or(true);
+  spec.invalidate = a.optional_bool("invalidate").value_or(false);
   const std::int64_t seed = a.optional_integer("seed").value_or(0);
   if (seed < 0) a.fail("seed", fmt::format("must be >= 0, got {}", seed));
   spec.seed = static_cast<std::uint64_t>(seed);

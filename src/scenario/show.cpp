@@ -52,10 +52,10 @@ void write_file_access(std::string& out, const std::string& table, const AccessS
   } else {
     out += fmt::format("offset = {}\nlength = {}\n", quoted(units::format_size(a.offset)), quoted(units::format_size(a.length)));
     if (a.pattern == AccessPattern::Strided) out += fmt::format("stride = {}\n", quoted(units::format_size(a.stride)));
-    if (a.pattern == AccessPattern::Random) out += fmt::format("seed = {}\nreplacement = {}\n", a.seed, a.replacement);
+    if (a.pattern == AccessPattern::Random) out += fmt::format("seed = {}\nreplacement = {}\nreshuffle = {}\n", a.seed, a.replacement, a.reshuffle);
     out += fmt::format("count = {}\n", a.count);
   }
-  out += fmt::format("repeat = {}\n", a.repeat);
+  out += fmt::format("invalidate = {}\nrepeat = {}\n", a.invalidate, a.repeat);
 }
 
 void write_task(std::string& out, const std::string& table, const TaskSpec& t, bool in_workflow) {

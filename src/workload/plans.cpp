@@ -172,6 +172,8 @@ void Plans::plan_file_access(const TaskSpec& task, const AccessSpec& a, AccessPl
   access.advice = a.advice == AccessAdvice::Random       ? ReadAdvice::Random
                   : a.advice == AccessAdvice::Sequential ? ReadAdvice::Sequential
                                                          : ReadAdvice::Normal;
+  access.reshuffle = a.reshuffle;
+  access.invalidate = a.invalidate;
   access.repeat = a.repeat;
 }
 

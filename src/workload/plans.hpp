@@ -49,6 +49,8 @@ struct AccessPlan {
   RequestPattern requests;   // of_file
   bool writing = false;      // of_file: writes (in place or appends), else reads
   ReadAdvice advice = ReadAdvice::Normal;
+  bool reshuffle = true;     // of_file: random epochs each drawn anew (AccessSpec::reshuffle)
+  bool invalidate = false;   // of_file: the region's clean data dropped before each epoch
   PlacedFileSet set;
   std::uint32_t set_index = 0;  // in the scenario's file sets (Plans::set_name)
   SampleOrder::Kind order = SampleOrder::Kind::InOrder;

@@ -66,6 +66,15 @@ Task<IoResult> transfer(Host& host, FileRef file, const TaskPlan& plan, bool rea
 
 constexpr std::array<PhaseKind, 3> kPhases{PhaseKind::Read, PhaseKind::Compute, PhaseKind::Write};
 
+// POSIX_FADV_DONTNEED over what `requests` cover: the region, or each range.
+void drop_region(Host& host, FileRef file, const RequestPattern& requests) {
+  if (requests.kind != RequestPattern::Kind::Ranges) {
+    host.dont_need(file, ByteRange{.offset = requests.offset, .length = requests.length});
+    return;
+  }
+  for (const ByteRange& range : requests.ranges) host.dont_need(file, range);
+}
+
 }  // namespace
 
 Runner::Runner(const Scenario& scenario, const RunOptions& options, Scenario* owned) : Runner(scenario, options, owned, FileIndex{}) {}
@@ -276,8 +285,9 @@ Task<void> Runner::access_file(const std::string& app, const TaskPlan& plan, con
   std::function<bool(ByteRange&)> next = [&stream](ByteRange& r) { return stream.next(r); };
   for (std::int64_t epoch = 1; epoch <= access.repeat; ++epoch) {
     if (!deleted_.empty()) deleted_.note_access(access.file, !access.writing, app, plans_.task_name(plan), ends_app);
+    if (access.invalidate) drop_region(host, stored.ref, access.requests);
     const double start = sim_.now();
-    stream.start_epoch(epoch - 1);
+    stream.start_epoch(access.reshuffle ? epoch - 1 : 0);
     Moved sum;
     if (access.writing) {
       add_moved(sum, co_await host.write_ranges(stored.ref, next, plan.group));

@@ -205,7 +205,7 @@ hosts = ["node", "other"]
 
 TEST_CASE("pcsim show writes an access of one file with its pattern's keys, and it reads back the same", "[scenario][access][show]") {
   for (const std::string keys : {"pattern = \"strided\"\nrequest = \"64 KiB\"\nstride = \"1 MB\"\nrepeat = 2",
-                                 "pattern = \"random\"\nrequest = \"4 KiB\"\nseed = 5\nadvice = \"random\"",
+                                 "pattern = \"random\"\nrequest = \"4 KiB\"\nseed = 5\nadvice = \"random\"\nreshuffle = false\ninvalidate = true",
                                  "pattern = \"ranges\"\nranges = [[0, 4096], [\"1 MB\", \"2 MB\"]]\nmode = \"write\"",
                                  "mode = \"append\"\noffset = \"5 MB\""}) {
     INFO(keys);
@@ -215,10 +215,10 @@ TEST_CASE("pcsim show writes an access of one file with its pattern's keys, and 
   }
   const std::string strided = to_toml(parse_scenario(scenario("pattern = \"strided\"\nrequest = \"64 KiB\"\nstride = \"1 MB\""), "s.toml"));
   CHECK(strided.find("[[apps.tasks.access]]\nfile = \"data\"\npattern = \"strided\"\nmode = \"read\"\nadvice = \"normal\"\nrequest = \"64 KiB\"\n"
-                     "offset = \"0 B\"\nlength = \"10 MB\"\nstride = \"1 MB\"\ncount = 10\nrepeat = 1\n") != std::string::npos);
+                     "offset = \"0 B\"\nlength = \"10 MB\"\nstride = \"1 MB\"\ncount = 10\ninvalidate = false\nrepeat = 1\n") != std::string::npos);
   CHECK(strided.find("seed") == std::string::npos);
   const std::string ranges = to_toml(parse_scenario(scenario("pattern = \"ranges\"\nranges = [[0, 4096]]\nmode = \"write\""), "s.toml"));
-  CHECK(ranges.find("ranges = [[\"0 B\", \"4 KiB\"]]\nrepeat = 1\n") != std::string::npos);
+  CHECK(ranges.find("ranges = [[\"0 B\", \"4 KiB\"]]\ninvalidate = false\nrepeat = 1\n") != std::string::npos);
   CHECK(ranges.find("advice") == std::string::npos);
   CHECK(ranges.find("offset") == std::string::npos);
 }

@@ -103,7 +103,7 @@ TEST_CASE("compute = \"speed\" scales each compute phase by the recorded machine
   CHECK(phases.at("b") == Approx(3.0).epsilon(1e-12));
 
   // Off (the default, or runtime): today's times, whatever the speeds.
-  for (const std::string& off : {"", "compute = \"runtime\""}) {
+  for (const std::string off : {"", "compute = \"runtime\""}) {
     INFO(off);
     const Scenario plain = load_scenario(scenario(dir, instance(1200), "speed = \"2.4Gf\"", off));
     CHECK(plain.workflows.at(0).tasks[0].compute == 4.0);

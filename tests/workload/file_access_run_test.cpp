@@ -219,5 +219,40 @@ repeat = 2
   for (const std::size_t i : {1, 2}) CHECK(e[i].cache_bytes == 4 * kMiB);  // the appended log, from the cache
 }
 
+TEST_CASE("invalidate drops the region's clean data before each epoch, as fio's invalidate=1 at each open", "[workload][access]") {
+  for (const char* profile : {"linux", "paper"}) {
+    INFO(profile);
+    const char* kTwice = "[[apps.tasks.access]]\nfile = \"hot\"\nrequest = \"1 MiB\"\nrepeat = 2\n";
+    const std::vector<PhaseRow> kept = epoch_rows(run_scenario(with_accesses(profile, kTwice)));
+    REQUIRE(kept.size() == 2);
+    for (const PhaseRow& e : kept) CHECK(e.cache_bytes == 8 * kMiB);  // cached at the start, and still
+    const std::vector<PhaseRow> dropped = epoch_rows(run_scenario(with_accesses(profile, std::string(kTwice) + "invalidate = true\n")));
+    REQUIRE(dropped.size() == 2);
+    for (const PhaseRow& e : dropped) {
+      CHECK(e.cache_bytes == 0);
+      CHECK(e.disk_bytes == 8 * kMiB);
+    }
+  }
+}
+
+TEST_CASE("reshuffle = false repeats epoch 1's random requests every epoch, as fio's randrepeat", "[workload][access]") {
+  // 1000 draws of 16384 pages: epoch 2 hits all of epoch 1's pages only if it draws the same.
+  const char* kDraws = "[[apps.tasks.access]]\nfile = \"big\"\npattern = \"random\"\nrequest = \"4 KiB\"\nreplacement = true\n"
+                       "count = 1000\nseed = 5\nrepeat = 2\n";
+  const std::vector<PhaseRow> again = epoch_rows(run_scenario(with_accesses("linux", std::string(kDraws) + "reshuffle = false\n")));
+  REQUIRE(again.size() == 2);
+  CHECK(again[0].disk_bytes > 0);
+  CHECK(again[1].disk_bytes == 0);
+  CHECK(again[1].cache_bytes == again[1].bytes);
+  const std::vector<PhaseRow> anew = epoch_rows(run_scenario(with_accesses("linux", kDraws)));
+  REQUIRE(anew.size() == 2);
+  CHECK(anew[1].disk_bytes > 0);
+}
+
+TEST_CASE("reshuffle is a key of random patterns, invalidate of accesses of one file", "[workload][access]") {
+  CHECK_THROWS_WITH(with_accesses("linux", "[[apps.tasks.access]]\nfile = \"big\"\nreshuffle = false\n"),
+                    Catch::Contains("reshuffle") && Catch::Contains("a key of pattern = \"random\""));
+}
+
 }  // namespace
 }  // namespace pagecache

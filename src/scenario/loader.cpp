@@ -62,6 +62,7 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
 
   scenario::read_files(r, file, s, origins);
   scenario::read_file_sets(r, file, limits, s, origins);
+  scenario::read_fio(r, file, s, origins);
   // A workflow file before [pipelines], whose files' origins are all that table's (Origins::file).
   scenario::read_json_workflow(r, file, limits, s, origins);
   scenario::read_pipelines(r, file, limits, s, origins);
@@ -73,7 +74,7 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
     return s;
   }
   if (s.apps.empty() && s.workflows.empty()) {
-    r.fail_table("no workload: add [pipelines], [[apps]] or [workflow] (or workflow = \"x.json\", a WfFormat file)");
+    r.fail_table("no workload: add [pipelines], [[apps]] or [workflow] (or workflow = \"x.json\", a WfFormat file, or [fio] file = \"x.fio\")");
   }
   r.finish();
   if (platform.simgrid) scenario::keep_what_the_run_uses(*platform.simgrid, platform.from_xml, s, origins);

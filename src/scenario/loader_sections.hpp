@@ -130,6 +130,8 @@ std::vector<AccessSpec> read_accesses(TomlReader& task, AccessTargets& targets, 
 void read_pipelines(TomlReader& r, const std::string& file, const ScenarioLimits& limits, Scenario& s, Origins& origins);
 /// The [[apps]] tables.
 void read_apps(TomlReader& r, const std::string& file, Scenario& s, Origins& origins);
+/// [fio]: a fio job file's jobs as applications and their files (loader_fio.cpp); alone.
+void read_fio(TomlReader& r, const std::string& file, Scenario& s, Origins& origins);
 /// workflow = "x.json", or [workflow] with file = "x.json": a WfFormat instance and its files.
 void read_json_workflow(TomlReader& r, const std::string& file, const ScenarioLimits& limits, Scenario& s, Origins& origins);
 /// A [workflow] table with its [[workflow.tasks]], when no workflow file was read.

@@ -4,6 +4,9 @@
 #include <pagecache/error.hpp>
 #include <pagecache/scenario_file.hpp>
 
+#include "scenario/resolve.hpp"
+
+#include <fmt/format.h>
 #include <toml++/toml.h>
 
 #include <filesystem>
@@ -33,12 +36,32 @@ std::vector<std::pair<std::string, std::string>> scenario_overrides(const RunInp
   return overrides;
 }
 
-bool is_workflow_file(const std::string& path) { return path.size() >= 5 && path.compare(path.size() - 5, 5, ".json") == 0; }
+bool ends_with(const std::string& path, const std::string& end) {
+  return path.size() >= end.size() && path.compare(path.size() - end.size(), end.size(), end) == 0;
+}
+
+std::string absolute(const std::string& path) { return std::filesystem::absolute(path).lexically_normal().string(); }
+
+// A fio job file on a platform: the scenario `platform = P` with `[fio] file = JOB`, so that
+// --set reaches its keys (fio.host, fio.disk) as any scenario's.
+Scenario load_fio(const std::string& path, const RunInputs& in) {
+  if (in.workflow.platform.empty()) {
+    throw ConfigError(fmt::format("{}: a fio job file runs on a platform: add --platform PLATFORM.toml (or a SimGrid .xml)", path));
+  }
+  if (!in.workflow.files_host.empty() || !in.workflow.hosts.empty()) {
+    throw ConfigError("--files-host and --hosts place a workflow file's (JSON) files and tasks; a fio job file's run on one host (--set fio.host=NAME)");
+  }
+  toml::table root{{"platform", absolute(in.workflow.platform)}, {"fio", toml::table{{"file", absolute(path)}}}};
+  Scenario s = scenario::resolve_document(std::move(root), path, in.overrides, in.profile, in.limits);
+  s.source = path;
+  return s;
+}
 
 }  // namespace
 
 Scenario load_run_scenario(const std::string& path, const RunInputs& in) {
-  if (is_workflow_file(path)) return load_workflow(path, in.workflow, in.overrides, in.profile, in.limits);
+  if (ends_with(path, ".json")) return load_workflow(path, in.workflow, in.overrides, in.profile, in.limits);
+  if (ends_with(path, ".fio")) return load_fio(path, in);
   const auto overrides = scenario_overrides(in);
   if (path.empty()) return parse_scenario(default_scenario_text(), "<embedded default>", overrides, in.profile, in.limits);
   return load_scenario(path, overrides, in.profile, in.limits);

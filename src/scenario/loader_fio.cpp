@@ -1,0 +1,194 @@
+// A scenario's [fio] table: the jobs of a fio job file (fio_job_file.hpp) as applications of
+// the scenario's host. Each job (each numjobs clone) is an application of one task whose access
+// is the job's I/O, in the order fio starts them (stonewall, wait_for: AppSpec::after); each
+// file a job names is a file of the host's disk, as large as the jobs' regions need, on the disk
+// and not cached when the jobs start (fio lays files out first, fsyncs them and drops them from
+// the page cache). What fio does that pcsim does not model yet is refused, naming the job's
+// section and the option.
+
+#include "scenario/fio_job_file.hpp"
+#include "scenario/loader_sections.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+namespace pagecache::scenario {
+
+namespace {
+
+// "JOB.fio:12: job 'name'": where a job's refusals point.
+std::string place_of(const FioJobFile& f, const FioJob& job) { return fmt::format("{}:{}: job '{}'", f.path, job.line, job.section); }
+
+[[noreturn]] void refuse(const FioJobFile& f, const FioJob& job, const std::string& option, const std::string& why) {
+  throw ConfigError(fmt::format("{}: {}: {}", place_of(f, job), option, why), InputPlace{.file = f.path, .line = job.line, .key = option});
+}
+
+bool is_random(FioRw rw) { return rw == FioRw::RandRead || rw == FioRw::RandWrite || rw == FioRw::RandReadWrite; }
+bool writes(FioRw rw) { return rw == FioRw::Write || rw == FioRw::RandWrite; }
+
+// What pcsim cannot run yet, named.
+void refuse_unmodelled(const FioJobFile& f, const FioJob& job) {
+  const auto no = [&](bool condition, const char* option, const char* why) {
+    if (condition) refuse(f, job, option, why);
+  };
+  no(job.rw == FioRw::ReadWrite || job.rw == FioRw::RandReadWrite, "rw", "mixed reads and writes are not modelled yet");
+  no(job.rw_step != 0 && !(is_random(job.rw) && job.rw_step == 1), "rw", "an offset step (rw=...:N) is not modelled yet");
+  no(job.files.size() > 1 && job.file_service != FioFileService::Sequential, "nrfiles",
+     "several files served in turn are not modelled yet (file_service_type=sequential is)");
+  no(job.direct, "direct", "direct I/O of parts of files is not modelled yet");
+  no(job.fsync > 0 || job.fdatasync > 0, job.fsync > 0 ? "fsync" : "fdatasync", "a sync every N writes is not modelled yet");
+  no(job.time_based, "time_based", "runs bounded by time are not modelled yet");
+  no(job.thinktime > 0.0, "thinktime", "think time between requests is not modelled yet");
+  no(job.startdelay > 0.0, "startdelay", "a start delay is not modelled yet");
+  no(job.ramp_time > 0.0, "ramp_time", "a ramp time is not modelled yet");
+  no(job.pre_read, "pre_read", "reading the files before the job is not modelled yet");
+  no(job.create_on_open, "create_on_open", "files made by the job's open are not modelled yet");
+  no(job.files.size() > 1 && (job.io_size > 0 || job.number_ios > 0), job.io_size > 0 ? "io_size" : "number_ios",
+     "a bound on the I/O of a job of several files is not modelled yet");
+  no(job.size_percent > 0 || job.offset_percent > 0 || job.offset_increment_percent > 0 || job.io_size_percent > 0, "size",
+     "sizes in percent of existing files are not modelled (pcsim's files exist only in the simulation)");
+}
+
+// The bytes of each of the job's files that it does I/O on: [start, start + length).
+struct Region {
+  std::int64_t start = 0;
+  std::int64_t length = 0;
+};
+
+Region region_of(const FioJobFile& f, const FioJob& job) {
+  const std::int64_t start = job.offset + job.jobnum * job.offset_increment;
+  const auto files = static_cast<std::int64_t>(job.files.size());
+  if (job.filesize > 0) {
+    // With filesize the region is the file from the offset on (fio's setup_files).
+    if (start >= job.filesize) refuse(f, job, "offset", fmt::format("{} is not within filesize={}", start, job.filesize));
+    return {start, job.filesize - start};
+  }
+  if (job.size <= 0) refuse(f, job, "size", "needed: pcsim's files exist only in the simulation, so their size must be given (size= or filesize=)");
+  const std::int64_t bs = std::max(job.bs_read, job.bs_write);
+  const std::int64_t each = job.size / files;
+  if (each < bs) refuse(f, job, "size", fmt::format("{} bytes per file, less than a block ({} bytes)", each, bs));
+  return {start, each};
+}
+
+// The job's access of one of its files.
+AccessSpec access_of(const FioJob& job, std::size_t index, const std::string& file, Region region) {
+  AccessSpec a;
+  a.file = file;
+  a.pattern = is_random(job.rw) ? AccessPattern::Random : AccessPattern::Sequential;
+  a.mode = writes(job.rw) ? AccessMode::Write : AccessMode::Read;
+  a.request = writes(job.rw) ? job.bs_write : job.bs_read;
+  a.offset = region.start;
+  a.length = region.length;
+  // Each block of the region once (or io_size's worth, past the region's end again from its
+  // start, as fio wraps), at most number_ios requests.
+  std::int64_t count = (region.length + a.request - 1) / a.request;
+  if (job.io_size > 0) count = (job.io_size + a.request - 1) / a.request;
+  if (job.number_ios > 0) count = std::min(count, job.number_ios);
+  a.count = count;
+  a.replacement = a.pattern == AccessPattern::Random && job.norandommap;
+  // Each job its own stream, the same run after run (fio mixes randseed with the job's number).
+  a.seed = job.randseed + index;
+  a.reshuffle = a.pattern != AccessPattern::Random || !job.randrepeat;
+  a.invalidate = job.invalidate;
+  a.repeat = job.loops;
+  if (a.mode == AccessMode::Read) {
+    switch (job.fadvise) {
+      case FioFadvise::None: a.advice = AccessAdvice::Normal; break;
+      case FioFadvise::Auto: a.advice = is_random(job.rw) ? AccessAdvice::Random : AccessAdvice::Sequential; break;
+      case FioFadvise::Sequential: a.advice = AccessAdvice::Sequential; break;
+      case FioFadvise::Random: a.advice = AccessAdvice::Random; break;
+    }
+  }
+  return a;
+}
+
+// Application names, one per job: the reported name, with ".N" for a clone and "#I" if two
+// sections share a name (fio reports clones under their job's name; an application's must be
+// its own, for `after`).
+std::vector<std::string> app_names(const FioJobFile& f) {
+  std::map<std::string, int> sections;
+  for (const FioJob& job : f.jobs) {
+    if (job.jobnum == 0) ++sections[job.name];
+  }
+  std::vector<std::string> names;
+  names.reserve(f.jobs.size());
+  for (std::size_t i = 0; i < f.jobs.size(); ++i) {
+    const FioJob& job = f.jobs[i];
+    std::string name = job.jobnum == 0 ? job.name : fmt::format("{}.{}", job.name, job.jobnum);
+    if (sections[job.name] > 1) name += fmt::format("#{}", i);
+    names.push_back(std::move(name));
+  }
+  return names;
+}
+
+}  // namespace
+
+void read_fio(TomlReader& r, const std::string& file, Scenario& s, Origins& origins) {
+  const toml::table* table = r.optional_table("fio");
+  if (table == nullptr) return;
+  TomlReader fr(*table, "fio", file);
+  for (const char* other : {"pipelines", "apps", "workflow"}) {
+    if (r.has(other)) fr.fail_table(fmt::format("a fio job file is the workload: [{}] cannot come with it", other));
+  }
+  const std::string path = relative_path(file, fr.required_string("file"));
+  const std::string host = fr.name("host", s.hosts.front().name);
+  const auto on = std::find_if(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& h) { return h.name == host; });
+  if (on == s.hosts.end()) fr.fail("host", fmt::format("no host named '{}'", host));
+  if (on->disks.empty()) fr.fail("host", fmt::format("host '{}' has no disk for the jobs' files", host));
+  const std::string disk = fr.name("disk", on->disks.front().name);
+  if (std::none_of(on->disks.begin(), on->disks.end(), [&](const DiskSpec& d) { return d.name == disk; })) {
+    fr.fail("disk", fmt::format("host '{}' has no disk named '{}'", host, disk));
+  }
+  fr.finish();
+  FioJobFile jobs;
+  try {
+    jobs = read_fio_job_file(path);
+  } catch (const ConfigError& e) {
+    if (e.place().file.empty()) fr.fail("file", e.what());
+    throw;
+  }
+  for (std::string& w : jobs.warnings) s.warnings.push_back(std::move(w));
+
+  // The files, as large as the regions their jobs use.
+  std::map<std::string, std::int64_t> extent;
+  std::vector<std::string> order;
+  std::vector<Region> regions;
+  for (const FioJob& job : jobs.jobs) {
+    refuse_unmodelled(jobs, job);
+    regions.push_back(region_of(jobs, job));
+    for (const std::string& name : job.files) {
+      auto [it, added] = extent.emplace(name, 0);
+      if (added) order.push_back(name);
+      it->second = std::max(it->second, regions.back().start + regions.back().length);
+    }
+  }
+  std::set<std::string> taken;
+  for (const FileSpec& f : s.files) taken.insert(f.name);
+  for (const std::string& name : order) {
+    if (taken.count(name) != 0) fr.fail("file", fmt::format("{} names file '{}', which the scenario has already", path, name));
+    s.files.push_back(FileSpec{.name = name, .size = extent[name], .host = host, .disk = disk, .cached = false});
+    origins.files.push_back(Origin::elsewhere(fmt::format("{}: file '{}'", path, name)));
+  }
+
+  const std::vector<std::string> names = app_names(jobs);
+  for (std::size_t i = 0; i < jobs.jobs.size(); ++i) {
+    const FioJob& job = jobs.jobs[i];
+    AppSpec app;
+    app.name = names[i];
+    app.host = host;
+    for (const std::size_t before : job.after) app.after.push_back(names[before]);
+    TaskSpec& task = app.tasks.emplace_back();
+    task.name = "io";
+    for (const std::string& name : job.files) task.accesses.push_back(access_of(job, i, name, regions[i]));
+    task.fsync = writes(job.rw) && (job.end_fsync || job.fsync_on_close);
+    if (job.unlink) task.deletes = job.files;
+    origins.apps.push_back(Origin::elsewhere(place_of(jobs, job)));
+    origins.app_tasks.push_back({Origin::elsewhere(place_of(jobs, job))});
+    s.apps.push_back(std::move(app));
+  }
+}
+
+}  // namespace pagecache::scenario

@@ -1,0 +1,211 @@
+// fio job files as scenarios ([fio] file = "JOB.fio", or pcsim run JOB.fio --platform P): each
+// job and clone an application in fio's order, its files on the host's disk as large as the
+// jobs' regions, its I/O an access of each file; what pcsim does not model yet refused, naming
+// the job and the option. Expected values follow fio's rules (HOWTO, filesetup.c), not a run.
+#include <pagecache/error.hpp>
+#include <pagecache/run.hpp>
+#include <pagecache/scenario.hpp>
+#include <pagecache/scenario_file.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace pagecache {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A folder with platform.toml (one host "node", disk "ssd") and the job file `name`.
+struct JobFolder {
+  fs::path dir;
+  explicit JobFolder(const std::string& tag) : dir(fs::temp_directory_path() / ("pcsim-fio-scenario-" + tag)) {
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    write("platform.toml", R"([[hosts]]
+name = "node"
+cores = 4
+memory = "4 GB"
+memory_read_bw = "10 GB/s"
+memory_write_bw = "5 GB/s"
+[[hosts.disks]]
+name = "ssd"
+read_bw = "500 MB/s"
+write_bw = "400 MB/s"
+request_latency = "100 us"
+)");
+  }
+  ~JobFolder() { fs::remove_all(dir); }
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir / name) << text;
+    return (dir / name).string();
+  }
+  Scenario load(const std::string& jobs, std::vector<std::pair<std::string, std::string>> overrides = {}) const {
+    RunInputs in;
+    in.workflow.platform = (dir / "platform.toml").string();
+    in.overrides = std::move(overrides);
+    return load_run_scenario(write("jobs.fio", jobs), in);
+  }
+  std::string error(const std::string& jobs) const {
+    try {
+      load(jobs);
+    } catch (const ConfigError& e) {
+      return e.what();
+    }
+    return "(no error)";
+  }
+};
+
+const AccessSpec& access_of(const Scenario& s, std::size_t app) { return s.apps.at(app).tasks.at(0).accesses.at(0); }
+
+}  // namespace
+
+TEST_CASE("Each fio job and clone is an application, in fio's order, after what its stonewall waits for", "[fio][scenario]") {
+  const JobFolder folder("order");
+  const Scenario s = folder.load(R"([global]
+size=64m
+[w]
+rw=write
+[r]
+stonewall
+rw=read
+numjobs=3
+[last]
+wait_for=w
+)");
+  REQUIRE(s.apps.size() == 5);
+  // Clones keep their job's name: ".N" for clone N (fio numbers them 0, then 2, 1).
+  CHECK(s.apps[0].name == "w");
+  CHECK(s.apps[1].name == "r");
+  CHECK(s.apps[2].name == "r.2");
+  CHECK(s.apps[3].name == "r.1");
+  CHECK(s.apps[4].name == "last");
+  CHECK(s.apps[0].after.empty());
+  for (std::size_t i = 1; i <= 3; ++i) CHECK(s.apps[i].after == std::vector<std::string>{"w"});
+  // A job after a stonewalled one starts with it (fio's start loop passes the stonewall once
+  // every job before it has ended), not after it: it too waits for w alone.
+  CHECK(s.apps[4].after == std::vector<std::string>{"w"});
+}
+
+TEST_CASE("A fio job's files are the host's, as large as its region, and its I/O an access of each", "[fio][scenario]") {
+  const JobFolder folder("files");
+  const Scenario s = folder.load(R"([seq]
+rw=read
+bs=1m
+size=64m
+nrfiles=2
+file_service_type=sequential
+loops=3
+[rand]
+rw=randread
+bs=4k
+size=16m
+offset=1m
+norandommap
+fadvise_hint=0
+)");
+  REQUIRE(s.files.size() == 3);
+  // Generated names $jobname.$jobnum.$filenum; size / nrfiles each; offset + size for rand's.
+  CHECK(s.files[0].name == "seq.0.0");
+  CHECK(s.files[0].size == 32 * 1048576);
+  CHECK(s.files[1].name == "seq.0.1");
+  CHECK(s.files[2].name == "rand.0.0");
+  CHECK(s.files[2].size == 17 * 1048576);
+  for (const FileSpec& f : s.files) {
+    CHECK(f.host == "node");
+    CHECK(f.disk == "ssd");
+    CHECK_FALSE(f.cached);  // laid out, synced and dropped from the cache before the jobs start
+  }
+  const std::vector<AccessSpec>& seq = s.apps[0].tasks[0].accesses;
+  REQUIRE(seq.size() == 2);
+  CHECK(seq[0].file == "seq.0.0");
+  CHECK(seq[1].file == "seq.0.1");
+  CHECK(seq[0].pattern == AccessPattern::Sequential);
+  CHECK(seq[0].request == 1048576);
+  CHECK(seq[0].length == 32 * 1048576);
+  CHECK(seq[0].count == 32);
+  CHECK(seq[0].repeat == 3);
+  CHECK(seq[0].invalidate);  // fio's default invalidate=1, at each loop's open
+  CHECK(seq[0].advice == AccessAdvice::Sequential);  // fadvise_hint=1 and a sequential rw
+  const AccessSpec& rand = access_of(s, 1);
+  CHECK(rand.pattern == AccessPattern::Random);
+  CHECK(rand.offset == 1048576);
+  CHECK(rand.length == 16 * 1048576);
+  CHECK(rand.count == 4096);
+  CHECK(rand.replacement);      // norandommap: independent draws
+  CHECK_FALSE(rand.reshuffle);  // randrepeat=1: each loop the same offsets
+  CHECK(rand.advice == AccessAdvice::Normal);  // fadvise_hint=0
+}
+
+TEST_CASE("fio's end_fsync, unlink, io_size and filename map onto the task", "[fio][scenario]") {
+  const JobFolder folder("task");
+  const Scenario s = folder.load(R"([w]
+rw=randwrite
+filename=data
+size=8m
+io_size=32m
+end_fsync=1
+unlink=1
+)");
+  REQUIRE(s.files.size() == 1);
+  CHECK(s.files[0].name == "data");
+  const TaskSpec& t = s.apps[0].tasks[0];
+  CHECK(t.fsync);
+  CHECK(t.deletes == std::vector<std::string>{"data"});
+  CHECK(t.accesses[0].mode == AccessMode::Write);
+  CHECK(t.accesses[0].count == 8192);  // io_size / bs: four passes over the 8 MiB region
+}
+
+TEST_CASE("What pcsim does not model yet is refused, naming the job file, line, job and option", "[fio][scenario]") {
+  const JobFolder folder("refused");
+  CHECK_THAT(folder.error("[a]\nsize=1m\n\n[mix]\nrw=randrw\nsize=1m\n"),
+             Catch::Contains("jobs.fio:4: job 'mix': rw: mixed reads and writes are not modelled yet"));
+  CHECK_THAT(folder.error("[d]\nsize=1m\ndirect=1\n"), Catch::Contains("job 'd': direct:"));
+  CHECK_THAT(folder.error("[f]\nrw=write\nsize=1m\nfsync=4\n"), Catch::Contains("job 'f': fsync:"));
+  CHECK_THAT(folder.error("[n]\nsize=1m\nnrfiles=4\n"), Catch::Contains("job 'n': nrfiles:"));
+  CHECK_THAT(folder.error("[t]\nsize=1m\nruntime=10\ntime_based\n"), Catch::Contains("job 't': time_based:"));
+  CHECK_THAT(folder.error("[nosize]\nrw=read\n"), Catch::Contains("job 'nosize': size: needed"));
+}
+
+TEST_CASE("A fio job file needs a platform, and is the whole workload", "[fio][scenario]") {
+  const JobFolder folder("platform");
+  const std::string jobs = folder.write("jobs.fio", "[a]\nsize=1m\n");
+  CHECK_THROWS_WITH(load_run_scenario(jobs, RunInputs{}), Catch::Contains("a fio job file runs on a platform: add --platform"));
+  const std::string both = folder.write("both.toml", "platform = \"platform.toml\"\n[fio]\nfile = \"jobs.fio\"\n[[apps]]\nname = \"x\"\n");
+  CHECK_THROWS_WITH(load_scenario(both), Catch::Contains("[apps] cannot come with it"));
+  CHECK_THROWS_WITH(folder.load("[a]\nsize=1m\n", {{"fio.disk", "\"nvme\""}}), Catch::Contains("no disk named 'nvme'"));
+}
+
+TEST_CASE("A job reading what an earlier one wrote reads it from the disk, as fio's invalidate drops it", "[fio][run]") {
+  const JobFolder folder("run");
+  const std::string jobs = R"([w]
+rw=write
+bs=1m
+size=64m
+filename=data
+end_fsync=1
+[r]
+stonewall
+rw=read
+bs=1m
+size=64m
+filename=data
+)";
+  const auto read_row = [](const RunResult& result) {
+    for (const PhaseRow& row : result.timeline) {
+      if (result.names[row.app] == "r" && row.phase == PhaseKind::Read && row.bytes > 0) return row;
+    }
+    FAIL("no read row of job r");
+    return PhaseRow{};
+  };
+  const PhaseRow dropped = read_row(run_scenario(folder.load(jobs)));
+  CHECK(dropped.disk_bytes == 64 * 1048576);
+  CHECK(dropped.cache_bytes == 0);
+  const PhaseRow kept = read_row(run_scenario(folder.load(jobs + "invalidate=0\n")));
+  CHECK(kept.cache_bytes == 64 * 1048576);
+  CHECK(kept.disk_bytes == 0);
+}
+
+}  // namespace pagecache

@@ -6,6 +6,7 @@
 #include <pagecache/scenario.hpp>
 #include <pagecache/scenario_file.hpp>
 
+#include "report/fio_json.hpp"
 #include "status_line.hpp"
 
 #include <fmt/format.h>
@@ -54,7 +55,9 @@ void print_warnings(const pagecache::Scenario& scenario) {
 // What a run printed unless --quiet: its summary and its outputs.
 void print_run(const pagecache::Scenario& named, const pagecache::RunResult& result, const pagecache::RunOutputs& outputs, const RunArgs& args) {
   fmt::print("{}", pagecache::readable_summary(named, result));
-  const std::string extra = std::string(!args.no_report ? ", report.html" : "") + (outputs.writes_trace() ? ", trace.json" : "");
+  if (!named.fio.jobs.empty()) fmt::print("{}", pagecache::report::fio_summary(named, result));
+  const std::string extra = std::string(!args.no_report ? ", report.html" : "") + (outputs.writes_trace() ? ", trace.json" : "") +
+                            (named.fio.jobs.empty() ? "" : ", fio.json");
   if (result.cache_not_recorded.empty()) {
     fmt::print("outputs: {}/{{timeline.csv, memory.csv, cache.csv, summary.json, timing.json{}}}\n", args.out_dir, extra);
   } else {
@@ -94,6 +97,7 @@ int run_command(const ScenarioArgs& s, const RunArgs& args) {
   named.source = scenario.source;
   named.title = scenario.title;
   named.profile = scenario.profile;
+  named.fio = scenario.fio;  // fio.json's jobs
   pagecache::RunResult result;
   try {
     result = pagecache::run_scenario(std::move(scenario), options);

@@ -206,6 +206,25 @@ struct AppSpec {
   std::vector<std::string> after;
 };
 
+/// A fio job that an application of the scenario runs ([fio]), as fio's JSON output names it
+/// (pcsim run writes fio.json for them).
+struct FioJobInfo {
+  std::string app;      ///< the application that runs it
+  std::string jobname;  ///< fio's "jobname" (a clone's is its job's)
+  int groupid = 0;
+  std::int64_t read_ios = 0;   ///< requests it reads, all loops and files together
+  std::int64_t write_ios = 0;  ///< requests it writes
+  /// fio's "job options": the options its own section sets, as written.
+  std::vector<std::pair<std::string, std::string>> options;
+};
+
+/// The fio job file a scenario runs ([fio]); empty otherwise.
+struct FioRun {
+  std::string file;
+  std::vector<std::pair<std::string, std::string>> global_options;  ///< fio's "global options"
+  std::vector<FioJobInfo> jobs;  ///< in fio's order
+};
+
 /// A workflow: a DAG of tasks, each started when its inputs are ready (the tasks that write
 /// them, and those named in `after`, have ended) and its host has the cores it needs free.
 /// A task without a host of its own goes to the first of `hosts` with enough free cores the
@@ -235,6 +254,7 @@ struct Scenario {
   std::vector<FileSetSpec> file_sets;  ///< names distinct from the files'
   std::vector<AppSpec> apps;
   std::vector<WorkflowSpec> workflows;
+  FioRun fio;
   /// What the inputs hold that pcsim read but does not model, and what it took in place of a
   /// value beyond its range: "file:line: what", for the user to see (pcsim prints them).
   std::vector<std::string> warnings;

@@ -65,6 +65,7 @@ pagecache::Scenario names_of(const pagecache::Scenario& s) {
   named.source = s.source;
   named.title = s.title;
   named.profile = s.profile;
+  named.fio = s.fio;  // fio.json's jobs
   named.warnings = s.warnings;
   return named;
 }

@@ -18,7 +18,7 @@ inline constexpr const char* kMarkerText = "written by pcsim; pcsim run --out ma
 /// The names pcsim writes into an output folder (outputs.cpp), the marker included: the only
 /// names it ever deletes.
 inline constexpr const char* kOutputNames[] = {"timeline.csv", "memory.csv", "cache.csv", "summary.json", "timing.json", "report.html",
-                                               "trace.json", kMarkerName};
+                                               "trace.json", "fio.json", kMarkerName};
 
 /// The absolute path of the folder `--out dir` names: links in the folders above it resolved,
 /// its own last name never followed ("." and ".." name the folder they lead to). Throws

@@ -1,6 +1,7 @@
 #include "report/outputs.hpp"
 
 #include "report/csv_field.hpp"
+#include "report/fio_json.hpp"
 #include "report/html_report.hpp"
 #include "report/output_file.hpp"
 #include "report/output_folder.hpp"
@@ -208,6 +209,7 @@ std::vector<std::string> report::write_outputs(const std::string& dir, const Sce
   if (result.cache_not_recorded.empty()) write_cache_csv(staging / "cache.csv", result);
   write_file(staging / "summary.json", summary_json(scenario, result));
   write_file(staging / "timing.json", timing_json(result));
+  if (!scenario.fio.jobs.empty()) write_file(staging / "fio.json", fio_json(scenario, result));
   if (options.report) {
     write_file(staging / "report.html", report::report_html(scenario, result, options.activity != nullptr ? *options.activity : ReportActivity{}));
   }

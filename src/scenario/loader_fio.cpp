@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <map>
+#include <numeric>
 #include <set>
 
 namespace pagecache::scenario {
@@ -151,6 +152,8 @@ void read_fio(TomlReader& r, const std::string& file, Scenario& s, Origins& orig
     throw;
   }
   for (std::string& w : jobs.warnings) s.warnings.push_back(std::move(w));
+  s.fio.file = path;
+  s.fio.global_options = jobs.global_options;
 
   // The files, as large as the regions their jobs use.
   std::map<std::string, std::int64_t> extent;
@@ -185,6 +188,14 @@ void read_fio(TomlReader& r, const std::string& file, Scenario& s, Origins& orig
     for (const std::string& name : job.files) task.accesses.push_back(access_of(job, i, name, regions[i]));
     task.fsync = writes(job.rw) && (job.end_fsync || job.fsync_on_close);
     if (job.unlink) task.deletes = job.files;
+    const std::int64_t ios = std::accumulate(task.accesses.begin(), task.accesses.end(), std::int64_t{0},
+                                             [](std::int64_t n, const AccessSpec& a) { return n + a.count * a.repeat; });
+    s.fio.jobs.push_back(FioJobInfo{.app = app.name,
+                                    .jobname = job.name,
+                                    .groupid = job.group,
+                                    .read_ios = writes(job.rw) ? 0 : ios,
+                                    .write_ios = writes(job.rw) ? ios : 0,
+                                    .options = job.own_options});
     origins.apps.push_back(Origin::elsewhere(place_of(jobs, job)));
     origins.app_tasks.push_back({Origin::elsewhere(place_of(jobs, job))});
     s.apps.push_back(std::move(app));

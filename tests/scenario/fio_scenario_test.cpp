@@ -3,11 +3,13 @@
 // jobs' regions, its I/O an access of each file; what pcsim does not model yet refused, naming
 // the job and the option. Expected values follow fio's rules (HOWTO, filesetup.c), not a run.
 #include <pagecache/error.hpp>
+#include <pagecache/outputs.hpp>
 #include <pagecache/run.hpp>
 #include <pagecache/scenario.hpp>
 #include <pagecache/scenario_file.hpp>
 
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <fstream>
@@ -206,6 +208,60 @@ filename=data
   const PhaseRow kept = read_row(run_scenario(folder.load(jobs + "invalidate=0\n")));
   CHECK(kept.cache_bytes == 64 * 1048576);
   CHECK(kept.disk_bytes == 0);
+}
+
+TEST_CASE("fio.json reports each job as fio names it: bytes, requests, runtime and rates", "[fio][run]") {
+  const JobFolder folder("json");
+  Scenario s = folder.load(R"([global]
+size=32m
+[w]
+rw=write
+bs=64k
+[r]
+stonewall
+rw=randread
+bs=4k
+numjobs=2
+)");
+  RunOutputs outputs;
+  RunOptions options;
+  outputs.attach(options);
+  const Scenario named = s;
+  const RunResult result = run_scenario(std::move(s), options);
+  const fs::path out = folder.dir / "out";
+  outputs.write(out.string(), named, result);
+  const nlohmann::json fio = nlohmann::json::parse(std::ifstream(out / "fio.json"));
+  CHECK(fio["global options"]["size"] == "32m");
+  const nlohmann::json& jobs = fio["jobs"];
+  REQUIRE(jobs.size() == 3);
+  CHECK(jobs[0]["jobname"] == "w");
+  CHECK(jobs[1]["jobname"] == "r");
+  CHECK(jobs[2]["jobname"] == "r");  // a clone is reported under its job's name
+  CHECK(jobs[2]["pcsim_application"] == "r.1");
+  CHECK(jobs[0]["groupid"] == 0);
+  CHECK(jobs[1]["groupid"] == 1);
+  CHECK(jobs[2]["groupid"] == 1);
+  CHECK(jobs[1]["job options"]["rw"] == "randread");
+  CHECK(jobs[0]["write"]["io_bytes"] == 32 * 1048576);
+  CHECK(jobs[0]["write"]["total_ios"] == 512);  // 32 MiB of 64 KiB
+  CHECK(jobs[0]["read"]["io_bytes"] == 0);
+  CHECK(jobs[1]["read"]["total_ios"] == 8192);  // each 4 KiB block once (fio's random map)
+  // runtime: the job's rows' span, in ms; bw_bytes and iops over the same seconds.
+  for (std::size_t j = 0; j < 3; ++j) {
+    const char* dir = j == 0 ? "write" : "read";
+    double start = 1e300;
+    double end = 0.0;
+    for (const PhaseRow& row : result.timeline) {
+      if (result.app_name(row) != jobs[j]["pcsim_application"].get<std::string>() || row.bytes == 0) continue;
+      start = std::min(start, row.start);
+      end = std::max(end, row.end);
+    }
+    const double seconds = end - start;
+    CHECK(jobs[j][dir]["runtime"] == std::llround(seconds * 1000.0));
+    CHECK(jobs[j][dir]["bw_bytes"] == std::llround(32.0 * 1048576 / seconds));
+    CHECK(jobs[j][dir]["bw"] == std::llround(32.0 * 1048576 / seconds) / 1024);
+    CHECK(jobs[j][dir]["iops"].get<double>() == Approx(jobs[j][dir]["total_ios"].get<double>() / seconds));
+  }
 }
 
 }  // namespace pagecache

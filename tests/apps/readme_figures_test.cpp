@@ -382,3 +382,31 @@ TEST_CASE("the README's key-value reads: the share from the cache is the share o
     CHECK(random.at(e).at("cache_bytes") == normal.at(e).at("cache_bytes"));
   }
 }
+
+TEST_CASE("the README's fio jobs: a file read after fio's invalidate comes from the disk, with invalidate=0 from memory", "[cli][docs][fio]") {
+  const auto f = figures(R"(read back at ([0-9.]+) MB/s after fio's `invalidate=1` dropped it from the cache, read again at ([0-9.]+) MB/s )"
+                         R"(with `invalidate=0`, then four jobs of random 4 KiB reads of its first 256 MiB, the first at ([0-9.]+) IOPS)");
+  const fs::path out = fresh("fio-jobs");
+  run_pcsim({"run", (fs::path(PCSIM_SOURCE_DIR) / "scenarios/examples/fio-jobs.toml").string(), "--out", out.string(), "--quiet"});
+  const std::string fio = slurp(out / "fio.json");
+  // The jobs' lines of fio.json, in order: write, read-cold, read-warm, random and its clones.
+  std::vector<std::string> jobs;
+  for (std::size_t at = fio.find("{\"jobname\""); at != std::string::npos; at = fio.find("{\"jobname\"", at + 1)) {
+    jobs.push_back(fio.substr(at, fio.find("\"job_runtime\"", at) - at));
+  }
+  REQUIRE(jobs.size() == 7);
+  const auto field = [](const std::string& job, const std::string& direction, const std::string& key) {
+    const std::string part = job.substr(job.find("\"" + direction + "\": {"));
+    const std::size_t at = part.find("\"" + key + "\": ") + key.size() + 4;
+    return std::stod(part.substr(at, part.find_first_of(",}", at) - at));
+  };
+  check_figure("read-cold MB/s", f[0], field(jobs[1], "read", "bw_bytes") / 1e6);
+  check_figure("read-warm MB/s", f[1], field(jobs[2], "read", "bw_bytes") / 1e6);
+  check_figure("random IOPS", f[2], field(jobs[3], "read", "iops"));
+  // The physics: the cold read from the disk, the warm one from memory, each 2 GiB.
+  const auto rows = read_csv((out / "timeline.csv").string());
+  for (const auto& row : rows) {
+    if (row.at("app") == "read-cold" && row.at("bytes") != "0") CHECK(row.at("disk_bytes") == std::to_string(std::int64_t{2} << 30));
+    if (row.at("app") == "read-warm" && row.at("bytes") != "0") CHECK(row.at("cache_bytes") == std::to_string(std::int64_t{2} << 30));
+  }
+}

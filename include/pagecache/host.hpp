@@ -130,9 +130,10 @@ class Host {
   /// task for a request not within the file or when the read cannot proceed.
   /// Sequential requests (each starting where the one before ended, the first at 0) are read
   /// ahead as the kernel does, in windows up to the disk's read_ahead, as `advice` allows;
-  /// readahead pages go to the inactive list untouched.
+  /// readahead pages go to the inactive list untouched. `direct`: O_DIRECT, each request one
+  /// device request of its bytes, the page cache neither read nor filled (nor the advice used).
   Task<IoResult> read_ranges(FileRef file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupRef group = {},
-                             ReadAdvice advice = ReadAdvice::Normal);
+                             ReadAdvice advice = ReadAdvice::Normal, bool direct = false);
   /// posix_fadvise(POSIX_FADV_WILLNEED) on `range` of a local file: what is not cached of its
   /// pages is read into the page cache in the background (the call returns at once), as
   /// readahead is: one device request, the pages untouched at the inactive list's MRU end.
@@ -145,8 +146,10 @@ class Host {
   /// the pages it touches: where they are not cached, new dirty data (as write_file's chunks,
   /// under the same dirty throttling); where they are, in place (clean pages become dirty,
   /// dirty pages stay so). An append is a write past what was written before: the file's size
-  /// is what it ends at. Errors as read_ranges'.
-  Task<IoResult> write_ranges(FileRef file, std::function<bool(ByteRange&)> next, GroupRef group = {});
+  /// is what it ends at. Errors as read_ranges'. `direct`: O_DIRECT, each request one device
+  /// request of its bytes, after which the clean cached data of its pages is dropped (the
+  /// kernel invalidates them; dirty data there stays, not modelled).
+  Task<IoResult> write_ranges(FileRef file, std::function<bool(ByteRange&)> next, GroupRef group = {}, bool direct = false);
   /// Writes the file's whole size in chunks of `chunk_size` bytes. A file held by range (see
   /// read_ranges) is written in place from its start. `direct`: O_DIRECT (on an
   /// NFS mount the same as without: there is no client write cache). Errors as read_file's.

@@ -118,16 +118,17 @@ Task<IoResult> Host::read_file(FileRef file, std::int64_t chunk_size, bool direc
   return impl_->io.read_file(impl_->id(file), chunk_size, direct, impl_->group(group));
 }
 
-Task<IoResult> Host::read_ranges(FileRef file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupRef group, ReadAdvice advice) {
-  return impl_->io.read_ranges(impl_->id(file), std::move(next), buffer, impl_->group(group), advice);
+Task<IoResult> Host::read_ranges(FileRef file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupRef group, ReadAdvice advice,
+                                 bool direct) {
+  return impl_->io.read_ranges(impl_->id(file), std::move(next), buffer, impl_->group(group), advice, direct);
 }
 
 void Host::will_need(FileRef file, ByteRange range) { impl_->io.will_need(impl_->id(file), range); }
 
 std::int64_t Host::dont_need(FileRef file, ByteRange range) { return impl_->io.dont_need(impl_->id(file), range); }
 
-Task<IoResult> Host::write_ranges(FileRef file, std::function<bool(ByteRange&)> next, GroupRef group) {
-  return impl_->io.write_ranges(impl_->id(file), std::move(next), impl_->group(group));
+Task<IoResult> Host::write_ranges(FileRef file, std::function<bool(ByteRange&)> next, GroupRef group, bool direct) {
+  return impl_->io.write_ranges(impl_->id(file), std::move(next), impl_->group(group), direct);
 }
 
 Task<IoResult> Host::write_file(FileRef file, std::int64_t chunk_size, bool direct, GroupRef group) {

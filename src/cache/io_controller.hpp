@@ -73,13 +73,14 @@ class IoController {
   /// From its start the file's page cache is held by range (PageCache::track_ranges).
   /// Throws ConfigError at the call for a remote file or a buffer <= 0, SimulationError from
   /// the task for a request outside the file or when the read cannot proceed.
+  /// `direct`: O_DIRECT (Host::read_ranges).
   Task<IoResult> read_ranges(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group = kRootGroup,
-                             ReadAdvice advice = ReadAdvice::Normal);
+                             ReadAdvice advice = ReadAdvice::Normal, bool direct = false);
   /// Writes parts of a local file, the requests `next` yields one after the other, each the
   /// pages it touches as a chunk of write_file (Algorithm 3, dirty throttling): holes become
   /// new dirty data, cached parts are written in place (PageCache::write_range). The file is
   /// held by range from its start. Errors as read_ranges'.
-  Task<IoResult> write_ranges(FileId file, std::function<bool(ByteRange&)> next, GroupId group = kRootGroup);
+  Task<IoResult> write_ranges(FileId file, std::function<bool(ByteRange&)> next, GroupId group = kRootGroup, bool direct = false);
   /// posix_fadvise(POSIX_FADV_WILLNEED): the holes of `range` of a local file are read into the
   /// page cache by a process of their own (the call returns at once), as readahead (untouched,
   /// at the inactive list's MRU end), one device request.
@@ -142,6 +143,9 @@ class IoController {
   /// read_ranges once checked.
   Task<IoResult> read_ranges_of(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group, ReadAdvice advice);
   Task<IoResult> write_ranges_of(FileId file, std::function<bool(ByteRange&)> next, GroupId group);
+  /// read_ranges and write_ranges with O_DIRECT, once checked: the device alone, request by
+  /// request (a write then drops the clean cached data of its pages).
+  Task<IoResult> ranges_direct(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group, bool writing);
   /// will_need's process.
   Task<void> prefetch(FileId file, ByteRange range);
   /// A local file's read (read_file).

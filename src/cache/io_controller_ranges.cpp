@@ -33,11 +33,47 @@ constexpr double kRequestTimeBatch = 1e-3;
 
 }  // namespace
 
-Task<IoResult> IoController::read_ranges(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group, ReadAdvice advice) {
+Task<IoResult> IoController::read_ranges(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group, ReadAdvice advice,
+                                         bool direct) {
   const FileInfo& info = (*files_)[file];
   if (buffer <= 0) throw ConfigError(fmt::format("'{}': a read's buffer must be > 0 bytes, got {}", info.name, buffer));
   if (info.is_remote()) throw ConfigError(fmt::format("'{}': reads of parts of a file are of local files only", info.name));
+  if (direct) return ranges_direct(file, std::move(next), buffer, group, false);
   return read_ranges_of(file, std::move(next), buffer, group, advice);
+}
+
+Task<IoResult> IoController::ranges_direct(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group, bool writing) {
+  const double start = sim_->now();
+  const FileInfo& info = (*files_)[file];
+  const Disk* const disk = info.disk;
+  // The application's buffer is the only memory it takes; a write's comes from it.
+  co_await take_buffer(buffer, group, file, writing ? "writing" : "reading");
+  if (writing) cache_->track_ranges(file);
+  IoResult result{.start = start};
+  double pending = 0.0;  // request time not yet slept
+  for (ByteRange r; next(r);) {
+    check_within(info, r, writing ? "write" : "read");
+    ++chunks_;
+    pending += request_time_;
+    if (pending >= kRequestTimeBatch) {
+      co_await sim_->sleep(pending);
+      pending = 0.0;
+    }
+    // One request at a time, DMA to or from the buffer: the device's request rate bounds it.
+    if (writing) {
+      co_await disk->write(r.length, r.length);
+      // What the page cache held of those pages is stale: dropped (invalidate_inode_pages2_range).
+      cache_->drop_clean_range(file, pages_of(r, info.size).offset, pages_of(r, info.size).length);
+    } else {
+      co_await disk->read(r.length, kUnbounded, r.length);
+    }
+    result.bytes += r.length;
+    result.disk_bytes += r.length;
+  }
+  if (pending > 0.0) co_await sim_->sleep(pending);
+  cache_->release_anonymous(buffer, group);
+  result.end = sim_->now();
+  co_return result;
 }
 
 Task<IoResult> IoController::read_ranges_of(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group,
@@ -89,9 +125,10 @@ Task<IoResult> IoController::read_ranges_of(FileId file, std::function<bool(Byte
   co_return result;
 }
 
-Task<IoResult> IoController::write_ranges(FileId file, std::function<bool(ByteRange&)> next, GroupId group) {
+Task<IoResult> IoController::write_ranges(FileId file, std::function<bool(ByteRange&)> next, GroupId group, bool direct) {
   const FileInfo& info = (*files_)[file];
   if (info.is_remote()) throw ConfigError(fmt::format("'{}': writes of parts of a file are of local files only", info.name));
+  if (direct) return ranges_direct(file, std::move(next), kPageSize, group, true);
   return write_ranges_of(file, std::move(next), group);
 }
 

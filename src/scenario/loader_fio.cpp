@@ -39,7 +39,6 @@ void refuse_unmodelled(const FioJobFile& f, const FioJob& job) {
   no(job.rw_step != 0 && !(is_random(job.rw) && job.rw_step == 1), "rw", "an offset step (rw=...:N) is not modelled yet");
   no(job.files.size() > 1 && job.file_service != FioFileService::Sequential, "nrfiles",
      "several files served in turn are not modelled yet (file_service_type=sequential is)");
-  no(job.direct, "direct", "direct I/O of parts of files is not modelled yet");
   no(job.fsync > 0 || job.fdatasync > 0, job.fsync > 0 ? "fsync" : "fdatasync", "a sync every N writes is not modelled yet");
   no(job.time_based, "time_based", "runs bounded by time are not modelled yet");
   no(job.thinktime > 0.0, "thinktime", "think time between requests is not modelled yet");
@@ -187,6 +186,7 @@ void read_fio(TomlReader& r, const std::string& file, Scenario& s, Origins& orig
     task.name = "io";
     for (const std::string& name : job.files) task.accesses.push_back(access_of(job, i, name, regions[i]));
     task.fsync = writes(job.rw) && (job.end_fsync || job.fsync_on_close);
+    task.direct_io = job.direct;
     if (job.unlink) task.deletes = job.files;
     const std::int64_t ios = std::accumulate(task.accesses.begin(), task.accesses.end(), std::int64_t{0},
                                              [](std::int64_t n, const AccessSpec& a) { return n + a.count * a.repeat; });

@@ -127,7 +127,9 @@ void Plans::plan_accesses(const TaskSpec& task, TaskPlan& plan, const std::vecto
   for (const AccessSpec& a : task.accesses) {
     if (a.repeat < 1) throw ConfigError(fmt::format("task '{}': an access needs repeat >= 1", task.name));
     if (!a.file.empty()) {
-      if (task.direct_io) throw ConfigError(fmt::format("task '{}': accesses of parts of a file with direct_io are not modelled", task.name));
+      if (task.direct_io && a.mode == AccessMode::Append) {
+        throw ConfigError(fmt::format("task '{}': appends through O_DIRECT (direct_io) are not modelled yet", task.name));
+      }
       plan_file_access(task, a, accesses_.emplace_back(), placed, files);
       epochs_ += static_cast<std::size_t>(a.repeat);
       continue;

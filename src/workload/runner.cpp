@@ -290,10 +290,10 @@ Task<void> Runner::access_file(const std::string& app, const TaskPlan& plan, con
     stream.start_epoch(access.reshuffle ? epoch - 1 : 0);
     Moved sum;
     if (access.writing) {
-      add_moved(sum, co_await host.write_ranges(stored.ref, next, plan.group));
+      add_moved(sum, co_await host.write_ranges(stored.ref, next, plan.group, plan.direct_io));
       if (plan.fsync) co_await host.fsync(stored.ref);
     } else {
-      add_moved(sum, co_await host.read_ranges(stored.ref, next, access.requests.request, plan.group, access.advice));
+      add_moved(sum, co_await host.read_ranges(stored.ref, next, access.requests.request, plan.group, access.advice, plan.direct_io));
     }
     const std::string label = fmt::format("{}:{}[epoch {}]", plans_.task_name(plan), name, epoch);
     const PhaseKind kind = access.writing ? PhaseKind::Write : PhaseKind::Read;

@@ -155,6 +155,8 @@ unlink=1
   CHECK(s.files[0].name == "data");
   const TaskSpec& t = s.apps[0].tasks[0];
   CHECK(t.fsync);
+  CHECK_FALSE(t.direct_io);
+  CHECK(folder.load("[d]\nsize=1m\ndirect=1\n").apps[0].tasks[0].direct_io);  // O_DIRECT, request by request
   CHECK(t.deletes == std::vector<std::string>{"data"});
   CHECK(t.accesses[0].mode == AccessMode::Write);
   CHECK(t.accesses[0].count == 8192);  // io_size / bs: four passes over the 8 MiB region
@@ -164,7 +166,6 @@ TEST_CASE("What pcsim does not model yet is refused, naming the job file, line, 
   const JobFolder folder("refused");
   CHECK_THAT(folder.error("[a]\nsize=1m\n\n[mix]\nrw=randrw\nsize=1m\n"),
              Catch::Contains("jobs.fio:4: job 'mix': rw: mixed reads and writes are not modelled yet"));
-  CHECK_THAT(folder.error("[d]\nsize=1m\ndirect=1\n"), Catch::Contains("job 'd': direct:"));
   CHECK_THAT(folder.error("[f]\nrw=write\nsize=1m\nfsync=4\n"), Catch::Contains("job 'f': fsync:"));
   CHECK_THAT(folder.error("[n]\nsize=1m\nnrfiles=4\n"), Catch::Contains("job 'n': nrfiles:"));
   CHECK_THAT(folder.error("[t]\nsize=1m\nruntime=10\ntime_based\n"), Catch::Contains("job 't': time_based:"));

@@ -254,5 +254,38 @@ TEST_CASE("reshuffle is a key of random patterns, invalidate of accesses of one 
                     Catch::Contains("reshuffle") && Catch::Contains("a key of pattern = \"random\""));
 }
 
+TEST_CASE("O_DIRECT by parts: each request a device request of its bytes; a write drops the stale cached pages", "[workload][access]") {
+  // A task whose accesses are `accesses`, with direct_io.
+  const auto direct = [](const std::string& accesses) {
+    Scenario s = with_accesses("linux", accesses);
+    s.apps[0].tasks[0].direct_io = true;
+    return epoch_rows(run_scenario(std::move(s)));
+  };
+  // The cached file is read from the disk all the same, one 64 KiB request at a time:
+  // 128 x (100 us + 64 KiB at 500 MB/s).
+  const std::vector<PhaseRow> read = direct("[[apps.tasks.access]]\nfile = \"hot\"\nrequest = \"64 KiB\"\n");
+  REQUIRE(read.size() == 1);
+  CHECK(read[0].cache_bytes == 0);
+  CHECK(read[0].disk_bytes == 8 * kMiB);
+  CHECK(read[0].end - read[0].start == Approx(128 * (kLatency + 65536 / kDiskBw)).epsilon(1e-6));
+  // A direct write over the cached file, then a buffered read of it: its pages were dropped.
+  Scenario s = with_accesses("linux", "[[apps.tasks.access]]\nfile = \"hot\"\nmode = \"write\"\nrequest = \"1 MiB\"\n");
+  s.apps[0].tasks[0].direct_io = true;
+  TaskSpec reader;
+  reader.name = "after";
+  AccessSpec again;
+  again.file = "hot";
+  again.request = kMiB;
+  again.length = 8 * kMiB;
+  again.count = 8;
+  reader.accesses.push_back(again);
+  s.apps[0].tasks.push_back(reader);
+  const std::vector<PhaseRow> rows = epoch_rows(run_scenario(std::move(s)));
+  REQUIRE(rows.size() == 2);
+  CHECK(rows[0].disk_bytes == 8 * kMiB);
+  CHECK(rows[1].cache_bytes == 0);
+  CHECK(rows[1].disk_bytes == 8 * kMiB);
+}
+
 }  // namespace
 }  // namespace pagecache

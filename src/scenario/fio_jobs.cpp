@@ -43,7 +43,6 @@ struct Builder {
 };
 
 bool reads(FioRw rw) { return rw != FioRw::Write && rw != FioRw::RandWrite; }
-bool writes(FioRw rw) { return rw != FioRw::Read && rw != FioRw::RandRead; }
 
 // What fio checks or changes once a job's options are all read (init.c fixup_options).
 void Builder::check(Draft& d, const RawSection& s) {
@@ -56,9 +55,11 @@ void Builder::check(Draft& d, const RawSection& s) {
     warnings.add("iodepth", fmt::format("{}job '{}': iodepth={} with the synchronous engine {}: fio caps it at 1, and so does pcsim",
                                         fio::where(path, s.line), s.name, job.iodepth, job.ioengine));
   }
-  // fio: a job that reads lays out its files with data first.
+  // fio: a job that reads lays out its files with data first; pre-reading replaces invalidating.
   if (reads(job.rw)) job.overwrite = true;
-  const std::int64_t min_bs = std::min(reads(job.rw) ? job.bs_read : INT64_MAX, writes(job.rw) ? job.bs_write : INT64_MAX);
+  if (job.pre_read) job.invalidate = false;
+  // fio.h td_min_bs: the smallest of the read, write and trim sizes, whatever the job does.
+  const std::int64_t min_bs = std::min({job.bs_read, job.bs_write, d.bs_trim});
   if (job.size > 0 && job.size < min_bs) {
     fail(s, "size", fmt::format("job '{}': size={} is smaller than the block size ({} bytes; fio: size too small)", s.name, job.size, min_bs));
   }

@@ -82,7 +82,7 @@ void set_rw(Draft& d, const RawOption& o, Warnings&) {
 }
 
 // Block sizes per direction, as bs and bsrange store them: an empty piece keeps that
-// direction's size; a lone value applies to every direction; the trim slot is checked, not kept.
+// direction's size; the last piece given applies to the directions after it too.
 template <typename Parse>
 void set_block_sizes(Draft& d, const RawOption& o, std::vector<std::string> pieces, Parse parse) {
   if (pieces.size() == 4 && pieces.back().empty()) pieces.pop_back();
@@ -94,8 +94,10 @@ void set_block_sizes(Draft& d, const RawOption& o, std::vector<std::string> piec
     if (sizes[i] < 1 || sizes[i] > kMaxBlock) fail(o, fmt::format("{}: a block size is from 1 byte to 2 GiB", label(o)));
   }
   if (sizes[0] > 0) d.job.bs_read = sizes[0];
-  if (pieces.size() == 1 && sizes[0] > 0) d.job.bs_write = sizes[0];
-  if (pieces.size() > 1 && sizes[1] > 0) d.job.bs_write = sizes[1];
+  if (pieces.size() == 1 && sizes[0] > 0) d.job.bs_write = d.bs_trim = sizes[0];
+  if (pieces.size() == 2 && sizes[1] > 0) d.job.bs_write = d.bs_trim = sizes[1];
+  if (pieces.size() == 3 && sizes[1] > 0) d.job.bs_write = sizes[1];
+  if (pieces.size() == 3 && sizes[2] > 0) d.bs_trim = sizes[2];
 }
 
 void set_bs(Draft& d, const RawOption& o, Warnings&) {

@@ -22,6 +22,7 @@ struct Draft {
   int kb_base = 1024;
   std::int64_t nrfiles = 1;
   std::int64_t numjobs = 1;
+  std::int64_t bs_trim = 4096;  ///< the trim slot of bs: fio's minimum block size counts it
   std::string filename_format;           ///< "" for fio's $jobname.$jobnum.$filenum
   std::vector<std::string> directories;  ///< directory=, split on ':'
   std::vector<std::string> explicit_files;  ///< filename= entries, inherited ones first, each prefixed when given

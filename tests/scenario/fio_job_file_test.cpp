@@ -125,6 +125,10 @@ TEST_CASE("fio sizes fio would misread are refused: fractions, unknown suffixes,
   CHECK_THAT(fio_error("[j]\nsize=\n"), Catch::Contains("option 'size' needs a value"));
   // init.c fixup_options: size below the block size is an error in fio too.
   CHECK_THAT(fio_error("[j]\nsize=2k\n"), Catch::Contains("t.fio:1: job 'j': size=2048 is smaller than the block size (4096"));
+  // The smallest of the read, write and trim sizes counts, whatever the job does (fio.h
+  // td_min_bs): with bs=8k,32k, the trim size stays 4096, so 4k is enough for a read job.
+  CHECK(fio_read("[j]\nbs=8k,32k,\nsize=4k\n").jobs[0].size == 4096);
+  CHECK_THAT(fio_error("[j]\nbs=8k,32k\nsize=4k\n"), Catch::Contains("smaller than the block size (8192"));
   CHECK_THAT(fio_error("[j]\nbs=0\n"), Catch::Contains("from 1 byte"));
 }
 
@@ -221,6 +225,8 @@ TEST_CASE("fio options pcsim reads: syncs, loops, seeds, hints, engines", "[fio]
   CHECK(j.ioengine == "sync");
   CHECK_FALSE(j.invalidate);
   CHECK(j.pre_read);
+  // init.c fixup_options: pre_read turns invalidate off.
+  CHECK_FALSE(fio_read("[j]\npre_read=1\n").jobs[0].invalidate);
   CHECK(j.create_on_open);
   CHECK(j.unlink);
   CHECK(j.offset == 1 << 20);

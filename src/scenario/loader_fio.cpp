@@ -46,8 +46,8 @@ void refuse_unmodelled(const FioJobFile& f, const FioJob& job) {
   no(job.ramp_time > 0.0, "ramp_time", "a ramp time is not modelled yet");
   no(job.pre_read, "pre_read", "reading the files before the job is not modelled yet");
   no(job.create_on_open, "create_on_open", "files made by the job's open are not modelled yet");
-  no(job.files.size() > 1 && (job.io_size > 0 || job.number_ios > 0), job.io_size > 0 ? "io_size" : "number_ios",
-     "a bound on the I/O of a job of several files is not modelled yet");
+  no(job.files.size() > 1 && (job.io_size > 0 || job.number_ios > 0 || job.runtime > 0.0),
+     job.io_size > 0 ? "io_size" : job.number_ios > 0 ? "number_ios" : "runtime", "a bound on the I/O of a job of several files is not modelled yet");
   no(job.size_percent > 0 || job.offset_percent > 0 || job.offset_increment_percent > 0 || job.io_size_percent > 0, "size",
      "sizes in percent of existing files are not modelled (pcsim's files exist only in the simulation)");
 }
@@ -93,6 +93,7 @@ AccessSpec access_of(const FioJob& job, std::size_t index, const std::string& fi
   a.seed = job.randseed + index;
   a.reshuffle = a.pattern != AccessPattern::Random || !job.randrepeat;
   a.invalidate = job.invalidate;
+  a.runtime = job.runtime;
   a.repeat = job.loops;
   if (a.mode == AccessMode::Read) {
     switch (job.fadvise) {

@@ -55,6 +55,7 @@ void write_file_access(std::string& out, const std::string& table, const AccessS
     if (a.pattern == AccessPattern::Random) out += fmt::format("seed = {}\nreplacement = {}\nreshuffle = {}\n", a.seed, a.replacement, a.reshuffle);
     out += fmt::format("count = {}\n", a.count);
   }
+  if (a.runtime > 0.0) out += fmt::format("runtime = {}\n", quoted(units::format_duration(a.runtime)));
   out += fmt::format("invalidate = {}\nrepeat = {}\n", a.invalidate, a.repeat);
 }
 

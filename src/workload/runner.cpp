@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <unordered_map>
 #include <utility>
 
@@ -282,8 +283,10 @@ Task<void> Runner::access_file(const std::string& app, const TaskPlan& plan, con
                                   plans_.task_name(plan), name, stored.host->name(), host.name()));
   }
   RequestStream stream(access.requests);
-  std::function<bool(ByteRange&)> next = [&stream](ByteRange& r) { return stream.next(r); };
-  for (std::int64_t epoch = 1; epoch <= access.repeat; ++epoch) {
+  // fio's runtime: checked before each request, over all epochs.
+  const double deadline = access.runtime > 0.0 ? sim_.now() + access.runtime : std::numeric_limits<double>::infinity();
+  std::function<bool(ByteRange&)> next = [&stream, this, deadline](ByteRange& r) { return sim_.now() < deadline && stream.next(r); };
+  for (std::int64_t epoch = 1; epoch <= access.repeat && sim_.now() < deadline; ++epoch) {
     if (!deleted_.empty()) deleted_.note_access(access.file, !access.writing, app, plans_.task_name(plan), ends_app);
     if (access.invalidate) drop_region(host, stored.ref, access.requests);
     const double start = sim_.now();

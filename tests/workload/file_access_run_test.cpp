@@ -287,5 +287,19 @@ TEST_CASE("O_DIRECT by parts: each request a device request of its bytes; a writ
   CHECK(rows[1].disk_bytes == 8 * kMiB);
 }
 
+TEST_CASE("runtime stops an access's requests that long after it began, over its epochs (fio's runtime)", "[workload][access]") {
+  // 64 MiB in 1 MiB requests takes about 0.14 s an epoch from the disk; 0.2 s stops epoch 2.
+  const std::vector<PhaseRow> e = epoch_rows(run_scenario(with_accesses(
+      "linux", "[[apps.tasks.access]]\nfile = \"big\"\nrequest = \"1 MiB\"\nrepeat = 5\ninvalidate = true\nruntime = \"0.2 s\"\n")));
+  REQUIRE(e.size() == 2);  // epochs 3 to 5 never start
+  CHECK(e[0].bytes == 64 * kMiB);
+  CHECK(e[1].bytes < 64 * kMiB);
+  CHECK(e[1].bytes > 0);
+  // No request starts at or after the deadline: the last ends within one request of it.
+  const double request = kLatency + kMiB / kDiskBw;
+  CHECK(e[1].end >= e[0].start + 0.2);
+  CHECK(e[1].end < e[0].start + 0.2 + 2 * request);
+}
+
 }  // namespace
 }  // namespace pagecache

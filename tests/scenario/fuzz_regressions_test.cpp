@@ -6,6 +6,7 @@
 
 #include "support/watched_child.hpp"
 
+#include "fio_property.hpp"
 #include "import_property.hpp"
 #include "platform_property.hpp"
 #include "scenario_property.hpp"
@@ -22,7 +23,7 @@
 namespace pagecache {
 namespace {
 
-// The inputs of one reader: .toml (scenario), .json (workflow), .xml (platform).
+// The inputs of one reader: .toml (scenario), .json (workflow), .xml (platform), .fio (fio job file).
 std::vector<std::filesystem::path> regression_inputs(const char* extension = ".toml") {
   std::vector<std::filesystem::path> files;
   for (const auto& entry : std::filesystem::directory_iterator(PAGECACHE_FUZZ_REGRESSIONS_DIR)) {
@@ -51,12 +52,13 @@ TEST_CASE("every input the scenario fuzzer found reads, or is refused with Confi
   }
 }
 
-TEST_CASE("every input the workflow and platform fuzzers found reads, or is refused with ConfigError, and keeps the reader's promises",
+TEST_CASE("every input the workflow, platform and fio fuzzers found reads, or is refused with ConfigError, and keeps the reader's promises",
           "[scenario][fuzz]") {
-  for (const char* extension : {".json", ".xml"}) {
+  for (const char* extension : {".json", ".xml", ".fio"}) {
     for (const auto& path : regression_inputs(extension)) {
       const std::string text = read_file(path);
       const std::string failure = testing::run_watched([&] {
+        if (extension == std::string(".fio")) return fuzz::check_fio_text(text, path.string());
         const bool json = extension == std::string(".json");
         std::string broken = json ? fuzz::check_workflow_text(text, path.string()) : fuzz::check_platform_text(text, path.string());
         if (broken.empty() && (json ? fuzz::reads_as_workflow(text) : fuzz::reads_as_small_platform(text))) {

@@ -185,6 +185,7 @@ void read_fio(TomlReader& r, const std::string& file, Scenario& s, Origins& orig
     for (const std::size_t before : job.after) app.after.push_back(names[before]);
     TaskSpec& task = app.tasks.emplace_back();
     task.name = "io";
+    task.chunk_size = 100'000'000;  // an application's default (it reads no whole file)
     for (const std::string& name : job.files) task.accesses.push_back(access_of(job, i, name, regions[i]));
     task.fsync = writes(job.rw) && (job.end_fsync || job.fsync_on_close);
     task.direct_io = job.direct;

@@ -172,6 +172,17 @@ TEST_CASE("What pcsim does not model yet is refused, naming the job file, line, 
   CHECK_THAT(folder.error("[nosize]\nrw=read\n"), Catch::Contains("job 'nosize': size: needed"));
 }
 
+TEST_CASE("pcsim show of a fio job file prints a scenario that reads back the same", "[fio][scenario]") {
+  const JobFolder folder("show");
+  const Scenario s = folder.load("[w]\nrw=randwrite\nsize=8m\nend_fsync=1\n[r]\nstonewall\nrw=read\nfilename=w.0.0\nsize=8m\ndirect=1\nruntime=5\n");
+  const std::string shown = to_toml(s);
+  const Scenario back = parse_scenario(shown, "shown.toml");
+  CHECK(to_toml(back).substr(to_toml(back).find('\n')) == shown.substr(shown.find('\n')));
+  CHECK(back.apps.size() == 2);
+  CHECK(back.apps[1].after == std::vector<std::string>{"w"});
+  CHECK(back.apps[1].tasks[0].accesses[0].runtime == 5.0);
+}
+
 TEST_CASE("A fio job file needs a platform, and is the whole workload", "[fio][scenario]") {
   const JobFolder folder("platform");
   const std::string jobs = folder.write("jobs.fio", "[a]\nsize=1m\n");

@@ -143,6 +143,8 @@ void read_fio(TomlReader& r, const std::string& file, Scenario& s, Origins& orig
   if (std::none_of(on->disks.begin(), on->disks.end(), [&](const DiskSpec& d) { return d.name == disk; })) {
     fr.fail("disk", fmt::format("host '{}' has no disk named '{}'", host, disk));
   }
+  // fio run in a memory cgroup (systemd-run -p MemoryMax=..., or validate --here --fio).
+  const MemoryLimits limits = read_memory_limits(fr, "the fio run's");
   fr.finish();
   FioJobFile jobs;
   try {
@@ -152,6 +154,9 @@ void read_fio(TomlReader& r, const std::string& file, Scenario& s, Origins& orig
     throw;
   }
   for (std::string& w : jobs.warnings) s.warnings.push_back(std::move(w));
+  if (limits.max > 0 && jobs.jobs.size() > 1) {
+    fr.fail("memory_max", fmt::format("{} jobs in one memory cgroup are not modelled yet (one job is: its application's group)", jobs.jobs.size()));
+  }
   s.fio.file = path;
   s.fio.global_options = jobs.global_options;
 
@@ -182,6 +187,8 @@ void read_fio(TomlReader& r, const std::string& file, Scenario& s, Origins& orig
     AppSpec app;
     app.name = names[i];
     app.host = host;
+    app.memory_max = limits.max;
+    app.memory_high = limits.high;
     for (const std::size_t before : job.after) app.after.push_back(names[before]);
     TaskSpec& task = app.tasks.emplace_back();
     task.name = "io";

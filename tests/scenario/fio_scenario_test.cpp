@@ -190,6 +190,10 @@ TEST_CASE("A fio job file needs a platform, and is the whole workload", "[fio][s
   const std::string both = folder.write("both.toml", "platform = \"platform.toml\"\n[fio]\nfile = \"jobs.fio\"\n[[apps]]\nname = \"x\"\n");
   CHECK_THROWS_WITH(load_scenario(both), Catch::Contains("[apps] cannot come with it"));
   CHECK_THROWS_WITH(folder.load("[a]\nsize=1m\n", {{"fio.disk", "\"nvme\""}}), Catch::Contains("no disk named 'nvme'"));
+  // A fio run in a memory cgroup: one job's application is its group; several are refused.
+  CHECK(folder.load("[a]\nsize=1m\n", {{"fio.memory_max", "\"1 GB\""}}).apps[0].memory_max == 1'000'000'000);
+  CHECK_THROWS_WITH(folder.load("[a]\nsize=1m\nnumjobs=2\n", {{"fio.memory_max", "\"1 GB\""}}),
+                    Catch::Contains("2 jobs in one memory cgroup are not modelled yet"));
 }
 
 TEST_CASE("A job reading what an earlier one wrote reads it from the disk, as fio's invalidate drops it", "[fio][run]") {

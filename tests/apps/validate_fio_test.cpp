@@ -1,0 +1,147 @@
+// pcsim validate --here --fio, run as a user runs it, with the real fio (scripts/install-deps
+// installs it): a tiny job file run twice in a scratch folder pcsim makes and removes, its
+// reports kept and scored, the scores equal to what fio's own reports say, and --from scoring
+// the kept folder again; a job file pcsim refuses, and a missing --dir, refused before fio runs.
+#include "support/files.hpp"
+#include "support/pcsim_cli.hpp"
+
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using pagecache::testing::names;
+using pagecache::testing::pcsim;
+using pagecache::testing::scratch;
+using pagecache::testing::slurp;
+
+namespace {
+
+// 8 MiB written and synced, then (after a stonewall) read: a run of well under a second.
+constexpr const char* kTinyJob = R"([global]
+bs=1m
+size=8m
+
+[write]
+rw=write
+end_fsync=1
+
+[read]
+stonewall
+rw=read
+)";
+
+const std::string kDevPlatform = std::string(PCSIM_SOURCE_DIR) + "/platforms/dev-vm-2026-12-05.toml";
+
+fs::path write_job(const fs::path& dir, const std::string& name, const std::string& text) {
+  std::ofstream(dir / name) << text;
+  return dir / name;
+}
+
+double median_of(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 == 1 ? v[v.size() / 2] : (v[v.size() / 2 - 1] + v[v.size() / 2]) / 2.0;
+}
+
+}  // namespace
+
+TEST_CASE("validate --here --fio runs the real fio in a folder of its own, keeps its reports and scores pcsim against them", "[fio][here]") {
+  const fs::path root = scratch("validate-fio");
+  const fs::path job = write_job(root, "tiny.fio", kTinyJob);
+  const fs::path dir = root / "run";
+  fs::create_directories(dir);
+  const fs::path out = root / "out";
+  const auto run = pcsim(fmt::format("validate --here --fio '{}' --dir '{}' --platform '{}' --repeat 2 --out '{}'", job.string(), dir.string(),
+                                     kDevPlatform, out.string()));
+  INFO(run.output);
+  REQUIRE(run.status == 0);
+  CHECK(run.output.find("tiny.fio") != std::string::npos);
+  CHECK(run.output.find(" write ") != std::string::npos);
+  CHECK(run.output.find(" read ") != std::string::npos);
+  CHECK(names(dir).empty());  // the scratch folder and fio's files are gone
+
+  // fio really ran: its reports hold its own fields for both jobs, in the job file's order.
+  std::vector<json> reports;
+  for (int rep = 1; rep <= 2; ++rep) {
+    const json r = json::parse(slurp(out / fmt::format("fio-tiny-{}.json", rep)));
+    CHECK(r.at("fio version").get<std::string>().rfind("fio-", 0) == 0);
+    REQUIRE(r.at("jobs").size() == 2);
+    CHECK(r["jobs"][0]["jobname"] == "write");
+    CHECK(r["jobs"][0]["write"]["io_bytes"] == 8 << 20);
+    CHECK(r["jobs"][1]["jobname"] == "read");
+    CHECK(r["jobs"][1]["read"]["io_bytes"] == 8 << 20);
+    reports.push_back(r);
+  }
+  CHECK(slurp(out / "tiny.fio") == kTinyJob);
+  CHECK(fs::exists(out / "platform.toml"));
+
+  // The scores' measured figures are the reports' bw_bytes, and their median.
+  const json scores = json::parse(slurp(out / "fio-scores.json"));
+  REQUIRE(scores.at("scores").size() == 2);
+  const std::vector<std::pair<int, std::string>> expected{{0, "write"}, {1, "read"}};
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    const auto& [j, direction] = expected[i];
+    const json& s = scores["scores"][i];
+    CHECK(s["job_file"] == "tiny.fio");
+    CHECK(s["job"] == direction);
+    CHECK(s["direction"] == direction);
+    std::vector<double> measured;
+    for (const json& r : reports) measured.push_back(r["jobs"][j][direction]["bw_bytes"].get<double>());
+    CHECK(s["measured_bytes_per_second"].get<std::vector<double>>() == measured);
+    CHECK(s["median_bytes_per_second"].get<double>() == Approx(median_of(measured)));
+    CHECK(s["pcsim_bytes_per_second"].get<double>() > 0.0);
+    const double error = s["pcsim_bytes_per_second"].get<double>() / median_of(measured) - 1.0;
+    CHECK(s["error"].get<double>() == Approx(error));
+    const double spread = s["spread"].get<double>();
+    CHECK(s["verdict"] == (std::abs(error) <= std::max(0.15, spread) ? "within" : "off"));
+  }
+
+  // --from scores the kept folder again, without fio: the same table.
+  const auto again = pcsim(fmt::format("validate --from '{}'", out.string()));
+  INFO(again.output);
+  CHECK(again.status == 0);
+  CHECK(again.output == slurp(out / "report.txt"));
+  CHECK(run.output.rfind(again.output, 0) == 0);
+
+  // A kept report broken: --from names it.
+  std::ofstream(out / "fio-tiny-2.json") << "{\"jobs\": [";
+  const auto broken = pcsim(fmt::format("validate --from '{}'", out.string()));
+  CHECK(broken.status == 2);
+  CHECK(broken.output.find("fio-tiny-2.json") != std::string::npos);
+  fs::remove_all(root);
+}
+
+TEST_CASE("validate --here --fio refuses a job file pcsim refuses before fio runs", "[fio][here]") {
+  const fs::path root = scratch("validate-fio-refused");
+  const fs::path job = write_job(root, "mixed.fio", "[mixed]\nrw=randrw\nsize=8m\n");
+  const fs::path dir = root / "run";
+  fs::create_directories(dir);
+  const fs::path out = root / "out";
+  const auto run = pcsim(fmt::format("validate --here --fio '{}' --dir '{}' --platform '{}' --repeat 1 --out '{}'", job.string(), dir.string(),
+                                     kDevPlatform, out.string()));
+  INFO(run.output);
+  CHECK(run.status == 2);
+  CHECK(run.output.find("mixed.fio") != std::string::npos);
+  CHECK(names(dir).empty());
+  CHECK(!fs::exists(out));
+  fs::remove_all(root);
+}
+
+TEST_CASE("validate --here --fio refuses a --dir that does not exist, naming it", "[fio][here]") {
+  const fs::path root = scratch("validate-fio-nodir");
+  const fs::path job = write_job(root, "tiny.fio", kTinyJob);
+  const auto run = pcsim(fmt::format("validate --here --fio '{}' --dir '{}/missing' --platform '{}' --out '{}/out'", job.string(), root.string(),
+                                     kDevPlatform, root.string()));
+  INFO(run.output);
+  CHECK(run.status == 2);
+  CHECK(run.output.find("--dir '" + root.string() + "/missing'") != std::string::npos);
+  CHECK(!fs::exists(root / "out"));
+  fs::remove_all(root);
+}

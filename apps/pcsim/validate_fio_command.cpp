@@ -3,6 +3,8 @@
 #include "calibrate/measure.hpp"
 #include "calibrate/real_fio.hpp"
 #include "calibrate/scratch.hpp"
+#include "scenario/fio_job_file.hpp"
+#include "scenario/text_file.hpp"
 #include "status_line.hpp"
 #include "validate/fio_kept.hpp"
 #include "validate/fio_score.hpp"
@@ -12,9 +14,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <sstream>
 
 namespace pcsim {
 
@@ -62,6 +66,32 @@ void check_loads(const std::string& job, const fs::path& dir) {
   pagecache::load_run_scenario(job, inputs);
 }
 
+// fio runs in a folder pcsim makes and removes: a job file whose files lie outside it would
+// leave them (or write over others) where pcsim cleans nothing, and one that includes others
+// would not be whole in its copy kept beside the measurements.
+void check_kept_inside(const std::string& job) {
+  const pagecache::scenario::FioJobFile file = pagecache::scenario::read_fio_job_file(job);
+  for (const pagecache::scenario::FioJob& j : file.jobs) {
+    for (const std::string& name : j.files) {
+      const fs::path path(name);
+      if (path.is_absolute() || std::find(path.begin(), path.end(), "..") != path.end()) {
+        throw pagecache::ConfigError(fmt::format("{}:{}: job '{}': its file '{}' is outside the folder fio runs in (made in --dir and removed "
+                                                 "after): give filename= and directory= relative to it, without '..'",
+                                                 job, j.line, j.name, name));
+      }
+    }
+  }
+  std::istringstream lines(pagecache::scenario::read_text_file(job, "fio job file"));
+  int number = 0;
+  for (std::string line; std::getline(lines, line);) {
+    ++number;
+    const auto first = line.find_first_not_of(" \t");
+    if (first != std::string::npos && line.compare(first, 8, "include ") == 0) {
+      throw pagecache::ConfigError(fmt::format("{}:{}: include: the job file is kept whole beside its measurements: give it without includes", job, number));
+    }
+  }
+}
+
 // The job files as given: each one readable and of a name of its own (their copies share the
 // folder), each loaded by pcsim: with --platform, on it and simulated (its estimated run
 // within --fio-timeout), else on the stand-in (the estimate once calibrated).
@@ -70,6 +100,7 @@ void check_job_files(const ValidateHereOptions& o) {
   for (const std::string& job : o.fio) {
     const std::string name = fs::path(job).filename().string();
     if (!names.insert(name).second) throw pagecache::ConfigError(fmt::format("--fio: two job files named {}: their measurements would share names", name));
+    check_kept_inside(job);
     if (!o.platform.empty()) {
       check_job(job, o.platform, o.fio_timeout);
     } else {

@@ -145,3 +145,42 @@ TEST_CASE("validate --here --fio refuses a --dir that does not exist, naming it"
   CHECK(!fs::exists(root / "out"));
   fs::remove_all(root);
 }
+
+TEST_CASE("validate --here --fio refuses a job file whose files lie outside the folder fio runs in", "[fio][here]") {
+  const fs::path root = scratch("validate-fio-outside");
+  const fs::path elsewhere = root / "elsewhere";
+  const fs::path job = write_job(root, "outside.fio", fmt::format("[r]\nrw=read\nsize=8m\nfilename={}/x\n", elsewhere.string()));
+  const fs::path dir = root / "run";
+  fs::create_directories(dir);
+  const auto run = pcsim(fmt::format("validate --here --fio '{}' --dir '{}' --platform '{}' --out '{}/out'", job.string(), dir.string(),
+                                     kDevPlatform, root.string()));
+  INFO(run.output);
+  CHECK(run.status == 2);
+  CHECK(run.output.find("outside.fio:1: job 'r': its file '" + elsewhere.string() + "/x' is outside") != std::string::npos);
+  CHECK(!fs::exists(elsewhere));
+  CHECK(names(dir).empty());
+  fs::remove_all(root);
+}
+
+TEST_CASE("validate --here --fio stops when fio fails, quoting its stderr, and leaves --dir as it was", "[fio][here]") {
+  const fs::path root = scratch("validate-fio-fails");
+  // pcsim takes directory=sub; fio refuses it, as sub does not exist where it runs.
+  const fs::path job = write_job(root, "sub.fio", "[r]\nrw=read\nsize=8m\ndirectory=sub\n");
+  const fs::path dir = root / "run";
+  fs::create_directories(dir);
+  const auto run = pcsim(fmt::format("validate --here --fio '{}' --dir '{}' --platform '{}' --out '{}/out'", job.string(), dir.string(),
+                                     kDevPlatform, root.string()));
+  INFO(run.output);
+  CHECK(run.status == 1);
+  CHECK(run.output.find("sub.fio failed (exit status 1)") != std::string::npos);
+  CHECK(run.output.find("fio: sub is not a directory") != std::string::npos);
+  CHECK(names(dir).empty());
+  CHECK(!fs::exists(root / "out" / "fio-runs.csv"));
+  fs::remove_all(root);
+}
+
+TEST_CASE("validate's --fio and --fio-timeout are refused without --here, not ignored", "[fio][here]") {
+  const auto run = pcsim("validate --fio x.fio --fio-timeout 10");
+  CHECK(run.status == 2);
+  CHECK(run.output.find("pcsim: validate: --fio, --fio-timeout are options of --here") != std::string::npos);
+}

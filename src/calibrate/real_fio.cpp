@@ -45,14 +45,14 @@ struct Pipe {
 };
 
 // The child's output: stdout and stderr read until both close, or `deadline` passes (then
-// false: still running), or a stop is requested.
-bool drain(int out_fd, int err_fd, std::string& out, std::string& err, Clock::time_point deadline) {
+// false: still running), or (if `stoppable`) a stop is requested.
+bool drain(int out_fd, int err_fd, std::string& out, std::string& err, Clock::time_point deadline, bool stoppable = true) {
   std::array<pollfd, 2> fds{pollfd{out_fd, POLLIN, 0}, pollfd{err_fd, POLLIN, 0}};
   std::array<std::string*, 2> into{&out, &err};
   int open = 2;
   std::array<char, 65536> buffer{};
   while (open > 0) {
-    if (Clock::now() > deadline || stop_requested()) return false;
+    if (Clock::now() > deadline || (stoppable && stop_requested())) return false;
     if (::poll(fds.data(), fds.size(), 200) < 0 && errno != EINTR) return false;
     for (std::size_t i = 0; i < fds.size(); ++i) {
       if (fds[i].fd < 0 || fds[i].revents == 0) continue;
@@ -113,13 +113,18 @@ RealFio run_real_fio(const std::filesystem::path& job, const std::filesystem::pa
   std::string errors;
   // fio's own --timeout ends it; a minute more for its files and report.
   const bool ended = drain(out.fd[0], err.fd[0], run.json, errors, start + std::chrono::seconds(timeout_seconds + 60));
-  if (!ended) ::kill(pid, SIGKILL);
+  if (!ended) {
+    // fio's job processes are sessions of their own: a SIGINT lets fio stop them, a SIGKILL
+    // (if it has not ended within seconds) would leave them running.
+    ::kill(pid, SIGINT);
+    if (!drain(out.fd[0], err.fd[0], run.json, errors, Clock::now() + std::chrono::seconds(20), false)) ::kill(pid, SIGKILL);
+  }
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
   run.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   const std::string what = fmt::format("fio {}", job.string());
-  if (!ended && stop_requested()) throw Error(fmt::format("{}: interrupted: fio stopped, its files removed", what));
+  if (stop_requested()) throw Error(fmt::format("{}: interrupted: fio stopped, its files removed", what));
   if (!ended) throw Error(fmt::format("{}: still running {} s after its --timeout of {} s: killed, its files removed", what, 60, timeout_seconds));
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     const std::string how = WIFEXITED(status) ? fmt::format("exit status {}", WEXITSTATUS(status)) : fmt::format("signal {}", WTERMSIG(status));

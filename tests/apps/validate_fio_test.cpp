@@ -45,6 +45,21 @@ fs::path write_job(const fs::path& dir, const std::string& name, const std::stri
   return dir / name;
 }
 
+// A scratch root holding the job file `name`, the --dir `run/` and room for the --out `out/`.
+struct FioCase {
+  fs::path root, job, dir, out;
+  FioCase(const std::string& test, const std::string& name, const std::string& text)
+      : root(scratch(test)), job(write_job(root, name, text)), dir(root / "run"), out(root / "out") {
+    fs::create_directories(dir);
+  }
+  ~FioCase() { fs::remove_all(root); }
+  // pcsim validate --here --fio on the development machine's platform.
+  pagecache::testing::Outcome run(const std::string& more = "") const {
+    return pcsim(fmt::format("validate --here --fio '{}' --dir '{}' --platform '{}' --out '{}' {}", job.string(), dir.string(), kDevPlatform,
+                             out.string(), more));
+  }
+};
+
 double median_of(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v.size() % 2 == 1 ? v[v.size() / 2] : (v[v.size() / 2 - 1] + v[v.size() / 2]) / 2.0;
@@ -53,13 +68,10 @@ double median_of(std::vector<double> v) {
 }  // namespace
 
 TEST_CASE("validate --here --fio runs the real fio in a folder of its own, keeps its reports and scores pcsim against them", "[fio][here]") {
-  const fs::path root = scratch("validate-fio");
-  const fs::path job = write_job(root, "tiny.fio", kTinyJob);
-  const fs::path dir = root / "run";
-  fs::create_directories(dir);
-  const fs::path out = root / "out";
-  const auto run = pcsim(fmt::format("validate --here --fio '{}' --dir '{}' --platform '{}' --repeat 2 --out '{}'", job.string(), dir.string(),
-                                     kDevPlatform, out.string()));
+  const FioCase c("validate-fio", "tiny.fio", kTinyJob);
+  const fs::path& dir = c.dir;
+  const fs::path& out = c.out;
+  const auto run = c.run("--repeat 2");
   INFO(run.output);
   REQUIRE(run.status == 0);
   CHECK(run.output.find("tiny.fio") != std::string::npos);
@@ -115,68 +127,49 @@ TEST_CASE("validate --here --fio runs the real fio in a folder of its own, keeps
   const auto broken = pcsim(fmt::format("validate --from '{}'", out.string()));
   CHECK(broken.status == 2);
   CHECK(broken.output.find("fio-tiny-2.json") != std::string::npos);
-  fs::remove_all(root);
 }
 
 TEST_CASE("validate --here --fio refuses a job file pcsim refuses before fio runs", "[fio][here]") {
-  const fs::path root = scratch("validate-fio-refused");
-  const fs::path job = write_job(root, "mixed.fio", "[mixed]\nrw=randrw\nsize=8m\n");
-  const fs::path dir = root / "run";
-  fs::create_directories(dir);
-  const fs::path out = root / "out";
-  const auto run = pcsim(fmt::format("validate --here --fio '{}' --dir '{}' --platform '{}' --repeat 1 --out '{}'", job.string(), dir.string(),
-                                     kDevPlatform, out.string()));
+  const FioCase c("validate-fio-refused", "mixed.fio", "[mixed]\nrw=randrw\nsize=8m\n");
+  const auto run = c.run("--repeat 1");
   INFO(run.output);
   CHECK(run.status == 2);
-  CHECK(run.output.find("mixed.fio") != std::string::npos);
-  CHECK(names(dir).empty());
-  CHECK(!fs::exists(out));
-  fs::remove_all(root);
+  CHECK(run.output.find("mixed.fio:1: job 'mixed': rw: mixed reads and writes are not modelled") != std::string::npos);
+  CHECK(names(c.dir).empty());
+  CHECK(!fs::exists(c.out));
 }
 
 TEST_CASE("validate --here --fio refuses a --dir that does not exist, naming it", "[fio][here]") {
-  const fs::path root = scratch("validate-fio-nodir");
-  const fs::path job = write_job(root, "tiny.fio", kTinyJob);
-  const auto run = pcsim(fmt::format("validate --here --fio '{}' --dir '{}/missing' --platform '{}' --out '{}/out'", job.string(), root.string(),
-                                     kDevPlatform, root.string()));
+  const FioCase c("validate-fio-nodir", "tiny.fio", kTinyJob);
+  fs::remove(c.dir);
+  const auto run = c.run();
   INFO(run.output);
   CHECK(run.status == 2);
-  CHECK(run.output.find("--dir '" + root.string() + "/missing'") != std::string::npos);
-  CHECK(!fs::exists(root / "out"));
-  fs::remove_all(root);
+  CHECK(run.output.find("--dir '" + c.dir.string() + "': not a folder") != std::string::npos);
+  CHECK(!fs::exists(c.out));
 }
 
 TEST_CASE("validate --here --fio refuses a job file whose files lie outside the folder fio runs in", "[fio][here]") {
-  const fs::path root = scratch("validate-fio-outside");
-  const fs::path elsewhere = root / "elsewhere";
-  const fs::path job = write_job(root, "outside.fio", fmt::format("[r]\nrw=read\nsize=8m\nfilename={}/x\n", elsewhere.string()));
-  const fs::path dir = root / "run";
-  fs::create_directories(dir);
-  const auto run = pcsim(fmt::format("validate --here --fio '{}' --dir '{}' --platform '{}' --out '{}/out'", job.string(), dir.string(),
-                                     kDevPlatform, root.string()));
+  const fs::path elsewhere = scratch("validate-fio-outside") / "elsewhere";
+  const FioCase c("validate-fio-outside", "outside.fio", fmt::format("[r]\nrw=read\nsize=8m\nfilename={}/x\n", elsewhere.string()));
+  const auto run = c.run();
   INFO(run.output);
   CHECK(run.status == 2);
   CHECK(run.output.find("outside.fio:1: job 'r': its file '" + elsewhere.string() + "/x' is outside") != std::string::npos);
   CHECK(!fs::exists(elsewhere));
-  CHECK(names(dir).empty());
-  fs::remove_all(root);
+  CHECK(names(c.dir).empty());
 }
 
 TEST_CASE("validate --here --fio stops when fio fails, quoting its stderr, and leaves --dir as it was", "[fio][here]") {
-  const fs::path root = scratch("validate-fio-fails");
   // pcsim takes directory=sub; fio refuses it, as sub does not exist where it runs.
-  const fs::path job = write_job(root, "sub.fio", "[r]\nrw=read\nsize=8m\ndirectory=sub\n");
-  const fs::path dir = root / "run";
-  fs::create_directories(dir);
-  const auto run = pcsim(fmt::format("validate --here --fio '{}' --dir '{}' --platform '{}' --out '{}/out'", job.string(), dir.string(),
-                                     kDevPlatform, root.string()));
+  const FioCase c("validate-fio-fails", "sub.fio", "[r]\nrw=read\nsize=8m\ndirectory=sub\n");
+  const auto run = c.run();
   INFO(run.output);
   CHECK(run.status == 1);
   CHECK(run.output.find("sub.fio failed (exit status 1)") != std::string::npos);
   CHECK(run.output.find("fio: sub is not a directory") != std::string::npos);
-  CHECK(names(dir).empty());
-  CHECK(!fs::exists(root / "out" / "fio-runs.csv"));
-  fs::remove_all(root);
+  CHECK(names(c.dir).empty());
+  CHECK(!fs::exists(c.out / "fio-runs.csv"));
 }
 
 TEST_CASE("validate's --fio and --fio-timeout are refused without --here, not ignored", "[fio][here]") {

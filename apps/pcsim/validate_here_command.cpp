@@ -5,7 +5,9 @@
 #include "calibrate/real_run.hpp"
 #include "calibrate/system_info.hpp"
 #include "status_line.hpp"
+#include "validate/fio_kept.hpp"
 #include "validate/here.hpp"
+#include "validate_fio_command.hpp"
 
 #include <pagecache/error.hpp>
 
@@ -33,6 +35,12 @@ void add_validate_here_options(CLI::App& validate_app, ValidateHereOptions& o) {
       ->capture_default_str();
   validate->add_option("--from", o.from, "score the measurements kept in this folder by an earlier --here again, without running anything");
   validate->add_option("--repeat", o.repeat, "--here: repetitions of each case (default 3, 1 with --quick)")->check(CLI::Range(1, 100));
+  validate->add_option("--fio", o.fio,
+                       "--here: fio job files to run with the real fio (in a fresh folder inside --dir) and to score pcsim's bandwidth "
+                       "against, instead of the paper's experiments");
+  validate->add_option("--fio-timeout", o.fio_timeout, "--here --fio: fio's --timeout for each run, in seconds (a job pcsim estimates longer is refused)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 86400));
   validate->add_flag("--quick", o.quick, "--here: tiny cases, one repetition, a quick calibration: proves the pipeline works, measures little");
 }
 
@@ -67,41 +75,49 @@ void check_validate_mode(const CLI::App& validate) {
                        here ? "--here" : "--from", here ? " (also into --out's report.txt)" : ""));
   }
   if (!here) {
-    refuse({"--dir", "--platform", "--out", "--repeat", "--quick"},
+    refuse({"--dir", "--platform", "--out", "--repeat", "--quick", "--fio", "--fio-timeout"},
            from ? "of --here: --from scores the folder it names again, running nothing" : "of --here (the experiments run for real here)");
   }
 }
 
-int run_validate_here(const ValidateHereOptions& o) {
-  namespace cal = pagecache::calibrate;
-  namespace val = pagecache::validate;
-  if (!o.from.empty()) {
-    fmt::print("{}", val::score_here(val::load_here(o.from)));
-    return 0;
-  }
+void check_here_folders(const ValidateHereOptions& o) {
   if (o.dir.empty()) throw pagecache::ConfigError("validate --here needs --dir: a folder on the file system to run in");
   std::error_code ec;
   if (!fs::is_directory(o.dir, ec)) throw pagecache::ConfigError(fmt::format("--dir '{}': not a folder", o.dir));
   if (fs::exists(fs::symlink_status(o.out, ec)) && !(fs::is_directory(o.out, ec) && fs::is_empty(o.out, ec))) {
     throw pagecache::ConfigError(fmt::format("--out '{}': exists; measurements go into a new folder (pcsim never replaces them)", o.out));
   }
+}
+
+std::string here_platform_toml(const ValidateHereOptions& o, StatusLine& status) {
+  namespace cal = pagecache::calibrate;
+  if (!o.platform.empty()) return read_text(o.platform, "--platform");
+  cal::Options options;
+  options.dir = o.dir;
+  options.quick = o.quick;
+  options.progress = [&](const std::string& step, int number, int steps) {
+    if (status.due(true)) status.show(fmt::format("calibrate: {}/{} {}", number, steps, step));
+  };
+  const cal::Calibration c = cal::calibrate(options);
+  status.clear();
+  fmt::print("calibrated in {:.0f} s\n", c.seconds);
+  return cal::platform_toml(c);
+}
+
+int run_validate_here(const ValidateHereOptions& o) {
+  namespace cal = pagecache::calibrate;
+  namespace val = pagecache::validate;
+  if (!o.from.empty()) {
+    if (val::is_fio_folder(o.from)) return score_validate_fio(o.from);
+    fmt::print("{}", val::score_here(val::load_here(o.from)));
+    return 0;
+  }
+  if (!o.fio.empty()) return run_validate_fio(o);
+  check_here_folders(o);
   cal::install_stop_handlers();
   StatusLine status(true);
   val::HereMeasurements m;
-  if (!o.platform.empty()) {
-    m.platform_toml = read_text(o.platform, "--platform");
-  } else {
-    cal::Options options;
-    options.dir = o.dir;
-    options.quick = o.quick;
-    options.progress = [&](const std::string& step, int number, int steps) {
-      if (status.due(true)) status.show(fmt::format("calibrate: {}/{} {}", number, steps, step));
-    };
-    const cal::Calibration c = cal::calibrate(options);
-    status.clear();
-    fmt::print("calibrated in {:.0f} s\n", c.seconds);
-    m.platform_toml = cal::platform_toml(c);
-  }
+  m.platform_toml = here_platform_toml(o, status);
   const cal::SystemInfo sys = cal::read_system_info(o.dir);
   const std::vector<cal::RealCase> cases = val::here_cases(sys.memory_available, o.quick);
   std::int64_t need = 0;

@@ -127,40 +127,32 @@ std::vector<std::string> app_names(const FioJobFile& f) {
 
 }  // namespace
 
-void read_fio(TomlReader& r, const std::string& file, Scenario& s, Origins& origins) {
-  const toml::table* table = r.optional_table("fio");
-  if (table == nullptr) return;
-  TomlReader fr(*table, "fio", file);
-  for (const char* other : {"pipelines", "apps", "workflow"}) {
-    if (r.has(other)) fr.fail_table(fmt::format("a fio job file is the workload: [{}] cannot come with it", other));
-  }
-  const std::string path = relative_path(file, fr.required_string("file"));
-  const std::string host = fr.name("host", s.hosts.front().name);
-  const auto on = std::find_if(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& h) { return h.name == host; });
-  if (on == s.hosts.end()) fr.fail("host", fmt::format("no host named '{}'", host));
-  if (on->disks.empty()) fr.fail("host", fmt::format("host '{}' has no disk for the jobs' files", host));
-  const std::string disk = fr.name("disk", on->disks.front().name);
-  if (std::none_of(on->disks.begin(), on->disks.end(), [&](const DiskSpec& d) { return d.name == disk; })) {
-    fr.fail("disk", fmt::format("host '{}' has no disk named '{}'", host, disk));
+namespace {
+
+// Where a fio run goes: [fio]'s host, disk and memory cgroup.
+struct FioPlace {
+  std::string host;
+  std::string disk;
+  MemoryLimits limits;
+};
+
+FioPlace place_of_run(TomlReader& fr, const Scenario& s) {
+  FioPlace p;
+  p.host = fr.name("host", s.hosts.front().name);
+  const auto on = std::find_if(s.hosts.begin(), s.hosts.end(), [&](const HostConfig& h) { return h.name == p.host; });
+  if (on == s.hosts.end()) fr.fail("host", fmt::format("no host named '{}'", p.host));
+  if (on->disks.empty()) fr.fail("host", fmt::format("host '{}' has no disk for the jobs' files", p.host));
+  p.disk = fr.name("disk", on->disks.front().name);
+  if (std::none_of(on->disks.begin(), on->disks.end(), [&](const DiskSpec& d) { return d.name == p.disk; })) {
+    fr.fail("disk", fmt::format("host '{}' has no disk named '{}'", p.host, p.disk));
   }
   // fio run in a memory cgroup (systemd-run -p MemoryMax=..., or validate --here --fio).
-  const MemoryLimits limits = read_memory_limits(fr, "the fio run's");
-  fr.finish();
-  FioJobFile jobs;
-  try {
-    jobs = read_fio_job_file(path);
-  } catch (const ConfigError& e) {
-    if (e.place().file.empty()) fr.fail("file", e.what());
-    throw;
-  }
-  for (std::string& w : jobs.warnings) s.warnings.push_back(std::move(w));
-  if (limits.max > 0 && jobs.jobs.size() > 1) {
-    fr.fail("memory_max", fmt::format("{} jobs in one memory cgroup are not modelled yet (one job is: its application's group)", jobs.jobs.size()));
-  }
-  s.fio.file = path;
-  s.fio.global_options = jobs.global_options;
+  p.limits = read_memory_limits(fr, "the fio run's");
+  return p;
+}
 
-  // The files, as large as the regions their jobs use.
+// The jobs' files, each as large as the regions its jobs use; returns each job's region.
+std::vector<Region> add_files(TomlReader& fr, const FioJobFile& jobs, const FioPlace& place, Scenario& s, Origins& origins) {
   std::map<std::string, std::int64_t> extent;
   std::vector<std::string> order;
   std::vector<Region> regions;
@@ -176,19 +168,23 @@ void read_fio(TomlReader& r, const std::string& file, Scenario& s, Origins& orig
   std::set<std::string> taken;
   for (const FileSpec& f : s.files) taken.insert(f.name);
   for (const std::string& name : order) {
-    if (taken.count(name) != 0) fr.fail("file", fmt::format("{} names file '{}', which the scenario has already", path, name));
-    s.files.push_back(FileSpec{.name = name, .size = extent[name], .host = host, .disk = disk, .cached = false});
-    origins.files.push_back(Origin::elsewhere(fmt::format("{}: file '{}'", path, name)));
+    if (taken.count(name) != 0) fr.fail("file", fmt::format("{} names file '{}', which the scenario has already", jobs.path, name));
+    s.files.push_back(FileSpec{.name = name, .size = extent[name], .host = place.host, .disk = place.disk, .cached = false});
+    origins.files.push_back(Origin::elsewhere(fmt::format("{}: file '{}'", jobs.path, name)));
   }
+  return regions;
+}
 
+// Each job as an application of one task, and as fio.json will name it.
+void add_jobs(const FioJobFile& jobs, const FioPlace& place, const std::vector<Region>& regions, Scenario& s, Origins& origins) {
   const std::vector<std::string> names = app_names(jobs);
   for (std::size_t i = 0; i < jobs.jobs.size(); ++i) {
     const FioJob& job = jobs.jobs[i];
     AppSpec app;
     app.name = names[i];
-    app.host = host;
-    app.memory_max = limits.max;
-    app.memory_high = limits.high;
+    app.host = place.host;
+    app.memory_max = place.limits.max;
+    app.memory_high = place.limits.high;
     for (const std::size_t before : job.after) app.after.push_back(names[before]);
     TaskSpec& task = app.tasks.emplace_back();
     task.name = "io";
@@ -209,6 +205,35 @@ void read_fio(TomlReader& r, const std::string& file, Scenario& s, Origins& orig
     origins.app_tasks.push_back({Origin::elsewhere(place_of(jobs, job))});
     s.apps.push_back(std::move(app));
   }
+}
+
+}  // namespace
+
+void read_fio(TomlReader& r, const std::string& file, Scenario& s, Origins& origins) {
+  const toml::table* table = r.optional_table("fio");
+  if (table == nullptr) return;
+  TomlReader fr(*table, "fio", file);
+  for (const char* other : {"pipelines", "apps", "workflow"}) {
+    if (r.has(other)) fr.fail_table(fmt::format("a fio job file is the workload: [{}] cannot come with it", other));
+  }
+  const std::string path = relative_path(file, fr.required_string("file"));
+  const FioPlace place = place_of_run(fr, s);
+  fr.finish();
+  FioJobFile jobs;
+  try {
+    jobs = read_fio_job_file(path);
+  } catch (const ConfigError& e) {
+    if (e.place().file.empty()) fr.fail("file", e.what());
+    throw;
+  }
+  for (std::string& w : jobs.warnings) s.warnings.push_back(std::move(w));
+  if (place.limits.max > 0 && jobs.jobs.size() > 1) {
+    fr.fail("memory_max", fmt::format("{} jobs in one memory cgroup are not modelled yet (one job is: its application's group)", jobs.jobs.size()));
+  }
+  s.fio.file = path;
+  s.fio.global_options = jobs.global_options;
+  const std::vector<Region> regions = add_files(fr, jobs, place, s, origins);
+  add_jobs(jobs, place, regions, s, origins);
 }
 
 }  // namespace pagecache::scenario

@@ -241,7 +241,7 @@ BlockId PageCache::split_front(BlockId id, std::int64_t head_size) {
 
 void PageCache::settle() {
   if (balance_always_) balance();
-  if (checking_) check_invariants();
+  if (checking_) check_after_operation();
   if (free_memory_hook_) free_memory_hook_(free(), anonymous_);
   if (observer_) observer_();
 }

@@ -9,8 +9,9 @@
 // activates, what reclaim takes, which expired data goes first, the dirtyable memory) it asks
 // its Policy (cache/policy.hpp).
 //
-// Invariants (checked by check_invariants(), and after every operation when
-// set_checking(true)): total = free + anonymous + cached, free >= 0, 0 <= dirty <= cached,
+// Invariants (checked by check_invariants(), and after operations when set_checking(true):
+// every one while the cache holds at most 4096 blocks, beyond that one in blocks/64, so that a
+// checked run stays linear in its operations): total = free + anonymous + cached, free >= 0, 0 <= dirty <= cached,
 // cached = inactive + active, every list's byte counter equals its block sum, every block is
 // in exactly one LRU list and in its file's list for that LRU list; with the clean index, every
 // clean block is in its file's clean list for that LRU list, and every file not being written
@@ -78,7 +79,8 @@ class PageCache {
   /// Calls `hook` with the free memory after every change of the memory state (free page
   /// reporting watches it).
   void set_free_memory_hook(std::function<void(std::int64_t free, std::int64_t anonymous)> hook) { free_memory_hook_ = std::move(hook); }
-  /// Runs check_invariants() after every mutating operation; on by default in debug builds.
+  /// Runs check_invariants() after mutating operations (all of them while the cache holds few
+  /// blocks; see the invariants above); on by default in debug builds.
   void set_checking(bool on) noexcept { checking_ = on; }
 
   // --- Memory -----------------------------------------------------------------------------
@@ -254,6 +256,11 @@ class PageCache {
   /// Throws InvariantError naming the first broken invariant.
   void check_invariants() const;
 
+ private:
+  // check_invariants() after an operation, amortised: a full check costs O(blocks).
+  void check_after_operation();
+
+ public:
   // --- Walks for policies: they change the lists, and leave settling to the operation ----
   // Each block they evict is reported to the policy (Policy::evicted).
   /// Evicts clean blocks of `kind`, least recently used first, up to `budget` bytes (the last
@@ -445,6 +452,7 @@ class PageCache {
   std::function<void()> progress_hook_;
   Tracer tracer_;
   bool checking_ = checking_by_default();
+  std::size_t unchecked_operations_ = 0;
 };
 
 }  // namespace pagecache::cache

@@ -11,6 +11,15 @@
 
 namespace pagecache::cache {
 
+void PageCache::check_after_operation() {
+  constexpr std::size_t kAlways = 4096;  // the randomised tests' states stay below it
+  constexpr std::size_t kSpread = 64;    // beyond it: at most 64 block visits per operation
+  const std::size_t blocks = blocks_.in_use();
+  if (blocks > kAlways && ++unchecked_operations_ * kSpread < blocks) return;
+  unchecked_operations_ = 0;
+  check_invariants();
+}
+
 void PageCache::check_invariants() const {
   inactive_.check();
   active_.check();

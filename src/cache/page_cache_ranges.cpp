@@ -24,7 +24,7 @@ void PageCache::track_ranges(FileId file) {
       offset += blocks_[id].size;
     }
   }
-  if (checking_) check_invariants();
+  if (checking_) check_after_operation();
 }
 
 std::int64_t PageCache::cached_in(FileId file, std::int64_t offset, std::int64_t bytes) const noexcept {

@@ -148,7 +148,7 @@ void PageCache::set_being_written(FileId file, bool writing) {
       if (!clean.empty()) reclaimable(kind).lower(file, blocks_[clean.front()].order);
     }
   }
-  if (checking_) check_invariants();
+  if (checking_) check_after_operation();
 }
 
 void PageCache::balance() {

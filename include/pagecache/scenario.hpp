@@ -155,6 +155,9 @@ struct AccessSpec {
   /// One file: before each epoch the region's clean cached data is dropped (POSIX_FADV_DONTNEED
   /// over it, or over each range), as fio's invalidate=1 does each time a job opens its file.
   bool invalidate = false;
+  /// One file: after each epoch (after the task's fsync of it) the region's clean cached data
+  /// is dropped, as fio does with a file it lays out (writes, fsyncs, POSIX_FADV_DONTNEED).
+  bool drop_after = false;
   /// One file: no request starts this many seconds after the access began, whatever epoch it
   /// is in (fio's runtime); 0: no limit.
   double runtime = 0.0;

@@ -13,7 +13,7 @@ namespace pagecache::scenario {
 namespace {
 
 // The keys of an access of one file, each refused on an access of a file set.
-constexpr const char* kFileKeys[] = {"request", "offset", "length", "stride", "ranges", "mode", "advice", "reshuffle", "invalidate", "runtime"};
+constexpr const char* kFileKeys[] = {"request", "offset", "length", "stride", "ranges", "mode", "advice", "reshuffle", "invalidate", "drop_after", "runtime"};
 
 AccessSpec read_set_access(TomlReader& a, const std::vector<FileSetSpec>& sets) {
   AccessSpec spec;
@@ -162,6 +162,7 @@ AccessSpec read_file_access(TomlReader& a, AccessTargets& targets, std::int64_t 
   }
   spec.reshuffle = a.optional_bool("reshuffle").value_or(true);
   spec.invalidate = a.optional_bool("invalidate").value_or(false);
+  spec.drop_after = a.optional_bool("drop_after").value_or(false);
   spec.runtime = a.optional_duration("runtime").value_or(0.0);
   if (spec.runtime < 0.0) a.fail("runtime", fmt::format("must be >= 0 seconds (0: no limit), got {}", spec.runtime));
   const std::int64_t seed = a.optional_integer("seed").value_or(0);

@@ -57,6 +57,7 @@ void write_file_access(std::string& out, const std::string& table, const AccessS
   }
   if (a.runtime > 0.0) out += fmt::format("runtime = {}\n", quoted(units::format_duration(a.runtime)));
   out += fmt::format("invalidate = {}\nrepeat = {}\n", a.invalidate, a.repeat);
+  if (a.drop_after) out += "drop_after = true\n";
 }
 
 void write_task(std::string& out, const std::string& table, const TaskSpec& t, bool in_workflow) {

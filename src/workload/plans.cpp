@@ -176,6 +176,7 @@ void Plans::plan_file_access(const TaskSpec& task, const AccessSpec& a, AccessPl
                                                          : ReadAdvice::Normal;
   access.reshuffle = a.reshuffle;
   access.invalidate = a.invalidate;
+  access.drop_after = a.drop_after;
   access.runtime = a.runtime;
   access.repeat = a.repeat;
 }

@@ -51,6 +51,7 @@ struct AccessPlan {
   ReadAdvice advice = ReadAdvice::Normal;
   bool reshuffle = true;     // of_file: random epochs each drawn anew (AccessSpec::reshuffle)
   bool invalidate = false;   // of_file: the region's clean data dropped before each epoch
+  bool drop_after = false;   // of_file: and after each epoch
   double runtime = 0.0;      // of_file: no request after this long (0: no limit)
   PlacedFileSet set;
   std::uint32_t set_index = 0;  // in the scenario's file sets (Plans::set_name)

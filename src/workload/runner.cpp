@@ -298,6 +298,7 @@ Task<void> Runner::access_file(const std::string& app, const TaskPlan& plan, con
     } else {
       add_moved(sum, co_await host.read_ranges(stored.ref, next, access.requests.request, plan.group, access.advice, plan.direct_io));
     }
+    if (access.drop_after) drop_region(host, stored.ref, access.requests);
     const std::string label = fmt::format("{}:{}[epoch {}]", plans_.task_name(plan), name, epoch);
     const PhaseKind kind = access.writing ? PhaseKind::Write : PhaseKind::Read;
     trace_->record_cache(trace_->report_phase(app, label, host, kind, start, sim_.now(), sum));

@@ -2,9 +2,9 @@
 // the scenario's host. Each job (each numjobs clone) is an application of one task whose access
 // is the job's I/O, in the order fio starts them (stonewall, wait_for: AppSpec::after); each
 // file a job names is a file of the host's disk, as large as the jobs' regions need, on the disk
-// and not cached when the jobs start (fio lays files out first, fsyncs them and drops them from
-// the page cache). What fio does that pcsim does not model yet is refused, naming the job's
-// section and the option.
+// and not cached at the start. Before the jobs, an application of its own lays out the files
+// jobs read or overwrite, as fio does. What fio does that pcsim does not model yet is refused,
+// naming the job's section and the option.
 
 #include "scenario/fio_job_file.hpp"
 #include "scenario/loader_sections.hpp"
@@ -151,11 +151,18 @@ FioPlace place_of_run(TomlReader& fr, const Scenario& s) {
   return p;
 }
 
-// The jobs' files, each as large as the regions its jobs use; returns each job's region.
-std::vector<Region> add_files(TomlReader& fr, const FioJobFile& jobs, const FioPlace& place, Scenario& s, Origins& origins) {
-  std::map<std::string, std::int64_t> extent;
-  std::vector<std::string> order;
+// Each job's region, and each file's size: as large as its jobs' regions need.
+struct FileUse {
   std::vector<Region> regions;
+  std::map<std::string, std::int64_t> extent;
+};
+
+// The jobs' files, each as large as the regions its jobs use.
+FileUse add_files(TomlReader& fr, const FioJobFile& jobs, const FioPlace& place, Scenario& s, Origins& origins) {
+  FileUse use;
+  std::map<std::string, std::int64_t>& extent = use.extent;
+  std::vector<std::string> order;
+  std::vector<Region>& regions = use.regions;
   for (const FioJob& job : jobs.jobs) {
     refuse_unmodelled(jobs, job);
     regions.push_back(region_of(jobs, job));
@@ -172,12 +179,56 @@ std::vector<Region> add_files(TomlReader& fr, const FioJobFile& jobs, const FioP
     s.files.push_back(FileSpec{.name = name, .size = extent[name], .host = place.host, .disk = place.disk, .cached = false});
     origins.files.push_back(Origin::elsewhere(fmt::format("{}: file '{}'", jobs.path, name)));
   }
-  return regions;
+  return use;
+}
+
+// fio sets up each job's files before any job starts, job after job (create_serialize): a
+// file smaller than the job's region needs is extended. A job that only writes allocates it
+// (fallocate, no data); one that reads or overwrites lays it out: writes it from byte 0 in its
+// write requests, fsyncs it (create_fsync) and drops it from the page cache (filesetup.c,
+// extend_file). The layouts are an application of their own, which the jobs start after (""
+// if nothing is laid out); on a virtual machine they leave memory freed just before the jobs
+// start (docs/model.md §6.16).
+std::string add_layout(const FioJobFile& jobs, const FileUse& use, const FioPlace& place, const std::vector<std::string>& names, Scenario& s,
+                       Origins& origins) {
+  AppSpec app;
+  app.name = "layout";
+  while (std::find(names.begin(), names.end(), app.name) != names.end()) app.name += "#";
+  app.host = place.host;
+  app.memory_max = place.limits.max;
+  app.memory_high = place.limits.high;
+  std::map<std::string, std::int64_t> size;  // each file's size as set up so far
+  for (std::size_t j = 0; j < jobs.jobs.size(); ++j) {
+    const FioJob& job = jobs.jobs[j];
+    const std::int64_t needed = use.regions[j].start + use.regions[j].length;
+    for (const std::string& name : job.files) {
+      if (size[name] >= needed) continue;  // large enough: left as it is
+      size[name] = needed;
+      if (writes(job.rw) && !job.overwrite) continue;
+      TaskSpec& task = app.tasks.emplace_back();
+      task.name = "layout";
+      task.chunk_size = 100'000'000;
+      task.fsync = true;
+      AccessSpec& a = task.accesses.emplace_back();
+      a.file = name;
+      a.mode = AccessMode::Write;
+      a.request = job.bs_write;
+      a.length = needed;
+      a.count = (a.length + a.request - 1) / a.request;
+      a.drop_after = true;
+    }
+  }
+  if (app.tasks.empty()) return {};
+  const Origin origin = Origin::elsewhere(fmt::format("{}: fio's layout of the jobs' files", jobs.path));
+  origins.apps.push_back(origin);
+  origins.app_tasks.emplace_back(app.tasks.size(), origin);
+  s.apps.push_back(std::move(app));
+  return s.apps.back().name;
 }
 
 // Each job as an application of one task, and as fio.json will name it.
-void add_jobs(const FioJobFile& jobs, const FioPlace& place, const std::vector<Region>& regions, Scenario& s, Origins& origins) {
-  const std::vector<std::string> names = app_names(jobs);
+void add_jobs(const FioJobFile& jobs, const FioPlace& place, const std::vector<Region>& regions, const std::vector<std::string>& names,
+              const std::string& layout, Scenario& s, Origins& origins) {
   for (std::size_t i = 0; i < jobs.jobs.size(); ++i) {
     const FioJob& job = jobs.jobs[i];
     AppSpec app;
@@ -186,6 +237,7 @@ void add_jobs(const FioJobFile& jobs, const FioPlace& place, const std::vector<R
     app.memory_max = place.limits.max;
     app.memory_high = place.limits.high;
     for (const std::size_t before : job.after) app.after.push_back(names[before]);
+    if (app.after.empty() && !layout.empty()) app.after.push_back(layout);
     TaskSpec& task = app.tasks.emplace_back();
     task.name = "io";
     task.chunk_size = 100'000'000;  // an application's default (it reads no whole file)
@@ -232,8 +284,10 @@ void read_fio(TomlReader& r, const std::string& file, Scenario& s, Origins& orig
   }
   s.fio.file = path;
   s.fio.global_options = jobs.global_options;
-  const std::vector<Region> regions = add_files(fr, jobs, place, s, origins);
-  add_jobs(jobs, place, regions, s, origins);
+  const FileUse use = add_files(fr, jobs, place, s, origins);
+  const std::vector<std::string> names = app_names(jobs);
+  const std::string layout = add_layout(jobs, use, place, names, s, origins);
+  add_jobs(jobs, place, use.regions, names, layout, s, origins);
 }
 
 }  // namespace pagecache::scenario

@@ -136,7 +136,12 @@ int run_validate_fio(const ValidateHereOptions& o) {
   for (val::FioJobFileRuns& f : runs) {
     for (int rep = 1; rep <= repeat; ++rep) {
       if (status.due(true)) status.show(fmt::format("validate --here --fio: {} (repetition {} of {})", f.job_file, rep, repeat));
-      const pagecache::calibrate::RealFio fio = pagecache::calibrate::run_real_fio(out / f.job_file, o.dir, o.fio_timeout);
+      const pagecache::calibrate::RealFio fio = pagecache::calibrate::run_real_fio(out / f.job_file, o.dir, o.fio_timeout, o.quick ? 6.0 : 40.0);
+      if (fio.reporting_settled == 0) {
+        status.clear();
+        fmt::print(stderr, "pcsim: warning: {} repetition {}: free page reporting had not settled when fio started: part of its memory may have been warm\n",
+                   f.job_file, rep);
+      }
       const std::string json_file = fmt::format("fio-{}-{}.json", fs::path(f.job_file).stem().string(), rep);
       write_file(out / json_file, fio.json);
       f.repetitions.push_back({rep, json_file, val::parse_fio_report(fio.json, (out / json_file).string())});

@@ -1,7 +1,9 @@
 #include "calibrate/real_fio.hpp"
 
+#include "calibrate/cold_start.hpp"
 #include "calibrate/measure.hpp"
 #include "calibrate/scratch.hpp"
+#include "calibrate/system_info.hpp"
 
 #include <pagecache/error.hpp>
 
@@ -86,8 +88,12 @@ std::string first_json_line_on(const std::string& out) {
 
 }  // namespace
 
-RealFio run_real_fio(const std::filesystem::path& job, const std::filesystem::path& dir, int timeout_seconds, const std::string& fio) {
+RealFio run_real_fio(const std::filesystem::path& job, const std::filesystem::path& dir, int timeout_seconds, double settle_limit,
+                     const std::string& fio) {
   const Scratch scratch(dir, "pcsim-fio");
+  RealFio run;
+  run.dropped_all_caches = ::geteuid() == 0 && drop_all_caches();
+  if (reported_free_bytes() >= 0) run.reporting_settled = wait_for_reporting(settle_limit) ? 1 : 0;
   const std::string job_path = std::filesystem::absolute(job).string();
   std::vector<std::string> args{fio, "--output-format=json", fmt::format("--timeout={}", timeout_seconds), job_path};
   std::vector<char*> argv;
@@ -109,7 +115,6 @@ RealFio run_real_fio(const std::filesystem::path& job, const std::filesystem::pa
   out.close_end(1);
   err.close_end(1);
 
-  RealFio run;
   std::string errors;
   // fio's own --timeout ends it; a minute more for its files and report.
   const bool ended = drain(out.fd[0], err.fd[0], run.json, errors, start + std::chrono::seconds(timeout_seconds + 60));

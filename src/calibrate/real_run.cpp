@@ -1,5 +1,6 @@
 #include "calibrate/real_run.hpp"
 
+#include "calibrate/cold_start.hpp"
 #include "calibrate/measure.hpp"
 #include "calibrate/scratch.hpp"
 #include "calibrate/system_info.hpp"
@@ -91,15 +92,6 @@ void drop_file(const std::filesystem::path& file) {
   ::close(fd);
 }
 
-// As root: the whole page cache dropped (what the paper did before each run).
-bool drop_all_caches() {
-  ::sync();
-  std::ofstream out("/proc/sys/vm/drop_caches");
-  out << "3\n";
-  out.flush();
-  return static_cast<bool>(out);
-}
-
 MemorySample sample(double time) {
   const std::string m = read_meminfo();
   return MemorySample{time, meminfo_bytes(m, "MemFree"), meminfo_bytes(m, "Cached"), meminfo_bytes(m, "Dirty"), meminfo_bytes(m, "Writeback")};
@@ -159,22 +151,6 @@ std::vector<RealPhase> pipeline(const RealCase& spec, const Scratch& scratch, in
     release();
   }
   return phases;
-}
-
-// Waits until the kernel's count of reported free memory has not grown over a whole reporting
-// pass (2 s apart, mm/page_reporting.c), at most `limit` seconds: true if it stopped growing.
-bool wait_for_reporting(double limit) {
-  std::int64_t before = reported_free_bytes();
-  if (before < 0) return false;
-  const auto started = Clock::now();
-  for (;;) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(2500));
-    check_stopped();
-    const std::int64_t now = reported_free_bytes();
-    if (now == before) return true;
-    before = now;
-    if (std::chrono::duration<double>(Clock::now() - started).count() >= limit) return false;
-  }
 }
 
 }  // namespace

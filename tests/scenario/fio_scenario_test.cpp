@@ -77,18 +77,24 @@ numjobs=3
 [last]
 wait_for=w
 )");
-  REQUIRE(s.apps.size() == 5);
+  REQUIRE(s.apps.size() == 6);
+  // The files r's clones and last (rw's default, read) read are laid out first, by an
+  // application the jobs that wait for nothing else wait for.
+  CHECK(s.apps[0].name == "layout");
+  REQUIRE(s.apps[0].tasks.size() == 4);
+  CHECK(s.apps[0].tasks[0].accesses.at(0).file == "r.0.0");
+  CHECK(s.apps[0].tasks[3].accesses.at(0).file == "last.0.0");
   // Clones keep their job's name: ".N" for clone N (fio numbers them 0, then 2, 1).
-  CHECK(s.apps[0].name == "w");
-  CHECK(s.apps[1].name == "r");
-  CHECK(s.apps[2].name == "r.2");
-  CHECK(s.apps[3].name == "r.1");
-  CHECK(s.apps[4].name == "last");
-  CHECK(s.apps[0].after.empty());
-  for (std::size_t i = 1; i <= 3; ++i) CHECK(s.apps[i].after == std::vector<std::string>{"w"});
+  CHECK(s.apps[1].name == "w");
+  CHECK(s.apps[2].name == "r");
+  CHECK(s.apps[3].name == "r.2");
+  CHECK(s.apps[4].name == "r.1");
+  CHECK(s.apps[5].name == "last");
+  CHECK(s.apps[1].after == std::vector<std::string>{"layout"});
+  for (std::size_t i = 2; i <= 4; ++i) CHECK(s.apps[i].after == std::vector<std::string>{"w"});
   // A job after a stonewalled one starts with it (fio's start loop passes the stonewall once
   // every job before it has ended), not after it: it too waits for w alone.
-  CHECK(s.apps[4].after == std::vector<std::string>{"w"});
+  CHECK(s.apps[5].after == std::vector<std::string>{"w"});
 }
 
 TEST_CASE("A fio job's files are the host's, as large as its region, and its I/O an access of each", "[fio][scenario]") {
@@ -120,7 +126,7 @@ fadvise_hint=0
     CHECK(f.disk == "ssd");
     CHECK_FALSE(f.cached);  // laid out, synced and dropped from the cache before the jobs start
   }
-  const std::vector<AccessSpec>& seq = s.apps[0].tasks[0].accesses;
+  const std::vector<AccessSpec>& seq = s.apps[1].tasks[0].accesses;
   REQUIRE(seq.size() == 2);
   CHECK(seq[0].file == "seq.0.0");
   CHECK(seq[1].file == "seq.0.1");
@@ -131,7 +137,7 @@ fadvise_hint=0
   CHECK(seq[0].repeat == 3);
   CHECK(seq[0].invalidate);  // fio's default invalidate=1, at each loop's open
   CHECK(seq[0].advice == AccessAdvice::Sequential);  // fadvise_hint=1 and a sequential rw
-  const AccessSpec& rand = access_of(s, 1);
+  const AccessSpec& rand = access_of(s, 2);
   CHECK(rand.pattern == AccessPattern::Random);
   CHECK(rand.offset == 1048576);
   CHECK(rand.length == 16 * 1048576);
@@ -139,6 +145,77 @@ fadvise_hint=0
   CHECK(rand.replacement);      // norandommap: independent draws
   CHECK_FALSE(rand.reshuffle);  // randrepeat=1: each loop the same offsets
   CHECK(rand.advice == AccessAdvice::Normal);  // fadvise_hint=0
+}
+
+TEST_CASE("fio lays out the files jobs read or overwrite before any job: written whole, fsynced, dropped", "[fio][scenario]") {
+  const JobFolder folder("layout");
+  const Scenario s = folder.load(R"([seq]
+rw=read
+bs=1m
+size=64m
+nrfiles=2
+file_service_type=sequential
+[rand]
+rw=randread
+bs=4k
+size=16m
+offset=1m
+[w]
+rw=write
+size=8m
+[o]
+rw=randwrite
+filename=over
+size=8m
+overwrite=1
+[layout]
+rw=read
+filename=seq.0.0
+size=32m
+)");
+  // The files in the jobs' order, each once (seq's first file, already as large as the last
+  // job needs, is left as it is); w's file is only allocated (fallocate: no data written).
+  REQUIRE(s.apps.size() == 6);
+  const AppSpec& layout = s.apps[0];
+  CHECK(layout.name == "layout#");  // a job has the name
+  const std::vector<std::pair<std::string, std::int64_t>> expected{
+      {"seq.0.0", 32 * 1048576}, {"seq.0.1", 32 * 1048576}, {"rand.0.0", 17 * 1048576}, {"over", 8 * 1048576}};
+  REQUIRE(layout.tasks.size() == expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    const TaskSpec& t = layout.tasks[i];
+    CHECK(t.fsync);  // create_fsync=1
+    REQUIRE(t.accesses.size() == 1);
+    const AccessSpec& a = t.accesses[0];
+    CHECK(a.file == expected[i].first);
+    CHECK(a.mode == AccessMode::Write);
+    CHECK(a.pattern == AccessPattern::Sequential);
+    CHECK(a.offset == 0);  // from byte 0, whatever the job's offset
+    CHECK(a.length == expected[i].second);
+    CHECK(a.request == (i == 2 ? 4096 : i == 3 ? 4096 : 1048576));  // the job's write requests
+    CHECK(a.count * a.request == a.length);
+    CHECK(a.drop_after);  // POSIX_FADV_DONTNEED after the fsync
+  }
+  for (std::size_t i = 1; i < s.apps.size(); ++i) CHECK(s.apps[i].after == std::vector<std::string>{"layout#"});
+  // A file set up by an earlier job that only writes is not laid out again for a reader.
+  CHECK(folder.load("[w]\nrw=write\nsize=8m\nfilename=f\n[r]\nstonewall\nrw=read\nsize=8m\nfilename=f\n").apps.size() == 2);
+  // But one too small for the reader's region is.
+  const Scenario grown = folder.load("[w]\nrw=write\nsize=8m\nfilename=f\n[r]\nstonewall\nrw=read\nsize=16m\nfilename=f\n");
+  REQUIRE(grown.apps.size() == 3);
+  CHECK(grown.apps[0].tasks.at(0).accesses.at(0).length == 16 * 1048576);
+}
+
+TEST_CASE("fio's layout leaves the file on disk and not cached when the jobs start", "[fio][run]") {
+  const JobFolder folder("layout-run");
+  const RunResult result = run_scenario(folder.load("[r]\nrw=read\nbs=1m\nsize=64m\ninvalidate=0\n"));
+  bool read = false;
+  for (const PhaseRow& row : result.timeline) {
+    if (result.names[row.app] != "r" || row.phase != PhaseKind::Read || row.bytes == 0) continue;
+    read = true;
+    CHECK(row.disk_bytes == 64 * 1048576);  // dropped by the layout even without the job's invalidate
+    CHECK(row.cache_bytes == 0);
+    CHECK(row.start > 0.0);  // after the layout's writes and fsync
+  }
+  CHECK(read);
 }
 
 TEST_CASE("fio's end_fsync, unlink, io_size and filename map onto the task", "[fio][scenario]") {
@@ -156,7 +233,7 @@ unlink=1
   const TaskSpec& t = s.apps[0].tasks[0];
   CHECK(t.fsync);
   CHECK_FALSE(t.direct_io);
-  CHECK(folder.load("[d]\nsize=1m\ndirect=1\n").apps[0].tasks[0].direct_io);  // O_DIRECT, request by request
+  CHECK(folder.load("[d]\nsize=1m\ndirect=1\n").apps[1].tasks[0].direct_io);  // O_DIRECT, request by request (after the layout)
   CHECK(t.deletes == std::vector<std::string>{"data"});
   CHECK(t.accesses[0].mode == AccessMode::Write);
   CHECK(t.accesses[0].count == 8192);  // io_size / bs: four passes over the 8 MiB region

@@ -235,6 +235,18 @@ TEST_CASE("invalidate drops the region's clean data before each epoch, as fio's 
   }
 }
 
+TEST_CASE("drop_after drops the region's clean data after each epoch: a read after it misses", "[workload][access]") {
+  for (const char* profile : {"linux", "paper"}) {
+    INFO(profile);
+    const char* kTwice = "[[apps.tasks.access]]\nfile = \"hot\"\nrequest = \"1 MiB\"\nrepeat = 2\ndrop_after = true\n";
+    const std::vector<PhaseRow> e = epoch_rows(run_scenario(with_accesses(profile, kTwice)));
+    REQUIRE(e.size() == 2);
+    CHECK(e[0].cache_bytes == 8 * kMiB);  // cached at the start
+    CHECK(e[1].cache_bytes == 0);         // dropped after epoch 1
+    CHECK(e[1].disk_bytes == 8 * kMiB);
+  }
+}
+
 TEST_CASE("reshuffle = false repeats epoch 1's random requests every epoch, as fio's randrepeat", "[workload][access]") {
   // 1000 draws of 16384 pages: epoch 2 hits all of epoch 1's pages only if it draws the same.
   const char* kDraws = "[[apps.tasks.access]]\nfile = \"big\"\npattern = \"random\"\nrequest = \"4 KiB\"\nreplacement = true\n"

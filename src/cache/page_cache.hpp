@@ -9,9 +9,8 @@
 // activates, what reclaim takes, which expired data goes first, the dirtyable memory) it asks
 // its Policy (cache/policy.hpp).
 //
-// Invariants (checked by check_invariants(), and after operations when set_checking(true):
-// every one while the cache holds at most 4096 blocks, beyond that one in blocks/64, so that a
-// checked run stays linear in its operations): total = free + anonymous + cached, free >= 0, 0 <= dirty <= cached,
+// Invariants (checked by check_invariants(), after every operation when set_checking(true),
+// and in debug builds after operations often enough that a run stays linear in them): total = free + anonymous + cached, free >= 0, 0 <= dirty <= cached,
 // cached = inactive + active, every list's byte counter equals its block sum, every block is
 // in exactly one LRU list and in its file's list for that LRU list; with the clean index, every
 // clean block is in its file's clean list for that LRU list, and every file not being written
@@ -79,9 +78,12 @@ class PageCache {
   /// Calls `hook` with the free memory after every change of the memory state (free page
   /// reporting watches it).
   void set_free_memory_hook(std::function<void(std::int64_t free, std::int64_t anonymous)> hook) { free_memory_hook_ = std::move(hook); }
-  /// Runs check_invariants() after mutating operations (all of them while the cache holds few
-  /// blocks; see the invariants above); on by default in debug builds.
-  void set_checking(bool on) noexcept { checking_ = on; }
+  /// Runs check_invariants() after every mutating operation (tests). Debug builds check by
+  /// default, amortised: one operation in blocks/4, as a full check visits every block.
+  void set_checking(bool on) noexcept {
+    checking_ = on;
+    amortised_ = false;
+  }
 
   // --- Memory -----------------------------------------------------------------------------
   MemoryState memory() const noexcept;
@@ -452,6 +454,7 @@ class PageCache {
   std::function<void()> progress_hook_;
   Tracer tracer_;
   bool checking_ = checking_by_default();
+  bool amortised_ = checking_;
   std::size_t unchecked_operations_ = 0;
 };
 

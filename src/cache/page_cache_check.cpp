@@ -12,10 +12,8 @@
 namespace pagecache::cache {
 
 void PageCache::check_after_operation() {
-  constexpr std::size_t kAlways = 4096;  // the randomised tests' states stay below it
-  constexpr std::size_t kSpread = 64;    // beyond it: at most 64 block visits per operation
-  const std::size_t blocks = blocks_.in_use();
-  if (blocks > kAlways && ++unchecked_operations_ * kSpread < blocks) return;
+  constexpr std::size_t kSpread = 4;  // at most 4 block visits per operation, amortised
+  if (amortised_ && ++unchecked_operations_ * kSpread < blocks_.in_use()) return;
   unchecked_operations_ = 0;
   check_invariants();
 }

@@ -1,6 +1,7 @@
 #include "validate_fio_command.hpp"
 
 #include "calibrate/measure.hpp"
+#include "calibrate/memory_cgroup.hpp"
 #include "calibrate/real_fio.hpp"
 #include "calibrate/scratch.hpp"
 #include "scenario/fio_job_file.hpp"
@@ -11,12 +12,14 @@
 
 #include <pagecache/error.hpp>
 #include <pagecache/scenario_file.hpp>
+#include <pagecache/units.hpp>
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -35,8 +38,8 @@ void write_file(const fs::path& path, const std::string& text) {
 
 // A job file pcsim would not run, or one it estimates to run longer than fio may, is refused
 // before anything runs.
-void check_job(const fs::path& job, const fs::path& platform, int timeout) {
-  const val::FioSimulation sim = val::simulate_fio(job, platform);
+void check_job(const fs::path& job, const fs::path& platform, int timeout, std::int64_t memory_max) {
+  const val::FioSimulation sim = val::simulate_fio(job, platform, memory_max);
   if (sim.result.summary.makespan > timeout) {
     throw pagecache::ConfigError(fmt::format("{}: pcsim estimates {:.0f} s for one run, beyond --fio-timeout {} s: give a shorter job or a longer "
                                              "--fio-timeout",
@@ -58,12 +61,26 @@ write_bw = "100 MB/s"
 capacity = "1 TB"
 )";
 
-void check_loads(const std::string& job, const fs::path& dir) {
+void check_loads(const std::string& job, const fs::path& dir, std::int64_t memory_max) {
   const pagecache::calibrate::Scratch scratch(dir, "pcsim-fio-check");
   write_file(scratch.file("platform.toml"), kStandInPlatform);
   pagecache::RunInputs inputs;
   inputs.workflow.platform = scratch.file("platform.toml").string();
+  if (memory_max > 0) inputs.overrides.emplace_back("fio.memory_max", std::to_string(memory_max));
   pagecache::load_run_scenario(job, inputs);
+}
+
+// --memory-max in bytes; 0 if not given.
+std::int64_t memory_max_of(const ValidateHereOptions& o) {
+  if (o.memory_max.empty()) return 0;
+  std::int64_t bytes = 0;
+  try {
+    bytes = pagecache::units::parse_size(o.memory_max);
+  } catch (const pagecache::ConfigError& e) {
+    throw pagecache::ConfigError(fmt::format("--memory-max: {}", e.what()));
+  }
+  if (bytes < (std::int64_t{1} << 20)) throw pagecache::ConfigError(fmt::format("--memory-max {}: at least 1 MiB", o.memory_max));
+  return bytes;
 }
 
 // fio runs in a folder pcsim makes and removes: a job file whose files lie outside it would
@@ -94,17 +111,24 @@ void check_kept_inside(const std::string& job) {
 
 // The job files as given: each one readable and of a name of its own (their copies share the
 // folder), each loaded by pcsim: with --platform, on it and simulated (its estimated run
-// within --fio-timeout), else on the stand-in (the estimate once calibrated).
-void check_job_files(const ValidateHereOptions& o) {
+// within --fio-timeout), else on the stand-in (the estimate once calibrated); with
+// --memory-max, in a memory group of it (one job only: pcsim refuses more).
+void check_job_files(const ValidateHereOptions& o, std::int64_t memory_max) {
   std::set<std::string> names;
   for (const std::string& job : o.fio) {
     const std::string name = fs::path(job).filename().string();
     if (!names.insert(name).second) throw pagecache::ConfigError(fmt::format("--fio: two job files named {}: their measurements would share names", name));
     check_kept_inside(job);
+    const std::size_t jobs = pagecache::scenario::read_fio_job_file(job).jobs.size();
+    if (memory_max > 0 && jobs > 1) {
+      throw pagecache::ConfigError(fmt::format("{}: --memory-max: {} jobs (numjobs clones count) in one memory cgroup are not modelled yet: give "
+                                               "job files of one job each",
+                                               job, jobs));
+    }
     if (!o.platform.empty()) {
-      check_job(job, o.platform, o.fio_timeout);
+      check_job(job, o.platform, o.fio_timeout, memory_max);
     } else {
-      check_loads(job, o.dir);
+      check_loads(job, o.dir, memory_max);
     }
   }
 }
@@ -118,7 +142,10 @@ std::string scored(const fs::path& folder) {
 
 int run_validate_fio(const ValidateHereOptions& o) {
   check_here_folders(o);
-  check_job_files(o);
+  const std::int64_t memory_max = memory_max_of(o);
+  check_job_files(o, memory_max);
+  // One made and removed now: a user who may not make them learns it before anything runs.
+  if (memory_max > 0) pagecache::calibrate::MemoryCgroup probe(memory_max);
   pagecache::calibrate::install_stop_handlers();
   StatusLine status(true);
   const std::string platform = here_platform_toml(o, status);
@@ -129,14 +156,17 @@ int run_validate_fio(const ValidateHereOptions& o) {
   for (const std::string& job : o.fio) {
     const std::string name = fs::path(job).filename().string();
     fs::copy_file(job, out / name);
-    if (o.platform.empty()) check_job(out / name, out / "platform.toml", o.fio_timeout);
-    runs.push_back({name, {}});
+    if (o.platform.empty()) check_job(out / name, out / "platform.toml", o.fio_timeout, memory_max);
+    runs.push_back({name, {}, memory_max});
   }
   const int repeat = o.repeat > 0 ? o.repeat : (o.quick ? 1 : 3);
   for (val::FioJobFileRuns& f : runs) {
     for (int rep = 1; rep <= repeat; ++rep) {
       if (status.due(true)) status.show(fmt::format("validate --here --fio: {} (repetition {} of {})", f.job_file, rep, repeat));
-      const pagecache::calibrate::RealFio fio = pagecache::calibrate::run_real_fio(out / f.job_file, o.dir, o.fio_timeout, o.quick ? 6.0 : 40.0);
+      std::optional<pagecache::calibrate::MemoryCgroup> cgroup;  // a fresh one per run: its peak is that run's
+      if (memory_max > 0) cgroup.emplace(memory_max);
+      const pagecache::calibrate::RealFio fio =
+          pagecache::calibrate::run_real_fio(out / f.job_file, o.dir, o.fio_timeout, o.quick ? 6.0 : 40.0, "fio", cgroup ? &*cgroup : nullptr);
       if (fio.reporting_settled == 0) {
         status.clear();
         fmt::print(stderr, "pcsim: warning: {} repetition {}: free page reporting had not settled when fio started: part of its memory may have been warm\n",
@@ -144,7 +174,7 @@ int run_validate_fio(const ValidateHereOptions& o) {
       }
       const std::string json_file = fmt::format("fio-{}-{}.json", fs::path(f.job_file).stem().string(), rep);
       write_file(out / json_file, fio.json);
-      f.repetitions.push_back({rep, json_file, val::parse_fio_report(fio.json, (out / json_file).string())});
+      f.repetitions.push_back({rep, json_file, val::parse_fio_report(fio.json, (out / json_file).string()), fio.peak_memory});
     }
   }
   status.clear();

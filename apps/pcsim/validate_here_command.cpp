@@ -41,6 +41,9 @@ void add_validate_here_options(CLI::App& validate_app, ValidateHereOptions& o) {
   validate->add_option("--fio-timeout", o.fio_timeout, "--here --fio: fio's --timeout for each run, in seconds (a job pcsim estimates longer is refused)")
       ->capture_default_str()
       ->check(CLI::Range(1, 86400));
+  validate->add_option("--memory-max", o.memory_max,
+                       "--here --fio: run each fio in a memory cgroup of this limit (\"256 MiB\"; pcsim makes it and removes it after: root) "
+                       "and simulate each job file under it ([fio] memory_max)");
   validate->add_flag("--quick", o.quick, "--here: tiny cases, one repetition, a quick calibration: proves the pipeline works, measures little");
 }
 
@@ -75,8 +78,10 @@ void check_validate_mode(const CLI::App& validate) {
                        here ? "--here" : "--from", here ? " (also into --out's report.txt)" : ""));
   }
   if (!here) {
-    refuse({"--dir", "--platform", "--out", "--repeat", "--quick", "--fio", "--fio-timeout"},
+    refuse({"--dir", "--platform", "--out", "--repeat", "--quick", "--fio", "--fio-timeout", "--memory-max"},
            from ? "of --here: --from scores the folder it names again, running nothing" : "of --here (the experiments run for real here)");
+  } else if (validate.count("--fio") == 0) {
+    refuse({"--memory-max"}, "of --here --fio: the paper's experiments run without a memory cgroup of pcsim's");
   }
 }
 

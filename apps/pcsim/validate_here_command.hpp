@@ -20,13 +20,14 @@ struct ValidateHereOptions {
   bool quick = false;
   std::vector<std::string> fio;  ///< fio job files: run them instead of the paper's experiments
   int fio_timeout = 600;         ///< fio's --timeout per run, seconds
+  std::string memory_max;        ///< --fio: a size; fio in a memory cgroup of it, pcsim under it too
 };
 
 /// Adds the options to `validate`.
 void add_validate_here_options(CLI::App& validate, ValidateHereOptions& options);
 /// Throws ConfigError naming the options given to `validate` (parsed) that its mode does not
 /// take, which would otherwise be ignored: --here's own (--dir, --platform, --out, --repeat,
-/// --quick, --fio, --fio-timeout) without --here; with --here or --from, the comparison with the paper's data
+/// --quick, --fio, --fio-timeout, --memory-max) without --here, --memory-max without --fio; with --here or --from, the comparison with the paper's data
 /// (--json, --report, --profile, --set, --switch, --data, --scenarios); --here with --from.
 void check_validate_mode(const CLI::App& validate);
 class StatusLine;

@@ -2,6 +2,7 @@
 
 #include "calibrate/cold_start.hpp"
 #include "calibrate/measure.hpp"
+#include "calibrate/memory_cgroup.hpp"
 #include "calibrate/scratch.hpp"
 #include "calibrate/system_info.hpp"
 
@@ -89,13 +90,15 @@ std::string first_json_line_on(const std::string& out) {
 }  // namespace
 
 RealFio run_real_fio(const std::filesystem::path& job, const std::filesystem::path& dir, int timeout_seconds, double settle_limit,
-                     const std::string& fio) {
+                     const std::string& fio, const MemoryCgroup* cgroup) {
   const Scratch scratch(dir, "pcsim-fio");
   RealFio run;
   run.dropped_all_caches = ::geteuid() == 0 && drop_all_caches();
   if (reported_free_bytes() >= 0) run.reporting_settled = wait_for_reporting(settle_limit) ? 1 : 0;
   const std::string job_path = std::filesystem::absolute(job).string();
   std::vector<std::string> args{fio, "--output-format=json", fmt::format("--timeout={}", timeout_seconds), job_path};
+  // posix_spawn cannot place its child in a cgroup: a shell joins it, then becomes fio.
+  if (cgroup != nullptr) args.insert(args.begin(), {"/bin/sh", "-c", R"(echo $$ > "$0" && exec "$@")", cgroup->procs().string()});
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -109,7 +112,7 @@ RealFio run_real_fio(const std::filesystem::path& job, const std::filesystem::pa
   ::posix_spawn_file_actions_addchdir_np(&actions, scratch.file("").c_str());
   pid_t pid = 0;
   const auto start = Clock::now();
-  const int spawned = ::posix_spawnp(&pid, fio.c_str(), &actions, nullptr, argv.data(), environ);
+  const int spawned = ::posix_spawnp(&pid, args.front().c_str(), &actions, nullptr, argv.data(), environ);
   ::posix_spawn_file_actions_destroy(&actions);
   if (spawned != 0) throw Error(fmt::format("cannot start {} ({}): is fio installed (scripts/install-deps)?", fio, std::strerror(spawned)));
   out.close_end(1);
@@ -128,6 +131,7 @@ RealFio run_real_fio(const std::filesystem::path& job, const std::filesystem::pa
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
   run.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  if (cgroup != nullptr) run.peak_memory = cgroup->peak();
   const std::string what = fmt::format("fio {}", job.string());
   if (stop_requested()) throw Error(fmt::format("{}: interrupted: fio stopped, its files removed", what));
   if (!ended) throw Error(fmt::format("{}: still running {} s after its --timeout of {} s: killed, its files removed", what, 60, timeout_seconds));

@@ -5,6 +5,7 @@
 // and the memory that freed reported to a virtual machine's host (cold_start.hpp); fio's
 // invalidate=1 (its default) drops each job's files at open, which pcsim simulates too.
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 
@@ -18,14 +19,19 @@ struct RealFio {
   /// Before it, free page reporting: 1 settled (the freed memory reported), 0 still reporting
   /// after the wait's limit, -1 not counted here (no free page reporting).
   int reporting_settled = -1;
+  /// Run in a memory cgroup: the most memory it used at once (bytes); -1 if none or unknown.
+  std::int64_t peak_memory = -1;
 };
+
+class MemoryCgroup;
 
 /// Runs `fio --output-format=json --timeout=T JOB` with its working directory a fresh folder
 /// in `dir` (removed after), after the cache is dropped and free page reporting has settled
 /// (waiting at most `settle_limit` seconds). `timeout_seconds` is fio's --timeout; a fio still running well
 /// after it is killed. Throws pagecache::Error quoting fio's stderr if fio cannot start, fails
 /// (non-zero exit), prints no JSON or is interrupted (SIGINT, SIGTERM: stop_requested()).
+/// With `cgroup`, fio starts inside it (a shell joins it, then becomes fio).
 RealFio run_real_fio(const std::filesystem::path& job, const std::filesystem::path& dir, int timeout_seconds, double settle_limit,
-                     const std::string& fio = "fio");
+                     const std::string& fio = "fio", const MemoryCgroup* cgroup = nullptr);
 
 }  // namespace pagecache::calibrate

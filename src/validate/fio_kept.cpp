@@ -4,6 +4,7 @@
 #include "validate/csv.hpp"
 
 #include <pagecache/error.hpp>
+#include <pagecache/units.hpp>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -60,9 +61,10 @@ std::vector<FioMeasuredJob> parse_fio_report(std::string_view text, const std::s
 }
 
 std::string fio_manifest(const std::vector<FioJobFileRuns>& runs) {
-  std::string text = "job_file,repetition,json_file\n";
+  std::string text = "job_file,repetition,json_file,memory_max,peak_memory\n";
   for (const FioJobFileRuns& f : runs)
-    for (const FioRepetition& r : f.repetitions) text += fmt::format("{},{},{}\n", f.job_file, r.repetition, r.json_file);
+    for (const FioRepetition& r : f.repetitions)
+      text += fmt::format("{},{},{},{},{}\n", f.job_file, r.repetition, r.json_file, f.memory_max, r.peak_memory);
   return text;
 }
 
@@ -73,7 +75,8 @@ bool is_fio_folder(const fs::path& folder) {
 
 std::vector<FioJobFileRuns> load_fio_runs(const fs::path& folder) {
   const std::string manifest = (folder / kFioManifest).string();
-  const CsvTable table(scenario::read_text_file(manifest, "fio manifest"), manifest, {"job_file", "repetition", "json_file"});
+  const CsvTable table(scenario::read_text_file(manifest, "fio manifest"), manifest, {"job_file", "repetition", "json_file"},
+                       {"memory_max", "peak_memory"});
   if (table.size() == 0) throw ConfigError(fmt::format("{}:1: no runs after the header", manifest));
   std::vector<FioJobFileRuns> runs;
   std::map<std::string, std::size_t> index;  // job file -> its entry in runs
@@ -83,16 +86,20 @@ std::vector<FioJobFileRuns> load_fio_runs(const fs::path& folder) {
     const auto [at, fresh] = index.emplace(job_file, runs.size());
     if (fresh) {
       scenario::read_text_file((folder / job_file).string(), "fio job file");  // its copy is there to simulate
-      runs.push_back({job_file, {}});
+      runs.push_back({job_file, {}, table.has("memory_max") ? row.whole("memory_max", 0, units::kMaxBytes) : 0});
     }
     FioJobFileRuns& f = runs[at->second];
+    if (table.has("memory_max") && row.whole("memory_max", 0, units::kMaxBytes) != f.memory_max) {
+      row.fail("memory_max", fmt::format("not the {} bytes of {}'s first repetition: its repetitions ran under one limit", f.memory_max, job_file));
+    }
     const int repetition = static_cast<int>(row.whole("repetition", 1, INT_MAX));
     if (repetition != static_cast<int>(f.repetitions.size()) + 1) {
       row.fail("repetition", fmt::format("{} is not {}'s next repetition ({})", repetition, job_file, f.repetitions.size() + 1));
     }
     const std::string json_file = plain_name(row, "json_file");
     const std::string path = (folder / json_file).string();
-    f.repetitions.push_back({repetition, json_file, parse_fio_report(scenario::read_text_file(path, "fio report"), path)});
+    const std::int64_t peak = table.has("peak_memory") ? row.whole("peak_memory", -1, INT64_MAX) : -1;
+    f.repetitions.push_back({repetition, json_file, parse_fio_report(scenario::read_text_file(path, "fio report"), path), peak});
   }
   return runs;
 }

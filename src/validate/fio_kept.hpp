@@ -2,7 +2,9 @@
 // The measurements `validate --here --fio` keeps in its --out folder, read back for `validate
 // --from`: platform.toml, each job file's copy, each repetition's fio JSON report
 // (fio-STEM-REP.json) and the manifest fio-runs.csv listing them (job_file, repetition,
-// json_file). Read strictly: a missing or malformed file is a ConfigError naming it.
+// json_file, memory_max: the memory cgroup's limit or 0, peak_memory: its peak use or -1; an
+// older manifest without the last two ran without a limit). Read strictly: a missing or
+// malformed file is a ConfigError naming it.
 
 #include <cstdint>
 #include <filesystem>
@@ -29,12 +31,14 @@ struct FioRepetition {
   int repetition = 0;     ///< from 1
   std::string json_file;  ///< its report's name in the folder
   std::vector<FioMeasuredJob> jobs;  ///< in fio's order
+  std::int64_t peak_memory = -1;  ///< in its memory cgroup (bytes); -1: none or unknown
 };
 
 /// A job file and its repetitions.
 struct FioJobFileRuns {
   std::string job_file;  ///< its copy's name in the folder
   std::vector<FioRepetition> repetitions;
+  std::int64_t memory_max = 0;  ///< the memory cgroup fio ran in (bytes), simulated too; 0: none
 };
 
 /// The manifest's name: its presence makes a folder one of fio measurements.

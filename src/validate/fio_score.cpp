@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 namespace pagecache::validate {
 
@@ -39,7 +40,7 @@ FioScore score(const std::string& job_file, const std::string& job, const char* 
 
 // The scores of one job file: its reports' jobs matched with pcsim's by position.
 void score_job_file(const fs::path& folder, const FioJobFileRuns& runs, std::vector<FioScore>& out) {
-  const FioSimulation sim = simulate_fio(folder / runs.job_file, folder / "platform.toml");
+  const FioSimulation sim = simulate_fio(folder / runs.job_file, folder / "platform.toml", runs.memory_max);
   const std::vector<report::FioJobResult> simulated = report::fio_results(sim.scenario, sim.result);
   for (const FioRepetition& r : runs.repetitions) {
     if (r.jobs.size() != simulated.size()) {
@@ -67,9 +68,10 @@ std::string number_json(double v) { return std::isfinite(v) ? fmt::format("{}", 
 
 }  // namespace
 
-FioSimulation simulate_fio(const fs::path& job, const fs::path& platform) {
+FioSimulation simulate_fio(const fs::path& job, const fs::path& platform, std::int64_t memory_max) {
   RunInputs inputs;
   inputs.workflow.platform = platform.string();
+  if (memory_max > 0) inputs.overrides.emplace_back("fio.memory_max", std::to_string(memory_max));
   FioSimulation sim{load_run_scenario(job.string(), inputs), {}};
   RunOptions options;
   options.cache_contents = false;

@@ -10,6 +10,7 @@
 #include <pagecache/run.hpp>
 #include <pagecache/scenario.hpp>
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -23,8 +24,9 @@ struct FioSimulation {
 };
 
 /// Loads `job` on `platform` as `pcsim run` does (a job file pcsim refuses throws its
-/// ConfigError) and simulates it.
-FioSimulation simulate_fio(const std::filesystem::path& job, const std::filesystem::path& platform);
+/// ConfigError) and simulates it; `memory_max` > 0: in a memory cgroup of that limit, as
+/// `--set fio.memory_max=BYTES` runs it.
+FioSimulation simulate_fio(const std::filesystem::path& job, const std::filesystem::path& platform, std::int64_t memory_max = 0);
 
 /// One job's one direction.
 struct FioScore {

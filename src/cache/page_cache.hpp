@@ -10,7 +10,7 @@
 // its Policy (cache/policy.hpp).
 //
 // Invariants (checked by check_invariants(), after every operation when set_checking(true),
-// and in debug builds after operations often enough that a run stays linear in them): total = free + anonymous + cached, free >= 0, 0 <= dirty <= cached,
+// amortised in debug builds): total = free + anonymous + cached, free >= 0, 0 <= dirty <= cached,
 // cached = inactive + active, every list's byte counter equals its block sum, every block is
 // in exactly one LRU list and in its file's list for that LRU list; with the clean index, every
 // clean block is in its file's clean list for that LRU list, and every file not being written
@@ -80,10 +80,7 @@ class PageCache {
   void set_free_memory_hook(std::function<void(std::int64_t free, std::int64_t anonymous)> hook) { free_memory_hook_ = std::move(hook); }
   /// Runs check_invariants() after every mutating operation (tests). Debug builds check by
   /// default, amortised: one operation in blocks/4, as a full check visits every block.
-  void set_checking(bool on) noexcept {
-    checking_ = on;
-    amortised_ = false;
-  }
+  void set_checking(bool on) noexcept { checking_ = on, amortised_ = false; }
 
   // --- Memory -----------------------------------------------------------------------------
   MemoryState memory() const noexcept;
@@ -258,11 +255,6 @@ class PageCache {
   /// Throws InvariantError naming the first broken invariant.
   void check_invariants() const;
 
- private:
-  // check_invariants() after an operation, amortised: a full check costs O(blocks).
-  void check_after_operation();
-
- public:
   // --- Walks for policies: they change the lists, and leave settling to the operation ----
   // Each block they evict is reported to the policy (Policy::evicted).
   /// Evicts clean blocks of `kind`, least recently used first, up to `budget` bytes (the last
@@ -280,6 +272,7 @@ class PageCache {
   BlockId lru_expired(double cutoff);
 
  private:
+  void check_after_operation();  // check_invariants(), amortised unless set_checking asked
   // check_invariants' parts (page_cache_check.cpp). `most`: the blocks in use, more steps
   // than which is a cycle.
   std::size_t check_file(std::size_t f, std::size_t most) const;  // returns the file's blocks
@@ -429,13 +422,9 @@ class PageCache {
   GroupId target_ = kAnyGroup;
   bool in_target(const Block& block) const noexcept { return target_ == kAnyGroup || group_of(block.file) == target_; }
   /// Adds `bytes` to the cached bytes of the file's group.
-  void charge(FileId file, std::int64_t bytes) noexcept {
-    if (!groups_.empty()) groups_[group_of(file)].cached += bytes;
-  }
+  void charge(FileId file, std::int64_t bytes) noexcept { if (!groups_.empty()) groups_[group_of(file)].cached += bytes; }
   /// Adds `bytes` to the dirty or writeback bytes of the file's group.
-  void charge_dirty(FileId file, std::int64_t bytes) noexcept {
-    if (!groups_.empty()) groups_[group_of(file)].dirty += bytes;
-  }
+  void charge_dirty(FileId file, std::int64_t bytes) noexcept { if (!groups_.empty()) groups_[group_of(file)].dirty += bytes; }
   // Per LRU list, with the clean index: where an eviction that spares the files
   // being written finds its next victim without walking past their clean blocks. Every file
   // not being written that has clean data in the list is in it, under a key no higher than

@@ -121,7 +121,7 @@ TEST_CASE("validate --here --fio runs the real fio in a folder of its own, keeps
   INFO(again.output);
   CHECK(again.status == 0);
   CHECK(again.output == slurp(out / "report.txt"));
-  CHECK(run.output.rfind(again.output, 0) == 0);
+  CHECK(run.output.find(again.output) != std::string::npos);  // after any warning on stderr
 
   // A kept report broken: --from names it.
   std::ofstream(out / "fio-tiny-2.json") << "{\"jobs\": [";

@@ -50,12 +50,14 @@ std::string direction_json(const FioDirection& d) {
 }  // namespace
 
 std::vector<FioJobResult> fio_results(const Scenario& scenario, const RunResult& result) {
-  // Each job's access rows ("TASK:FILE[epoch N]"), by its application's name.
+  // Each job's access rows ("io:FILE[epoch N]"; not its layouts' in a memory cgroup), by its
+  // application's name.
   std::unordered_map<std::string, std::pair<Span, Span>> spans;
   for (const FioJobInfo& job : scenario.fio.jobs) spans.emplace(job.app, std::pair<Span, Span>{});
   for (const PhaseRow& row : result.timeline) {
     const auto it = spans.find(result.app_name(row));
-    if (it == spans.end() || result.task_name(row).find("[epoch ") == std::string::npos) continue;
+    const std::string& task = result.task_name(row);
+    if (it == spans.end() || task.rfind("io:", 0) != 0 || task.find("[epoch ") == std::string::npos) continue;
     if (row.phase == PhaseKind::Read) it->second.first.add(row);
     if (row.phase == PhaseKind::Write) it->second.second.add(row);
   }

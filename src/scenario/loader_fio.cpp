@@ -186,17 +186,10 @@ FileUse add_files(TomlReader& fr, const FioJobFile& jobs, const FioPlace& place,
 // file smaller than the job's region needs is extended. A job that only writes allocates it
 // (fallocate, no data); one that reads or overwrites lays it out: writes it from byte 0 in its
 // write requests, fsyncs it (create_fsync) and drops it from the page cache (filesetup.c,
-// extend_file). The layouts are an application of their own, which the jobs start after (""
-// if nothing is laid out); on a virtual machine they leave memory freed just before the jobs
-// start (docs/model.md §6.16).
-std::string add_layout(const FioJobFile& jobs, const FileUse& use, const FioPlace& place, const std::vector<std::string>& names, Scenario& s,
-                       Origins& origins) {
-  AppSpec app;
-  app.name = "layout";
-  while (std::find(names.begin(), names.end(), app.name) != names.end()) app.name += "#";
-  app.host = place.host;
-  app.memory_max = place.limits.max;
-  app.memory_high = place.limits.high;
+// extend_file). A task per file laid out; on a virtual machine they leave memory freed just
+// before the jobs start (docs/model.md §6.16).
+std::vector<TaskSpec> layout_tasks(const FioJobFile& jobs, const FileUse& use) {
+  std::vector<TaskSpec> tasks;
   std::map<std::string, std::int64_t> size;  // each file's size as set up so far
   for (std::size_t j = 0; j < jobs.jobs.size(); ++j) {
     const FioJob& job = jobs.jobs[j];
@@ -205,7 +198,7 @@ std::string add_layout(const FioJobFile& jobs, const FileUse& use, const FioPlac
       if (size[name] >= needed) continue;  // large enough: left as it is
       size[name] = needed;
       if (writes(job.rw) && !job.overwrite) continue;
-      TaskSpec& task = app.tasks.emplace_back();
+      TaskSpec& task = tasks.emplace_back();
       task.name = "layout";
       task.chunk_size = 100'000'000;
       task.fsync = true;
@@ -218,7 +211,19 @@ std::string add_layout(const FioJobFile& jobs, const FileUse& use, const FioPlac
       a.drop_after = true;
     }
   }
-  if (app.tasks.empty()) return {};
+  return tasks;
+}
+
+// The layouts as an application of their own, which the jobs start after ("" if nothing is
+// laid out).
+std::string add_layout_app(std::vector<TaskSpec> tasks, const FioJobFile& jobs, const FioPlace& place, const std::vector<std::string>& names,
+                           Scenario& s, Origins& origins) {
+  if (tasks.empty()) return {};
+  AppSpec app;
+  app.name = "layout";
+  while (std::find(names.begin(), names.end(), app.name) != names.end()) app.name += "#";
+  app.host = place.host;
+  app.tasks = std::move(tasks);
   const Origin origin = Origin::elsewhere(fmt::format("{}: fio's layout of the jobs' files", jobs.path));
   origins.apps.push_back(origin);
   origins.app_tasks.emplace_back(app.tasks.size(), origin);
@@ -226,9 +231,10 @@ std::string add_layout(const FioJobFile& jobs, const FileUse& use, const FioPlac
   return s.apps.back().name;
 }
 
-// Each job as an application of one task, and as fio.json will name it.
+// Each job as an application of one task "io" (after `first`, the layouts of a job in a memory
+// cgroup: fio runs whole in it), and as fio.json will name it.
 void add_jobs(const FioJobFile& jobs, const FioPlace& place, const std::vector<Region>& regions, const std::vector<std::string>& names,
-              const std::string& layout, Scenario& s, Origins& origins) {
+              const std::string& layout, std::vector<TaskSpec> first, Scenario& s, Origins& origins) {
   for (std::size_t i = 0; i < jobs.jobs.size(); ++i) {
     const FioJob& job = jobs.jobs[i];
     AppSpec app;
@@ -238,6 +244,8 @@ void add_jobs(const FioJobFile& jobs, const FioPlace& place, const std::vector<R
     app.memory_high = place.limits.high;
     for (const std::size_t before : job.after) app.after.push_back(names[before]);
     if (app.after.empty() && !layout.empty()) app.after.push_back(layout);
+    app.tasks = std::move(first);
+    first.clear();
     TaskSpec& task = app.tasks.emplace_back();
     task.name = "io";
     task.chunk_size = 100'000'000;  // an application's default (it reads no whole file)
@@ -254,7 +262,7 @@ void add_jobs(const FioJobFile& jobs, const FioPlace& place, const std::vector<R
                                     .write_ios = writes(job.rw) ? ios : 0,
                                     .options = job.own_options});
     origins.apps.push_back(Origin::elsewhere(place_of(jobs, job)));
-    origins.app_tasks.push_back({Origin::elsewhere(place_of(jobs, job))});
+    origins.app_tasks.emplace_back(app.tasks.size(), Origin::elsewhere(place_of(jobs, job)));
     s.apps.push_back(std::move(app));
   }
 }
@@ -286,8 +294,11 @@ void read_fio(TomlReader& r, const std::string& file, Scenario& s, Origins& orig
   s.fio.global_options = jobs.global_options;
   const FileUse use = add_files(fr, jobs, place, s, origins);
   const std::vector<std::string> names = app_names(jobs);
-  const std::string layout = add_layout(jobs, use, place, names, s, origins);
-  add_jobs(jobs, place, use.regions, names, layout, s, origins);
+  // In a memory cgroup (one job) the layouts are the job's first tasks: its group is fio's.
+  std::vector<TaskSpec> layouts = layout_tasks(jobs, use);
+  const bool in_group = place.limits.max > 0;
+  const std::string layout = in_group ? std::string() : add_layout_app(std::move(layouts), jobs, place, names, s, origins);
+  add_jobs(jobs, place, use.regions, names, layout, in_group ? std::move(layouts) : std::vector<TaskSpec>{}, s, origins);
 }
 
 }  // namespace pagecache::scenario

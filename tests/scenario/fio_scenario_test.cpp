@@ -204,6 +204,36 @@ size=32m
   CHECK(grown.apps[0].tasks.at(0).accesses.at(0).length == 16 * 1048576);
 }
 
+TEST_CASE("In a memory cgroup, fio's layout is the job's first task: fio runs whole in the group", "[fio][scenario]") {
+  const JobFolder folder("layout-group");
+  const Scenario s = folder.load("[r]\nrw=read\nbs=1m\nsize=64m\nloops=2\ninvalidate=0\n", {{"fio.memory_max", "\"32 MiB\""}});
+  REQUIRE(s.apps.size() == 1);
+  const AppSpec& r = s.apps[0];
+  CHECK(r.memory_max == 32 * 1048576);
+  CHECK(r.after.empty());
+  REQUIRE(r.tasks.size() == 2);
+  CHECK(r.tasks[0].name == "layout");
+  CHECK(r.tasks[0].accesses.at(0).drop_after);
+  CHECK(r.tasks[1].name == "io");
+  // The group holds 32 MiB of the file: loop 2 reads it from disk again; fio.json counts the
+  // job's reads only, not its layout's writes.
+  RunOutputs outputs;
+  RunOptions options;
+  outputs.attach(options);
+  const RunResult result = run_scenario(Scenario(s), options);
+  std::vector<PhaseRow> reads;
+  for (const PhaseRow& row : result.timeline) {
+    if (result.task_name(row).rfind("io:", 0) == 0) reads.push_back(row);
+  }
+  REQUIRE(reads.size() == 2);
+  CHECK(reads[1].disk_bytes == 64 * 1048576);
+  const fs::path out = folder.dir / "out";
+  outputs.write(out.string(), s, result);
+  const nlohmann::json fio = nlohmann::json::parse(std::ifstream(out / "fio.json"));
+  CHECK(fio["jobs"][0]["read"]["io_bytes"] == 128 * 1048576);
+  CHECK(fio["jobs"][0]["write"]["io_bytes"] == 0);
+}
+
 TEST_CASE("fio's layout leaves the file on disk and not cached when the jobs start", "[fio][run]") {
   const JobFolder folder("layout-run");
   const RunResult result = run_scenario(folder.load("[r]\nrw=read\nbs=1m\nsize=64m\ninvalidate=0\n"));

@@ -1,5 +1,9 @@
 // pcsim_scaling: how pcsim's cost grows with the number of concurrent applications.
 //
+// This times the simulation alone, its scenario built in memory. The user's command, `pcsim
+// run SCENARIO --out DIR` with the TOML read and every output and the report written, is
+// measured by scripts/bench-user (Exp 2 scaled, many writers, this cluster, a DAG).
+//
 // N pipelines of 3 tasks (read a file, compute, write the next file) in 100 MB chunks run on
 // one host scaled to them: per pipeline one core, 2.5 GB of memory, 500 MB/s of disk, so
 // that every pipeline sees the same machine whatever N. Its files (1 GB each, four per

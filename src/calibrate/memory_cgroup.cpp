@@ -1,5 +1,7 @@
 #include "calibrate/memory_cgroup.hpp"
 
+#include "calibrate/system_info.hpp"
+
 #include <pagecache/error.hpp>
 
 #include <fmt/format.h>
@@ -30,31 +32,16 @@ std::string read_text(const fs::path& path) {
   return text.str();
 }
 
-// This process's group (without its leading '/') in the hierarchy whose /proc/self/cgroup line
-// has `prefix` after the hierarchy id ("::" for v2, ":memory:" for v1); false if none has.
-bool group_of(std::string_view prefix, std::string& group) {
-  const std::string self = read_text("/proc/self/cgroup");
-  std::istringstream lines(self);
-  for (std::string line; std::getline(lines, line);) {
-    const auto colon = line.find(':');
-    if (colon == std::string::npos || line.compare(colon, prefix.size(), prefix) != 0) continue;
-    group = line.substr(colon + prefix.size());
-    while (!group.empty() && group.front() == '/') group.erase(0, 1);
-    return true;
-  }
-  return false;
-}
-
 // The cgroup v2 group whose children may have a memory controller: this process's own, if it
 // offers "memory" in its cgroup.subtree_control. Empty if none.
 fs::path v2_parent() {
-  std::string group;
-  if (!group_of("::", group)) return {};
+  const std::string group = own_cgroup("::");
+  if (group.empty()) return {};
   for (const char* root : {"/sys/fs/cgroup/unified", "/sys/fs/cgroup"}) {
     const fs::path mount(root);
     std::error_code ec;
     if (!fs::exists(mount / "cgroup.controllers", ec)) continue;
-    const fs::path parent = mount / group;
+    const fs::path parent = mount / group.substr(1);
     std::istringstream control(read_text(parent / "cgroup.subtree_control"));
     for (std::string word; control >> word;)
       if (word == "memory") return parent;
@@ -64,9 +51,9 @@ fs::path v2_parent() {
 }
 
 fs::path v1_parent() {
-  std::string group;
-  if (!group_of(":memory:", group)) return {};
-  return fs::path("/sys/fs/cgroup/memory") / group;
+  const std::string group = own_cgroup(":memory:");
+  if (group.empty()) return {};
+  return fs::path("/sys/fs/cgroup/memory") / group.substr(1);
 }
 
 // Writes `text` to a control file; the errno's text if it could not.

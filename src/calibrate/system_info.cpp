@@ -56,25 +56,11 @@ std::string file_system_name(long type) {
 // Whether this process's memory cgroup has a limit: cgroup v2's memory.max other than "max",
 // or v1's memory.limit_in_bytes below "unlimited" (a page-rounded 2^63 - 1).
 bool in_limited_memory_cgroup() {
-  const std::string self = read_text("/proc/self/cgroup");
-  const auto group_of = [&](std::string_view prefix) -> std::string {
-    for (std::size_t at = 0; at < self.size();) {
-      const std::size_t end = std::min(self.find('\n', at), self.size());
-      const std::string_view line = std::string_view(self).substr(at, end - at);
-      const auto colon = line.find(':');
-      if (colon != std::string_view::npos && line.substr(colon).rfind(prefix, 0) == 0) {
-        const std::string path = trim(line.substr(colon + prefix.size()));
-        return path.empty() ? "/" : path;
-      }
-      at = end + 1;
-    }
-    return {};
-  };
-  if (const std::string v2 = group_of("::"); !v2.empty()) {
+  if (const std::string v2 = own_cgroup("::"); !v2.empty()) {
     const std::string max = trim(read_text(std::filesystem::path("/sys/fs/cgroup") / v2.substr(1) / "memory.max"));
     if (!max.empty() && max != "max") return true;
   }
-  if (const std::string v1 = group_of(":memory:"); !v1.empty()) {
+  if (const std::string v1 = own_cgroup(":memory:"); !v1.empty()) {
     const std::int64_t limit = read_number(std::filesystem::path("/sys/fs/cgroup/memory") / v1.substr(1) / "memory.limit_in_bytes", -1);
     if (limit > 0 && limit < (std::int64_t{1} << 62)) return true;
   }
@@ -143,6 +129,21 @@ Activity ActivityMark::since() const {
   if (reported_ >= 0 && reported >= reported_) a.reported = reported - reported_;
   a.memory_total_change = meminfo_bytes(read_meminfo(), "MemTotal") - memory_total_;
   return a;
+}
+
+std::string own_cgroup(std::string_view prefix) {
+  const std::string self = read_text("/proc/self/cgroup");
+  for (std::size_t at = 0; at < self.size();) {
+    const std::size_t end = std::min(self.find('\n', at), self.size());
+    const std::string_view line = std::string_view(self).substr(at, end - at);
+    const auto colon = line.find(':');
+    if (colon != std::string_view::npos && line.substr(colon).rfind(prefix, 0) == 0) {
+      const std::string path = trim(line.substr(colon + prefix.size()));
+      return path.empty() ? "/" : path;
+    }
+    at = end + 1;
+  }
+  return {};
 }
 
 std::int64_t reported_free_bytes() {

@@ -80,6 +80,11 @@ std::string read_meminfo();
 /// A /proc/meminfo field now, in bytes; -1 if absent.
 std::int64_t meminfo_now(std::string_view key);
 
+/// This process's group ("/a/b", "/" at the root) in the cgroup hierarchy whose
+/// /proc/self/cgroup line has `prefix` after the hierarchy's id ("::" for v2, ":memory:" for
+/// v1's memory controller); empty if there is none.
+std::string own_cgroup(std::string_view prefix);
+
 /// Bytes of free memory the kernel has reported to a virtual machine's host since boot, where
 /// it counts them (a page_reporting module with a `reported_kib` parameter); -1 otherwise.
 std::int64_t reported_free_bytes();

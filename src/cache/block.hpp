@@ -12,8 +12,10 @@
 //    (their entry times), so that the flusher sees in O(1) whether anything has expired;
 //    while clean, with protect_files_being_written, the sub-list of its file's list holding
 //    the file's clean blocks, in the same relative order, so that eviction sparing the files
-//    being written finds a file's least recently used clean block at once. While in
-//    writeback it is on neither, and the same bytes hold the write it belongs to.
+//    being written finds a file's least recently used clean block at once; while in
+//    writeback, its file's blocks in writeback, so that the end of a write finds its blocks
+//    without walking the file's others. In writeback its entry time's bytes hold the write
+//    it belongs to.
 // Its `order` places it in its LRU list: a block appended gets a key above every other's in
 // that list, and the tail of a split (inserted right after its head, the only insertion not
 // at the end) takes its head's. Keys therefore never decrease along a list, and blocks with
@@ -47,12 +49,14 @@ struct alignas(64) Block {
   BlockLinks lru;       // its LRU list
   BlockLinks by_state;  // its LRU list's sub-list of the blocks in its state
   BlockLinks in_file;   // its file's list for its LRU list
+  // Dirty: the dirty blocks by age; clean: its file's clean sub-list; in writeback: its
+  // file's blocks in writeback.
+  BlockLinks state_list;
+  std::int64_t size = 0;
   union {
-    BlockLinks dirty_or_clean{};  // dirty: the dirty blocks by age; clean: its file's clean sub-list
+    double entry_time = 0.0;        // when the data became dirty; expiry is measured from it
     std::uint64_t writeback_batch;  // in writeback: the flush that is writing it
   };
-  std::int64_t size = 0;
-  double entry_time = 0.0;  // when the data became dirty; expiry is measured from it
   std::uint64_t order = 0;  // its place in its LRU list (see above)
   FileId file = 0;
   BlockState state = BlockState::Clean;

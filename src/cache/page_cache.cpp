@@ -86,7 +86,10 @@ void PageCache::release_anonymous(std::int64_t bytes, GroupId group) {
 
 PageCache::FileEntry& PageCache::file_entry(FileId file) {
   PC_ASSERT(file != kNoFile);
-  if (file >= files_.size()) files_.resize(static_cast<std::size_t>(file) + 1);
+  if (file >= files_.size()) {
+    files_.resize(static_cast<std::size_t>(file) + 1);
+    writeback_.resize(files_.size());
+  }
   return files_[file];
 }
 
@@ -164,6 +167,7 @@ bool PageCache::extend_tail(ListKind kind, FileId file, std::int64_t bytes, bool
 void PageCache::destroy(BlockId id) {
   unlink(id);
   if (blocks_[id].state == BlockState::Dirty) dirty_by_age_.erase(blocks_, id);
+  if (blocks_[id].state == BlockState::Writeback) writeback_[blocks_[id].file].erase(blocks_, id);
   if (blocks_[id].ranged) ranges_.erase(blocks_[id].file, id);
   blocks_[id].size = 0;  // no longer a block (a ReadCursor may still name it)
   blocks_.give_back(id);
@@ -183,15 +187,18 @@ void PageCache::set_state(BlockId id, BlockState state) {
   const bool was_clean = block.state == BlockState::Clean;
   if (was_clean != (state == BlockState::Clean)) charge_dirty(block.file, was_clean ? block.size : -block.size);
   if (was_clean && state != BlockState::Clean) on_clean_unlinked(id);
-  // Out of writeback, the bytes that held its write are its links again.
-  if (block.state == BlockState::Writeback && state != BlockState::Writeback) block.dirty_or_clean = BlockLinks{};
+  if (block.state == BlockState::Writeback && state != BlockState::Writeback) {
+    writeback_[block.file].erase(blocks_, id);
+    block.entry_time = 0.0;  // no longer its write
+  }
   list_of(block.list).set_state(id, state);
   if (!was_clean && state == BlockState::Clean) on_clean_linked(id);
 }
 
 void PageCache::start_writeback(BlockId id, std::uint64_t token) {
   set_state(id, BlockState::Writeback);
-  blocks_[id].writeback_batch = token;  // off the dirty and clean lists: their links are free
+  blocks_[id].writeback_batch = token;  // no longer dirty: its entry time is not needed
+  writeback_[blocks_[id].file].push_back(blocks_, id);  // off the dirty and clean lists: their links are free
 }
 
 void PageCache::link_clean(BlockId id) {
@@ -216,9 +223,9 @@ BlockId PageCache::split_front(BlockId id, std::int64_t head_size) {
   tail.file = block.file;
   tail.size = block.size - head_size;
   tail.state = block.state;
-  tail.entry_time = block.entry_time;
-  tail.referenced = block.referenced;
   if (block.state == BlockState::Writeback) tail.writeback_batch = block.writeback_batch;
+  else tail.entry_time = block.entry_time;
+  tail.referenced = block.referenced;
   if (block.ranged) {
     tail.ranged = true;
     ranges_.insert(block.file, tail_id, ranges_.offset(id) + head_size, tail.size);
@@ -232,6 +239,7 @@ BlockId PageCache::split_front(BlockId id, std::int64_t head_size) {
   file_list(entry, block.list).insert_after(blocks_, id, tail_id);
   ++entry.blocks;
   if (tail.state == BlockState::Dirty) dirty_by_age_.insert_after(blocks_, id, tail_id);
+  if (tail.state == BlockState::Writeback) writeback_[block.file].insert_after(blocks_, id, tail_id);
   if (tail.state == BlockState::Clean && index_clean_) {
     file_clean_list(entry, block.list).insert_after(blocks_, id, tail_id);
   }

@@ -47,6 +47,7 @@ std::size_t PageCache::check_file(std::size_t f, std::size_t most) const {
   std::int64_t bytes[2] = {0, 0};
   std::int64_t dirty_bytes = 0;
   std::size_t blocks = 0;
+  std::size_t in_writeback = 0;
   for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
     const FileOrder& flist = kind == ListKind::Inactive ? entry.inactive : entry.active;
     // Its clean list holds its clean blocks in the list, in order; and its place in
@@ -78,6 +79,7 @@ std::size_t PageCache::check_file(std::size_t f, std::size_t most) const {
       PC_ASSERT_MSG(lru_it != lru.end(), "file list out of LRU order");
       bytes[static_cast<int>(kind)] += b.size;
       if (b.state == BlockState::Dirty) dirty_bytes += b.size;
+      if (b.state == BlockState::Writeback) ++in_writeback;
       ++blocks;
     }
   }
@@ -85,6 +87,14 @@ std::size_t PageCache::check_file(std::size_t f, std::size_t most) const {
                 fmt::format("file {} byte counters disagree with its blocks", f));
   PC_ASSERT(dirty_bytes == entry.dirty_bytes);
   PC_ASSERT_MSG(entry.blocks == blocks, fmt::format("file {}: block count disagrees with its lists", f));
+  // Its list of blocks in writeback holds exactly those.
+  std::size_t listed = 0;
+  for (const Block& b : writeback_[f].range(blocks_)) {
+    PC_ASSERT_MSG(listed < most, fmt::format("file {}: its writeback list holds more blocks than there are (a cycle?)", f));
+    PC_ASSERT_MSG(b.file == f && b.state == BlockState::Writeback, fmt::format("file {}: a block on its writeback list in error", f));
+    ++listed;
+  }
+  PC_ASSERT_MSG(listed == in_writeback, fmt::format("file {}: {} blocks in writeback, {} on its list", f, in_writeback, listed));
   check_ranges(f, most);
   return blocks;
 }

@@ -12,7 +12,7 @@ namespace pagecache::cache {
 std::int64_t PageCache::flush(std::int64_t amount, FileId excluded, std::vector<Flushed>& out, GroupId group) {
   target_ = group;
   std::int64_t flushed = 0;
-  const std::uint64_t token = next_token_++;
+  const std::size_t first_part = out.size();
   for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
     LruList& list = list_of(kind);
     BlockId id = list.front(BlockState::Dirty);
@@ -23,9 +23,11 @@ std::int64_t PageCache::flush(std::int64_t amount, FileId excluded, std::vector<
         const BlockId target = partial ? split_front(id, amount - flushed) : id;
         const Block& block = blocks_[target];
         flushed += block.size;
-        if (!out.empty() && out.back().file == block.file && out.back().token == token) out.back().bytes += block.size;
-        else out.push_back({block.file, block.size, token});
-        start_writeback(target, token);
+        // A part per run of one file's blocks, each its own write: the caller may write the
+        // parts one after the other, and a part's data is clean when its own write ends.
+        if (out.size() > first_part && out.back().file == block.file) out.back().bytes += block.size;
+        else out.push_back({block.file, block.size, next_token_++});
+        start_writeback(target, out.back().token);
         if (partial && !policy_->splits_flushed_block_in_place()) {
           unlink(target);
           append(target, ListKind::Inactive);
@@ -132,30 +134,13 @@ void PageCache::on_dirty_unlinked(BlockId id) noexcept {
 void PageCache::end_writeback(const Flushed& taken) {
   if (taken.bytes == 0) return;
   // The blocks of one write carry its token (splits pass it on) and all belong to its file.
-  // They are looked for among the file's blocks or among all blocks in writeback, whichever
-  // are fewer: the file's when many writes are in flight at once (many writers flushing), the
-  // blocks in writeback when one file holds many blocks. Both visit the blocks in LRU order,
-  // inactive list first, so the lists end up the same either way.
-  auto end = [&](BlockId id) {
-    const Block& block = blocks_[id];
-    if (block.state != BlockState::Writeback || block.writeback_batch != taken.token) return;
-    set_state(id, BlockState::Clean);
-  };
-  FileEntry& entry = files_[taken.file];
-  const std::size_t in_writeback = inactive_.blocks_in(BlockState::Writeback) + active_.blocks_in(BlockState::Writeback);
-  if (entry.blocks <= in_writeback) {
-    for (FileOrder* flist : {&entry.inactive, &entry.active}) {
-      for (BlockId id = flist->front(); id != kNoBlock; id = FileOrder::next(blocks_, id)) end(id);
-    }
-  } else {
-    for (LruList* list : {&inactive_, &active_}) {
-      BlockId id = list->front(BlockState::Writeback);
-      while (id != kNoBlock) {
-        const BlockId next = list->next_in_state(id);
-        end(id);
-        id = next;
-      }
-    }
+  // Whatever order they are ended in, each takes its one place in the clean sub-lists
+  // (link_in_order), so the lists end up as a walk in LRU order leaves them.
+  FileWriteback& in_writeback = writeback_[taken.file];
+  for (BlockId id = in_writeback.front(); id != kNoBlock;) {
+    const BlockId next = FileWriteback::next(blocks_, id);
+    if (blocks_[id].writeback_batch == taken.token) set_state(id, BlockState::Clean);
+    id = next;
   }
   settle();
   if (progress_hook_) progress_hook_();

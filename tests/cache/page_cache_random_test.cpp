@@ -183,7 +183,6 @@ class Reference {
   std::vector<PageCache::Flushed> flush(std::int64_t amount, FileId excluded) {
     std::vector<PageCache::Flushed> out;
     std::int64_t flushed = 0;
-    const std::uint64_t token = next_token++;
     std::vector<RefBlock> moved;  // flushed heads of split blocks (paper: to the inactive tail)
     for (auto* list : {&inactive, &active}) {
       for (std::size_t i = 0; i < list->size() && flushed < amount; ++i) {
@@ -196,10 +195,11 @@ class Reference {
           b.size -= head.size;
         }
         head.state = BlockState::Writeback;
-        head.token = token;
         flushed += head.size;
+        // A write per run of one file's blocks.
         if (!out.empty() && out.back().file == head.file) out.back().bytes += head.size;
-        else out.push_back({head.file, head.size, token});
+        else out.push_back({head.file, head.size, next_token++});
+        head.token = out.back().token;
         if (!partial) {
           b = head;
         } else if (s_.flush_splits_in_place) {
@@ -381,17 +381,9 @@ void run_random(const CacheSettings& settings, std::uint64_t seed, int steps) {
         const auto i = static_cast<std::size_t>(pick(0, static_cast<std::int64_t>(in_flight.size()) - 1));
         const auto done = in_flight[i];
         in_flight.erase(in_flight.begin() + static_cast<std::ptrdiff_t>(i));
+        // Each part of a flush is a write of its own, ending on its own.
         cache.end_writeback(done);
-        // Several entries can share a token (one per file of a forced flush): end them together.
         ref.end_writeback(done.token);
-        for (std::size_t j = 0; j < in_flight.size();) {
-          if (in_flight[j].token == done.token) {
-            cache.end_writeback(in_flight[j]);
-            in_flight.erase(in_flight.begin() + static_cast<std::ptrdiff_t>(j));
-          } else {
-            ++j;
-          }
-        }
         break;
       }
       case 6: {

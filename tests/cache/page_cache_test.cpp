@@ -129,6 +129,26 @@ TEST_CASE("flushing takes the least recently used dirty data, skipping the exclu
   }
 }
 
+TEST_CASE("each file's part of a flush is a write of its own, ending on its own", "[page_cache]") {
+  // The flusher writes a group's parts one after the other: the first ending leaves the
+  // second's data in writeback, however many blocks the files hold.
+  PageCache cache(10000, CacheSettings::paper());
+  cache.set_checking(true);
+  for (const FileId file : {0, 1, 0, 1}) cache.add_clean(file, 10, 0.0);
+  cache.add_dirty(0, 100, 1.0);
+  cache.add_dirty(1, 100, 1.0);
+  std::vector<PageCache::Flushed> taken;
+  CHECK(cache.flush(200, kNoFile, taken) == 200);
+  REQUIRE(taken.size() == 2);
+  CHECK(taken[0].token != taken[1].token);
+  cache.end_writeback(taken[0]);
+  CHECK(cache.writeback(0) == 0);
+  CHECK(cache.writeback(1) == 100);
+  cache.end_writeback(taken[1]);
+  CHECK(cache.writeback() == 0);
+  CHECK(cache.dirty() == 0);
+}
+
 TEST_CASE("eviction frees clean data from the least recently used end", "[page_cache]") {
   // Inactive: C0 100, D1 100, C2 100; active: C3 100. evict(150, excluding 2): C0 whole, and
   // then nothing else is clean on the inactive list but the excluded file. The paper profile

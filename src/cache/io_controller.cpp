@@ -23,21 +23,27 @@ IoResult file_result(double start, double end, const IoTally& t) {
 
 Task<std::int64_t> IoController::write_back(std::int64_t amount, FileId excluded, FlushCause cause, GroupId group) {
   if (amount <= 0) co_return 0;
-  std::vector<PageCache::Flushed> taken;
+  std::vector<PageCache::Flushed> taken = take_parts();
   const std::int64_t total = cache_->flush(amount, excluded, taken, group);
   flushed_ += total;
   cache_->tracer().flush(cause, total);
   // The data may belong to files on different devices: one write per device, in the order
-  // the data was taken.
-  std::vector<std::pair<const Disk*, std::int64_t>> writes;
-  for (const auto& part : taken) {
-    const Disk* disk = (*files_)[part.file].disk;
-    auto it = std::find_if(writes.begin(), writes.end(), [disk](const auto& w) { return w.first == disk; });
-    if (it == writes.end()) writes.emplace_back(disk, part.bytes);
-    else it->second += part.bytes;
+  // each device first appears among the parts taken.
+  for (std::size_t i = 0; i < taken.size();) {
+    const Disk* disk = (*files_)[taken[i].file].disk;
+    std::int64_t bytes = 0;
+    bool seen = false;
+    for (std::size_t j = 0; j < i && !seen; ++j) seen = (*files_)[taken[j].file].disk == disk;
+    if (!seen) {
+      for (std::size_t j = i; j < taken.size(); ++j) {
+        if ((*files_)[taken[j].file].disk == disk) bytes += taken[j].bytes;
+      }
+      co_await disk->write(bytes);
+    }
+    ++i;
   }
-  for (const auto& [disk, bytes] : writes) co_await disk->write(bytes);
   for (const auto& part : taken) cache_->end_writeback(part);
+  release_parts(std::move(taken));
   co_return total;
 }
 
@@ -389,6 +395,18 @@ Task<IoResult> IoController::write_file_in_chunks(FileId file, std::int64_t byte
   }
   cache_->set_being_written(file, false);
   co_return file_result(start, sim_->now(), total);
+}
+
+std::vector<PageCache::Flushed> IoController::take_parts() {
+  if (spare_parts_.empty()) return {};
+  std::vector<PageCache::Flushed> parts = std::move(spare_parts_.back());
+  spare_parts_.pop_back();
+  return parts;
+}
+
+void IoController::release_parts(std::vector<PageCache::Flushed>&& parts) {
+  parts.clear();
+  spare_parts_.push_back(std::move(parts));
 }
 
 Task<void> IoController::fsync(FileId file) {

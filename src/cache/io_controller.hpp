@@ -140,6 +140,11 @@ class IoController {
   /// Reads `bytes` of a remote file from its server into this host's fresh memory;
   /// `server_cursor` as serve_read's.
   Task<void> serve_remote(FileId file, std::int64_t bytes, ReadCursor* server_cursor);
+  /// serve_read's parts: `bytes` from this host's disk, or from its cache, to the client.
+  Task<void> send_from_disk(const Route& route, const FileInfo& info, const FlowSpec& client_copy, std::int64_t bytes) const;
+  Task<void> send_from_cache(const Route& route, const FlowSpec& client_copy, std::int64_t bytes) const;
+  /// serve_write's in writethrough mode: `bytes` over the route to this host's disk.
+  Task<void> send_to_disk(const Route& route, const FileInfo& info, std::int64_t bytes) const;
   /// read_ranges once checked.
   Task<IoResult> read_ranges_of(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group, ReadAdvice advice);
   Task<IoResult> write_ranges_of(FileId file, std::function<bool(ByteRange&)> next, GroupId group);

@@ -54,42 +54,54 @@ Task<IoTally> IoController::read_chunk_remote(FileId file, std::int64_t chunk, R
 
 Task<void> IoController::serve_remote(FileId file, std::int64_t bytes, ReadCursor* server_cursor) {
   // The data lands in this host's memory (its cache, or with O_DIRECT the application's
-  // buffer), fresh memory either way.
+  // buffer), fresh memory either way. Not a coroutine: the server's frame is all the read
+  // holds while it waits, its spec copied there (10^6 clients reading at once).
   const FileInfo& info = (*files_)[file];
   FlowSpec client_copy = memory_->write_spec(bytes);
   client_copy.bound = std::min(client_copy.bound, memory_->fresh_copy_rate());
-  co_await info.remote.server->serve_read(info.remote.server_file, bytes, *info.remote.route, client_copy, server_cursor);
+  return info.remote.server->serve_read(info.remote.server_file, bytes, *info.remote.route, client_copy, server_cursor);
+}
+
+// Each part of a served read is one flow through the source device, the link and the
+// client's memory: the most loaded of them sets the pace; a write through, one flow through
+// the link and the disk. Not coroutines: the flow's spec lives in the route's frame, not in
+// serve_read's or serve_write's as well.
+Task<void> IoController::send_from_disk(const Route& route, const FileInfo& info, const FlowSpec& client_copy, std::int64_t bytes) const {
+  FlowSpec spec = client_copy;
+  spec.work = static_cast<double>(bytes);
+  return route.send_through(info.disk->reading(spec));
+}
+
+Task<void> IoController::send_from_cache(const Route& route, const FlowSpec& client_copy, std::int64_t bytes) const {
+  const FlowSpec server_copy = memory_->read_spec(bytes);
+  FlowSpec spec = client_copy;
+  spec.work = static_cast<double>(bytes);
+  spec.bound = std::min(spec.bound, server_copy.bound);
+  return route.send_through(spec.through(server_copy.usages[0]));
+}
+
+Task<void> IoController::send_to_disk(const Route& route, const FileInfo& info, std::int64_t bytes) const {
+  FlowSpec spec{.work = static_cast<double>(bytes)};
+  return route.send_through(info.disk->writing(spec));
 }
 
 Task<void> IoController::serve_read(FileId file, std::int64_t bytes, const Route& route, FlowSpec client_copy, ReadCursor* cursor) {
   const FileInfo& info = (*files_)[file];
-  const ReadRequest request{.file = file, .file_size = info.size, .bytes = bytes, .anonymous = 0};  // the client's memory takes the copy
-  std::int64_t disk_read = evict_for_chunk(*cache_, request);
+  std::int64_t disk_read = evict_for_chunk(*cache_, ReadRequest{.file = file, .file_size = info.size, .bytes = bytes, .anonymous = 0});
   if (disk_read < 0) disk_read = co_await room_for_chunk(file, info.size, bytes, 0, ReadRequest::kWholeFile, kRootGroup, "serving");
   const std::int64_t cache_read = bytes - disk_read;
-  const ReadCursor next = start_chunk(*cache_, request, disk_read, cursor != nullptr ? *cursor : ReadCursor{}, kRootGroup, sim_->now());
+  // The client's memory takes the copy: no anonymous memory here.
+  const ReadCursor next = start_chunk(*cache_, ReadRequest{.file = file, .file_size = info.size, .bytes = bytes, .anonymous = 0}, disk_read,
+                                      cursor != nullptr ? *cursor : ReadCursor{}, kRootGroup, sim_->now());
   if (cursor != nullptr) *cursor = next;
-  // Each part is one flow through the source device, the link and the client's memory: the
-  // most loaded of them sets the pace.
-  if (disk_read > 0) {
-    FlowSpec spec = client_copy;
-    spec.work = static_cast<double>(disk_read);
-    co_await route.send_through(info.disk->reading(spec));
-  }
-  if (cache_read > 0) {
-    const FlowSpec server_copy = memory_->read_spec(cache_read);
-    FlowSpec spec = client_copy;
-    spec.work = static_cast<double>(cache_read);
-    spec.bound = std::min(spec.bound, server_copy.bound);
-    co_await route.send_through(spec.through(server_copy.usages[0]));
-  }
+  if (disk_read > 0) co_await send_from_disk(route, info, client_copy, disk_read);
+  if (cache_read > 0) co_await send_from_cache(route, client_copy, cache_read);
 }
 
 Task<void> IoController::serve_write(FileId file, std::int64_t bytes, const Route& route) {
   const FileInfo& info = (*files_)[file];
   if (cache_->settings().write_mode == WriteMode::Writethrough) {
-    FlowSpec spec{.work = static_cast<double>(bytes)};
-    co_await route.send_through(info.disk->writing(spec));
+    co_await send_to_disk(route, info, bytes);
     cache_->evict(bytes - cache_->free(), file);
     cache_->add_clean(file, std::min(bytes, cache_->free()), sim_->now());
     co_return;

@@ -49,6 +49,13 @@ class ReportActivity final : public TraceSink {
   void merge_pairs();
 
   double width_ = kFirstWidth;
+  // The bucket index() found last, and the times it surely holds (empty: none).
+  struct Hint {
+    double lo = 0.0;
+    double hi = 0.0;
+    std::size_t index = 0;
+  };
+  mutable Hint hint_;
   std::vector<Bucket> buckets_;
   double end_ = 0.0;
   bool recorded_ = false;

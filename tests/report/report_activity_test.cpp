@@ -5,9 +5,12 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <numeric>
 #include <random>
+#include <vector>
 
 using pagecache::EvictionEvent;
 using pagecache::FlushCause;
@@ -93,4 +96,34 @@ TEST_CASE("a throttling pause is split over the buckets it spans", "[report][act
   CHECK(a.buckets()[0].throttled == Approx(0.0005));
   CHECK(a.buckets()[1].throttled == Approx(0.001));
   CHECK(a.buckets()[2].throttled == Approx(0.0005));
+}
+
+TEST_CASE("events at bucket edges land where t / width puts them", "[report][activity]") {
+  // The bucket found for the previous event is reused inside its safe interior: each time
+  // within a few ulps of an edge comes right after an event in the bucket below, then right
+  // after one in the bucket above, and must land in floor(t / width) either way (t = 9 ms
+  // less an ulp is such a time: below 9 x 1 ms, yet its quotient rounds to 9).
+  ReportActivity a;
+  std::vector<std::int64_t> expected(ReportActivity::kMaxBuckets, 0);
+  std::int64_t bytes = 1;
+  auto flush = [&](double t) {
+    a.on_flush({0, t, FlushCause::Background, bytes});
+    expected[static_cast<std::size_t>(std::floor(t / 1e-3))] += bytes;
+    bytes = bytes * 3 % 1000003;
+  };
+  for (int k = 1; k < 511; ++k) {
+    double t = k * 1e-3;
+    for (int step = 0; step < 3; ++step) t = std::nextafter(t, 0.0);
+    for (int step = 0; step < 7; ++step, t = std::nextafter(t, 1.0)) {
+      flush((k - 0.5) * 1e-3);
+      flush(t);
+      flush((k + 0.5) * 1e-3);
+      flush(t);
+    }
+  }
+  REQUIRE(a.width() == 1e-3);
+  for (std::size_t i = 0; i < a.buckets().size(); ++i) {
+    INFO("bucket " << i);
+    CHECK(a.buckets()[i].flushed[static_cast<std::size_t>(FlushCause::Background)] == expected[i]);
+  }
 }

@@ -29,18 +29,14 @@ Task<std::int64_t> IoController::write_back(std::int64_t amount, FileId excluded
   cache_->tracer().flush(cause, total);
   // The data may belong to files on different devices: one write per device, in the order
   // each device first appears among the parts taken.
-  for (std::size_t i = 0; i < taken.size();) {
-    const Disk* disk = (*files_)[taken[i].file].disk;
+  auto disk_of = [&](std::size_t part) { return (*files_)[taken[part].file].disk; };
+  for (std::size_t i = 0; i < taken.size(); ++i) {
+    bool first = true;
+    for (std::size_t j = 0; j < i && first; ++j) first = disk_of(j) != disk_of(i);
+    if (!first) continue;
     std::int64_t bytes = 0;
-    bool seen = false;
-    for (std::size_t j = 0; j < i && !seen; ++j) seen = (*files_)[taken[j].file].disk == disk;
-    if (!seen) {
-      for (std::size_t j = i; j < taken.size(); ++j) {
-        if ((*files_)[taken[j].file].disk == disk) bytes += taken[j].bytes;
-      }
-      co_await disk->write(bytes);
-    }
-    ++i;
+    for (std::size_t j = i; j < taken.size(); ++j) bytes += disk_of(j) == disk_of(i) ? taken[j].bytes : 0;
+    co_await disk_of(i)->write(bytes);
   }
   for (const auto& part : taken) cache_->end_writeback(part);
   release_parts(std::move(taken));

@@ -218,8 +218,8 @@ class PageCache {
   };
   /// Takes up to `amount` dirty bytes for writing back, least recently used first, inactive
   /// list then active list, skipping `excluded`: they are in writeback (neither dirty nor
-  /// evictable) until end_writeback. Appends what was taken, per file, to `out` and returns
-  /// the total. The caller writes them to their devices, then calls end_writeback.
+  /// evictable) until end_writeback. Appends a part per run of one file's data to `out`, each
+  /// a write of its own (the caller writes each, then ends it), and returns the total.
   /// `group`: only that group's data (a group's own reclaim at its limit).
   std::int64_t flush(std::int64_t amount, FileId excluded, std::vector<Flushed>& out, GroupId group = kAnyGroup);
   /// Takes for writing back a dirty block whose entry time is <= `cutoff` (the one
@@ -300,7 +300,7 @@ class PageCache {
   };
   static_assert(sizeof(FileEntry) == 64, "a file's lists and counters fill one cache line");
   using DirtyOrder = BlockList<&Block::state_list, false>;
-  using FileWriteback = BlockList<&Block::state_list, false>;
+  using FileWriteback = BlockList<&Block::state_list, false>;  // end_writeback walks these
 
   FileEntry& file_entry(FileId file);
   LruList& list_of(ListKind kind) noexcept { return kind == ListKind::Inactive ? inactive_ : active_; }
@@ -333,8 +333,8 @@ class PageCache {
   void add_ranged(FileId file, std::int64_t offset, std::int64_t bytes, BlockState state, double now, bool referenced);
   /// Puts one dirty block in writeback under a new token.
   Flushed take_for_writeback(BlockId block);
-  /// A dirty block goes into writeback as part of the write `token` (held, while it is
-  /// written, in the links it had on the dirty list).
+  /// A dirty block goes into writeback as part of the write `token` (held in its entry time's
+  /// place), on its file's list of blocks in writeback.
   void start_writeback(BlockId block, std::uint64_t token);
   /// New data of `file` at the MRU end of the inactive list, taken from free memory.
   void add_new(FileId file, std::int64_t bytes, BlockState state, double now, bool referenced = false);
@@ -365,12 +365,8 @@ class PageCache {
   /// Keep the files' clean lists, and reclaimable_, up to date (when the policy spares files
   /// being written): a clean block was linked in its other lists, or a linked block became
   /// clean; a clean block is about to leave its lists or its state.
-  void on_clean_linked(BlockId block) {
-    if (index_clean_) link_clean(block);
-  }
-  void on_clean_unlinked(BlockId block) {
-    if (index_clean_) unlink_clean(block);
-  }
+  void on_clean_linked(BlockId block) { if (index_clean_) link_clean(block); }
+  void on_clean_unlinked(BlockId block) { if (index_clean_) unlink_clean(block); }
   void link_clean(BlockId block);
   void unlink_clean(BlockId block);
   /// With the clean index: the least recently used clean block of `kind` whose
@@ -403,11 +399,7 @@ class PageCache {
   };
   ExpiryScan expiry_scan_;
   std::vector<FileEntry> files_;
-  // Each file's blocks in writeback (by FileId, beside files_: a FileEntry fills its cache
-  // line), in no particular order: the end of a write visits these, not the file's blocks.
-  // With 10^5 writers flushing in step, walking a file's clean blocks to find the few in
-  // writeback was a third of the paper profile's run.
-  std::vector<FileWriteback> writeback_;
+  std::vector<FileWriteback> writeback_;  // by file, its blocks in writeback (in no order)
   // Files held by byte range (track_ranges), by FileId; the offsets of their blocks. Beside
   // files_: a FileEntry fills its cache line. Empty in a run of whole-file I/O only.
   std::vector<std::uint8_t> ranged_;

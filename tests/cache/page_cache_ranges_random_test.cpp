@@ -188,14 +188,21 @@ class Reference {
     return missing;
   }
 
-  // Dirty bytes least recently used first, inactive list then active, up to `amount`.
-  std::int64_t flush(std::int64_t amount, std::uint64_t token) {
+  // Dirty bytes least recently used first, inactive list then active, up to `amount`; each
+  // run of one file's bytes is a write of its own, with the next token from `first_token`.
+  // In writeback a byte's write token takes the place of its entry time.
+  std::int64_t flush(std::int64_t amount, std::uint64_t first_token) {
     std::int64_t flushed = 0;
+    std::uint64_t token = first_token;
+    FileId last = kNoFile;
     for (auto* list : {&inactive, &active})
       for (Unit& u : *list)
         if (u.state == BlockState::Dirty && flushed < amount) {
+          if (last != kNoFile && u.file != last) ++token;
+          last = u.file;
           u.state = BlockState::Writeback;
           u.token = token;
+          u.entry = 0.0;
           ++flushed;
         }
     settle();
@@ -234,7 +241,7 @@ std::vector<Unit> expand(const PageCache& cache, ListKind kind) {
   const LruList& list = cache.list(kind);
   for (BlockId id = list.front(); id != kNoBlock; id = list.next(id)) {
     const Block& b = cache.block(id);
-    const bool dirty = b.state != BlockState::Clean;  // in writeback it keeps its entry time
+    const bool dirty = b.state == BlockState::Dirty;  // in writeback its token holds the entry time's place
     const std::uint64_t token = b.state == BlockState::Writeback ? b.writeback_batch : 0;
     for (std::int64_t i = 0; i < b.size; ++i)
       units.push_back({b.file, b.ranged ? cache.ranges().offset(id) + i : -1, b.referenced, b.state, dirty ? b.entry_time : 0.0, token});
@@ -336,8 +343,10 @@ Counts run_random(const CacheSettings& settings, std::uint64_t seed, int steps) 
         if (!ref.splits_in_place_) break;
         if (!in_flight.empty() && pick(0, 1)) {
           const auto i = static_cast<std::size_t>(pick(0, static_cast<std::int64_t>(in_flight.size()) - 1));
-          for (const PageCache::Flushed& f : in_flight[i]) cache.end_writeback(f);
-          if (!in_flight[i].empty()) ref.end_writeback(in_flight[i].front().token);
+          for (const PageCache::Flushed& f : in_flight[i]) {
+            cache.end_writeback(f);
+            ref.end_writeback(f.token);
+          }
           in_flight.erase(in_flight.begin() + static_cast<std::ptrdiff_t>(i));
           break;
         }

@@ -20,6 +20,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
@@ -205,6 +206,16 @@ TEST_CASE("a staging folder a killed run left is removed by the next run into it
   const fs::path foreign = staging(".y.tmp", gone, pagecache::report::kMarkerText);
   std::ofstream(foreign / "notes.txt") << "someone's";
   std::ofstream(dir / fmt::format(".z.tmp-{}-0123abcd", gone)) << "a file, not a folder";
+  // Near misses of the name: not pcsim's staging folders, whatever they hold.
+  std::vector<fs::path> near_misses;
+  for (const std::string& name : {fmt::format(".pcsim.tmp-{}-0123ABCD", gone), fmt::format(".pcsim.tmp-{}-0123abc", gone),
+                                  std::string(".pcsim.tmp--0123abcd"), fmt::format("pcsim.tmp-{}-0123abcd", gone),
+                                  fmt::format(".pcsim.tmp-{}x-0123abcd", gone), fmt::format(".tmp-{}-0123abcd", gone)}) {
+    near_misses.push_back(dir / name);
+    fs::create_directories(near_misses.back());
+    std::ofstream(near_misses.back() / pagecache::report::kMarkerName) << pagecache::report::kMarkerText;
+    std::ofstream(near_misses.back() / "timeline.csv") << "app,task\n";
+  }
   {
     pagecache::report::OutputFolder folder((dir / "out").string());
     folder.commit();
@@ -216,6 +227,10 @@ TEST_CASE("a staging folder a killed run left is removed by the next run into it
     CHECK(fs::exists(kept / "timeline.csv"));
   }
   CHECK(fs::exists(foreign / "notes.txt"));
+  for (const fs::path& kept : near_misses) {
+    INFO(kept.string());
+    CHECK(fs::exists(kept / "timeline.csv"));
+  }
   CHECK(fs::exists(dir / fmt::format(".z.tmp-{}-0123abcd", gone)));
   CHECK(fs::exists(dir / "out" / pagecache::report::kMarkerName));
 }

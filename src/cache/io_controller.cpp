@@ -23,23 +23,23 @@ IoResult file_result(double start, double end, const IoTally& t) {
 
 Task<std::int64_t> IoController::write_back(std::int64_t amount, FileId excluded, FlushCause cause, GroupId group) {
   if (amount <= 0) co_return 0;
-  std::vector<PageCache::Flushed> taken = take_parts();
+  FlushScratch scratch = take_scratch();
+  std::vector<PageCache::Flushed>& taken = scratch.parts;
   const std::int64_t total = cache_->flush(amount, excluded, taken, group);
   flushed_ += total;
   cache_->tracer().flush(cause, total);
   // The data may belong to files on different devices: one write per device, in the order
-  // each device first appears among the parts taken.
-  auto disk_of = [&](std::size_t part) { return (*files_)[taken[part].file].disk; };
-  for (std::size_t i = 0; i < taken.size(); ++i) {
-    bool first = true;
-    for (std::size_t j = 0; j < i && first; ++j) first = disk_of(j) != disk_of(i);
-    if (!first) continue;
-    std::int64_t bytes = 0;
-    for (std::size_t j = i; j < taken.size(); ++j) bytes += disk_of(j) == disk_of(i) ? taken[j].bytes : 0;
-    co_await disk_of(i)->write(bytes);
+  // the data was taken.
+  auto& writes = scratch.writes;
+  for (const auto& part : taken) {
+    const Disk* disk = (*files_)[part.file].disk;
+    auto it = std::find_if(writes.begin(), writes.end(), [disk](const auto& w) { return w.first == disk; });
+    if (it == writes.end()) writes.emplace_back(disk, part.bytes);
+    else it->second += part.bytes;
   }
+  for (const auto& [disk, bytes] : writes) co_await disk->write(bytes);
   for (const auto& part : taken) cache_->end_writeback(part);
-  release_parts(std::move(taken));
+  release_scratch(std::move(scratch));
   co_return total;
 }
 
@@ -393,16 +393,17 @@ Task<IoResult> IoController::write_file_in_chunks(FileId file, std::int64_t byte
   co_return file_result(start, sim_->now(), total);
 }
 
-std::vector<PageCache::Flushed> IoController::take_parts() {
-  if (spare_parts_.empty()) return {};
-  std::vector<PageCache::Flushed> parts = std::move(spare_parts_.back());
-  spare_parts_.pop_back();
-  return parts;
+IoController::FlushScratch IoController::take_scratch() {
+  if (spare_scratch_.empty()) return {};
+  FlushScratch scratch = std::move(spare_scratch_.back());
+  spare_scratch_.pop_back();
+  return scratch;
 }
 
-void IoController::release_parts(std::vector<PageCache::Flushed>&& parts) {
-  parts.clear();
-  spare_parts_.push_back(std::move(parts));
+void IoController::release_scratch(FlushScratch&& scratch) {
+  scratch.parts.clear();
+  scratch.writes.clear();
+  spare_scratch_.push_back(std::move(scratch));
 }
 
 Task<void> IoController::fsync(FileId file) {

@@ -25,6 +25,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pagecache::cache {
@@ -202,11 +203,16 @@ class IoController {
                                     const char* verb);
   /// Waits until memory held by transfers in flight may have been released.
   Task<void> wait_for_progress();
-  /// An empty vector for a flush's parts, one that held others before if any is spare; each
-  /// write back hands its own back (release_parts) once its writes end. With 10^5 writers
-  /// flushing in step a vector made and freed per write back was malloc's most frequent call.
-  std::vector<PageCache::Flushed> take_parts();
-  void release_parts(std::vector<PageCache::Flushed>&& parts);
+  /// A write back's vectors: the parts it takes and its writes per device.
+  struct FlushScratch {
+    std::vector<PageCache::Flushed> parts;
+    std::vector<std::pair<const Disk*, std::int64_t>> writes;
+  };
+  /// Empty vectors that held others before if any are spare; each write back hands its own
+  /// back (release_scratch) once its writes end. With 10^5 writers flushing in step, vectors
+  /// made and freed per write back were malloc's most frequent call.
+  FlushScratch take_scratch();
+  void release_scratch(FlushScratch&& scratch);
 
   Simulator* sim_;
   PageCache* cache_;
@@ -217,7 +223,7 @@ class IoController {
   std::uint64_t chunks_ = 0;
   double request_time_ = 0.0;
   DirtyThrottle throttle_;
-  std::vector<std::vector<PageCache::Flushed>> spare_parts_;  // at most one per write back in flight
+  std::vector<FlushScratch> spare_scratch_;  // at most one per write back in flight
   std::optional<Event> progress_;
   std::optional<FreePageReporting> reporting_;  // none: no memory is ever cold
   /// Bytes taken from cold memory so far (FreePageReporting::cold_taken).

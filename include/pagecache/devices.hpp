@@ -149,6 +149,30 @@ struct MemoryBandwidth {
   static MemoryBandwidth shared_channel(double bandwidth) { return {bandwidth, bandwidth, bandwidth, bandwidth, 0.0, 0.0}; }
 };
 
+/// NUMA (docs/model.md §6.20): the rates of one thread, and of one node's threads together,
+/// with the other node's memory, as fractions of the same with their own node's.
+struct NumaRatios {
+  double copy = 1.0;         ///< one thread's copy with either side on the other node
+  double first_touch = 1.0;  ///< one thread's first touch (fault and zeroing) of the other node's pages
+  double aggregate = 1.0;    ///< a node's threads together on the other node's memory (the interconnect)
+};
+
+/// NUMA nodes (docs/model.md §6.20): the host's memory, its aggregate memory bandwidth and
+/// its cores split evenly among `nodes` nodes. Each thread runs on one node (Host::start_thread)
+/// and takes new memory there first, then on the other node (no reclaim before that, as with
+/// zone_reclaim_mode 0); each node reclaims its own data. One node: the host as without.
+struct NumaSpec {
+  int nodes = 1;      ///< 1 or 2
+  NumaRatios remote;  ///< rates with the other node's memory, over the same with one's own
+};
+
+/// The shares of a copy's bytes whose source (cache pages read) and destination (pages
+/// written: cache or application memory) are on another NUMA node than the copying thread's.
+struct RemoteShare {
+  double source = 0.0;
+  double destination = 0.0;
+};
+
 class Cpu;
 
 class Memory {
@@ -163,24 +187,30 @@ class Memory {
   /// charged: they are parts of transfers through other devices.
   void copy_on(const Cpu* cpu) noexcept { cpu_ = cpu; }
 
-  FlowAwaiter read(std::int64_t bytes) const;
+  /// Makes this memory one NUMA node's, reaching `other` (the host's other node) over an
+  /// interconnect `link_name` of its own at `ratios` of its own rates: copies with a remote
+  /// share (the `remote` arguments below) are slower and load the other node and the link.
+  /// Both must outlive the flows. Throws ConfigError for a ratio not > 0.
+  void reach(const Memory& other, NumaRatios ratios, std::string link_name);
+
+  FlowAwaiter read(std::int64_t bytes, RemoteShare remote = {}) const;
   /// A write of `bytes` into the page cache, `reclaimed` of them into pages the writer
   /// reclaimed for it and `cold` into pages the host took back: one after the other, at
   /// `write` and `reclaimed_write`, plus `cold` bytes at `cold_fault`.
-  FlowAwaiter write(std::int64_t bytes, std::int64_t reclaimed = 0, std::int64_t cold = 0) const;
+  FlowAwaiter write(std::int64_t bytes, std::int64_t reclaimed = 0, std::int64_t cold = 0, RemoteShare remote = {}) const;
   /// Flow specs for use in a multi-resource flow (bound included).
-  FlowSpec read_spec(std::int64_t bytes) const;
-  FlowSpec write_spec(std::int64_t bytes, std::int64_t reclaimed = 0, std::int64_t cold = 0) const;
+  FlowSpec read_spec(std::int64_t bytes, RemoteShare remote = {}) const;
+  FlowSpec write_spec(std::int64_t bytes, std::int64_t reclaimed = 0, std::int64_t cold = 0, RemoteShare remote = {}) const;
   /// A cached read into fresh application memory: the copy and the first touch of every
   /// destination page, done one after the other by the reading thread (its rate is
   /// 1 / (1 / read + 1 / first_touch)); the zeroing also loads the aggregate as a write.
   /// `cold_share`: the fraction of the destination pages the host took back.
-  FlowSpec read_into_fresh_spec(std::int64_t bytes, double cold_share = 0.0) const;
-  FlowAwaiter read_into_fresh(std::int64_t bytes, double cold_share = 0.0) const;
+  FlowSpec read_into_fresh_spec(std::int64_t bytes, double cold_share = 0.0, RemoteShare remote = {}) const;
+  FlowAwaiter read_into_fresh(std::int64_t bytes, double cold_share = 0.0, RemoteShare remote = {}) const;
   /// The fastest a thread can take data into fresh application memory (copy and first
   /// touch): the bound of a device read into a new buffer. Unbounded if first touch is free
   /// and no page is cold.
-  double fresh_copy_rate(double cold_share = 0.0) const noexcept;
+  double fresh_copy_rate(double cold_share = 0.0, RemoteShare remote = {}) const noexcept;
   /// `rate` slowed by the host's faults on `cold_share` of the bytes (rate itself if none).
   double with_cold(double rate, double cold_share) const noexcept;
   /// A device read of `bytes` into new cache pages and a new buffer, `cold_share` bytes of
@@ -196,12 +226,19 @@ class Memory {
 
   /// `spec` also through the host's faults for `cold_share` of its bytes.
   FlowSpec& faulting(FlowSpec& spec, double cold_share) const;
+  /// `spec` loading the memory `cost` per byte, `share` of it on the other node (and the link).
+  FlowSpec& load(FlowSpec& spec, double cost, double share) const;
+  /// One thread's `rate` with `share` of its bytes on the other node, at `ratio` of it there.
+  static double remote_rate(double rate, double share, double ratio) noexcept;
 
   FairShare* share_;
   ResourceId resource_;
   ResourceId faults_{};  // the host's faults into cold memory, with cold_fault only
   MemoryBandwidth bandwidth_;
   const Cpu* cpu_ = nullptr;
+  const Memory* other_ = nullptr;  // the host's other NUMA node, if any (reach)
+  ResourceId link_{};
+  NumaRatios ratios_;
 };
 
 enum class LinkSharing {

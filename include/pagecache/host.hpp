@@ -45,6 +45,7 @@ struct HostSpec {
   /// (read_ranges, write_ranges) besides its transfers: the system call and the page cache's
   /// look-up. 0: none.
   double request_time = 0.0;
+  NumaSpec numa;
 };
 
 /// A disk of a host (index in the order of add_disk).
@@ -57,6 +58,18 @@ struct GroupRef {
   /// The most groups a host can have (add_memory_group throws ConfigError beyond).
   static constexpr std::size_t kMax = 65534;
 };
+/// A NUMA node of a host (HostSpec::numa), by index.
+struct NodeRef {
+  std::uint8_t index = 0;
+};
+/// Who does an operation: the memory group charged with its memory, and the NUMA node its
+/// thread runs on. A GroupRef alone is that group's thread on node 0.
+struct Thread {
+  GroupRef group;
+  NodeRef node;
+  Thread(GroupRef g = {}, NodeRef n = {}) : group(g), node(n) {}  // NOLINT(google-explicit-constructor): a group is a thread of it
+};
+
 /// A file known to a host (index in the order of add_file).
 struct FileRef {
   std::uint32_t index = 0;
@@ -119,7 +132,7 @@ class Host {
   /// cache (an NFS server still serves from, and fills, its own). Throws ConfigError at the
   /// call for a file unknown here or a chunk size <= 0; SimulationError from the task when the
   /// read cannot proceed.
-  Task<IoResult> read_file(FileRef file, std::int64_t chunk_size, bool direct = false, GroupRef group = {});
+  Task<IoResult> read_file(FileRef file, std::int64_t chunk_size, bool direct = false, Thread thread = {});
   /// Reads parts of a local file: the requests `next` yields (it fills its argument and
   /// returns true, or returns false when there are no more), one after the other, into a
   /// buffer of `buffer` bytes the read holds meanwhile and then releases. Each request reads
@@ -132,7 +145,7 @@ class Host {
   /// ahead as the kernel does, in windows up to the disk's read_ahead, as `advice` allows;
   /// readahead pages go to the inactive list untouched. `direct`: O_DIRECT, each request one
   /// device request of its bytes, the page cache neither read nor filled (nor the advice used).
-  Task<IoResult> read_ranges(FileRef file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupRef group = {},
+  Task<IoResult> read_ranges(FileRef file, std::function<bool(ByteRange&)> next, std::int64_t buffer, Thread thread = {},
                              ReadAdvice advice = ReadAdvice::Normal, bool direct = false);
   /// posix_fadvise(POSIX_FADV_WILLNEED) on `range` of a local file: what is not cached of its
   /// pages is read into the page cache in the background (the call returns at once), as
@@ -149,11 +162,11 @@ class Host {
   /// is what it ends at. Errors as read_ranges'. `direct`: O_DIRECT, each request one device
   /// request of its bytes, after which the clean cached data of its pages is dropped (the
   /// kernel invalidates them; dirty data there stays, not modelled).
-  Task<IoResult> write_ranges(FileRef file, std::function<bool(ByteRange&)> next, GroupRef group = {}, bool direct = false);
+  Task<IoResult> write_ranges(FileRef file, std::function<bool(ByteRange&)> next, Thread thread = {}, bool direct = false);
   /// Writes the file's whole size in chunks of `chunk_size` bytes. A file held by range (see
   /// read_ranges) is written in place from its start. `direct`: O_DIRECT (on an
   /// NFS mount the same as without: there is no client write cache). Errors as read_file's.
-  Task<IoResult> write_file(FileRef file, std::int64_t chunk_size, bool direct = false, GroupRef group = {});
+  Task<IoResult> write_file(FileRef file, std::int64_t chunk_size, bool direct = false, Thread thread = {});
   /// fsync(2): returns when every dirty byte of the file is on its disk.
   Task<void> fsync(FileRef file);
   /// Deletes the file's data from the page cache (unlink): dirty data is discarded unwritten.
@@ -163,9 +176,18 @@ class Host {
   /// Takes `bytes` of application memory (a task's working memory), writing back and evicting
   /// cached data to make room; give it back with release_memory(). SimulationError from the
   /// task when the host cannot free enough.
-  Task<void> hold_memory(std::int64_t bytes, GroupRef group = {});
-  /// Frees application memory (a task's buffers at its end), of the group that held it.
-  void release_memory(std::int64_t bytes, GroupRef group = {});
+  Task<void> hold_memory(std::int64_t bytes, Thread thread = {});
+  /// Frees application memory (a task's buffers at its end), of the group that held it; on
+  /// a NUMA host, the thread's node's first (which pages of a buffer are where is not kept).
+  void release_memory(std::int64_t bytes, Thread thread = {});
+
+  /// A thread starting on this host (a task), placed as the kernel places a new task (fork
+  /// balancing, find_idlest_group): on the node with the fewest threads running, the lowest
+  /// of equals. Give it back with end_thread when it ends.
+  Thread start_thread(GroupRef group = {});
+  void end_thread(Thread thread);
+  /// The host's NUMA nodes (1 without).
+  int nodes() const noexcept;
 
   /// A memory group (a cgroup with memory.max = `max` bytes, as Slurm or Kubernetes give each
   /// job): the application memory of the reads, writes and hold_memory calls given it, and

@@ -57,6 +57,8 @@ struct HostConfig {
   double request_time = 0.0;
   CacheSettings cache;
   std::vector<DiskSpec> disks;
+  /// [hosts.numa]: HostSpec's field of this name (one node unless given).
+  NumaSpec numa;
 };
 
 /// A network link. Given its two hosts, it is also the route between them: a task on one may

@@ -61,8 +61,9 @@ struct alignas(64) Block {
   FileId file = 0;
   BlockState state = BlockState::Clean;
   ListKind list = ListKind::Inactive;
-  bool referenced = false;  // touched once while inactive (two-touch activation)
-  bool ranged = false;      // of a file held by byte range: indexed in PageCache's FileRanges
+  bool referenced : 1 = false;  // touched once while inactive (two-touch activation)
+  bool ranged : 1 = false;      // of a file held by byte range: indexed in PageCache's FileRanges
+  std::uint8_t node = 0;        // the NUMA node its memory is on (docs/model.md §6.20)
 };
 static_assert(sizeof(Block) == 64, "a block fills one cache line");
 

@@ -8,7 +8,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <deque>
+#include <optional>
 
 namespace pagecache {
 
@@ -20,6 +22,26 @@ HostSpec with_defaults(HostSpec spec) {
   if (bw.cold_fault > 0.0 && bw.aggregate_cold_fault <= 0.0) bw.aggregate_cold_fault = bw.cold_fault * std::max(spec.cores, 1);
   return spec;
 }
+
+// The host's NUMA nodes as its page-cache policy models them (one unless it does).
+int modelled_nodes(const HostSpec& spec) {
+  if (spec.numa.nodes < 1 || spec.numa.nodes > cache::kMaxNodes) {
+    throw ConfigError(fmt::format("host '{}': a host has 1 to {} NUMA nodes, got {}", spec.name, cache::kMaxNodes, spec.numa.nodes));
+  }
+  return cache::make_policy(spec.cache)->numa_nodes() ? spec.numa.nodes : 1;
+}
+
+// One NUMA node's memory bandwidth: its share of the host's aggregates, a thread's own rates.
+MemoryBandwidth node_bandwidth(const HostSpec& spec, int nodes) {
+  MemoryBandwidth bw = spec.memory_bandwidth;
+  if (nodes <= 1) return bw;
+  bw.aggregate_read /= nodes, bw.aggregate_write /= nodes, bw.aggregate_cold_fault /= nodes;
+  return bw;
+}
+
+std::string memory_name(const HostSpec& spec, int nodes, int node) {
+  return nodes <= 1 ? spec.name + ":memory" : fmt::format("{}:node{} memory", spec.name, node);
+}
 }  // namespace
 
 struct Host::Impl {
@@ -28,18 +50,33 @@ struct Host::Impl {
         share(fs),
         spec(with_defaults(std::move(sp))),
         cpu(fs, spec.name + ":cpu", spec.cores),
-        memory(fs, spec.name + ":memory", spec.memory_bandwidth),
+        nodes(modelled_nodes(spec)),
+        memory(fs, memory_name(spec, nodes, 0), node_bandwidth(spec, nodes)),
         cache(spec.memory, spec.cache),
         flusher(s, cache, files),
         io(s, cache, memory, files, flusher) {
-    if (cache.policy().copies_hold_cores()) memory.copy_on(&cpu);
+    cache.set_nodes(nodes);
+    if (nodes > 1) {
+      // Two nodes, each reaching the other over an interconnect link each way.
+      other_node.emplace(fs, memory_name(spec, nodes, 1), node_bandwidth(spec, nodes));
+      memory.reach(*other_node, spec.numa.remote, spec.name + ":interconnect 0->1");
+      other_node->reach(memory, spec.numa.remote, spec.name + ":interconnect 1->0");
+      io.set_node_memory(1, *other_node);
+    }
+    if (cache.policy().copies_hold_cores()) {
+      memory.copy_on(&cpu);
+      if (other_node) other_node->copy_on(&cpu);
+    }
   }
 
   Simulator& sim;
   FairShare& share;
   HostSpec spec;
   Cpu cpu;
-  Memory memory;
+  int nodes;                         // NUMA nodes modelled
+  Memory memory;                     // node 0's on a NUMA host
+  std::optional<Memory> other_node;  // node 1's memory
+  std::array<int, cache::kMaxNodes> running{};  // threads running on each node
   std::deque<Disk> disks;  // stable addresses: files point at their disk
   cache::FileTable files;
   cache::PageCache cache;
@@ -50,6 +87,10 @@ struct Host::Impl {
   cache::GroupId group(GroupRef g) const {
     if (g.index != 0 && g.index >= cache.group_count()) throw ConfigError(fmt::format("host '{}': unknown memory group #{}", spec.name, g.index));
     return g.index;
+  }
+  cache::NodeId node(NodeRef n) const {
+    if (n.index >= cache.node_count()) throw ConfigError(fmt::format("host '{}': unknown NUMA node #{}", spec.name, n.index));
+    return n.index;
   }
   cache::FileId id(FileRef file) const {
     if (file.index >= files.size()) throw ConfigError(fmt::format("host '{}': unknown file #{}", spec.name, file.index));
@@ -114,26 +155,26 @@ std::size_t Host::file_count() const noexcept { return impl_->files.size(); }
 
 // IoController's tasks are handed out as they are: a coroutine here would be one frame more
 // per file read or written.
-Task<IoResult> Host::read_file(FileRef file, std::int64_t chunk_size, bool direct, GroupRef group) {
-  return impl_->io.read_file(impl_->id(file), chunk_size, direct, impl_->group(group));
+Task<IoResult> Host::read_file(FileRef file, std::int64_t chunk_size, bool direct, Thread thread) {
+  return impl_->io.read_file(impl_->id(file), chunk_size, direct, impl_->group(thread.group), impl_->node(thread.node));
 }
 
-Task<IoResult> Host::read_ranges(FileRef file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupRef group, ReadAdvice advice,
+Task<IoResult> Host::read_ranges(FileRef file, std::function<bool(ByteRange&)> next, std::int64_t buffer, Thread thread, ReadAdvice advice,
                                  bool direct) {
-  return impl_->io.read_ranges(impl_->id(file), std::move(next), buffer, impl_->group(group), advice, direct);
+  return impl_->io.read_ranges(impl_->id(file), std::move(next), buffer, impl_->group(thread.group), advice, direct, impl_->node(thread.node));
 }
 
 void Host::will_need(FileRef file, ByteRange range) { impl_->io.will_need(impl_->id(file), range); }
 
 std::int64_t Host::dont_need(FileRef file, ByteRange range) { return impl_->io.dont_need(impl_->id(file), range); }
 
-Task<IoResult> Host::write_ranges(FileRef file, std::function<bool(ByteRange&)> next, GroupRef group, bool direct) {
-  return impl_->io.write_ranges(impl_->id(file), std::move(next), impl_->group(group), direct);
+Task<IoResult> Host::write_ranges(FileRef file, std::function<bool(ByteRange&)> next, Thread thread, bool direct) {
+  return impl_->io.write_ranges(impl_->id(file), std::move(next), impl_->group(thread.group), direct, impl_->node(thread.node));
 }
 
-Task<IoResult> Host::write_file(FileRef file, std::int64_t chunk_size, bool direct, GroupRef group) {
+Task<IoResult> Host::write_file(FileRef file, std::int64_t chunk_size, bool direct, Thread thread) {
   const cache::FileId id = impl_->id(file);
-  return impl_->io.write_file(id, impl_->files[id].size, chunk_size, direct, impl_->group(group));
+  return impl_->io.write_file(id, impl_->files[id].size, chunk_size, direct, impl_->group(thread.group), impl_->node(thread.node));
 }
 
 Task<void> Host::fsync(FileRef file) { co_await impl_->io.fsync(impl_->id(file)); }
@@ -142,9 +183,28 @@ Task<void> Host::delete_file(FileRef file) { co_await impl_->io.drop(impl_->id(f
 
 Task<void> Host::compute(double core_seconds) { co_await impl_->cpu.compute(core_seconds); }
 
-Task<void> Host::hold_memory(std::int64_t bytes, GroupRef group) { co_await impl_->io.hold_memory(bytes, impl_->group(group)); }
+Task<void> Host::hold_memory(std::int64_t bytes, Thread thread) {
+  co_await impl_->io.hold_memory(bytes, impl_->group(thread.group), impl_->node(thread.node));
+}
 
-void Host::release_memory(std::int64_t bytes, GroupRef group) { impl_->cache.release_anonymous(bytes, impl_->group(group)); }
+void Host::release_memory(std::int64_t bytes, Thread thread) {
+  impl_->cache.touch_from(impl_->node(thread.node));
+  impl_->cache.release_anonymous(bytes, impl_->group(thread.group));
+}
+
+Thread Host::start_thread(GroupRef group) {
+  const auto nodes = static_cast<std::size_t>(impl_->cache.node_count());
+  std::size_t node = 0;
+  for (std::size_t n = 1; n < nodes; ++n) {
+    if (impl_->running[n] < impl_->running[node]) node = n;
+  }
+  ++impl_->running[node];
+  return Thread{group, NodeRef{static_cast<std::uint8_t>(node)}};
+}
+
+void Host::end_thread(Thread thread) { --impl_->running[impl_->node(thread.node)]; }
+
+int Host::nodes() const noexcept { return static_cast<int>(impl_->cache.node_count()); }
 
 GroupRef Host::add_memory_group(std::int64_t max, std::int64_t high) { return GroupRef{impl_->cache.add_group(max, high)}; }
 

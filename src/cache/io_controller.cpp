@@ -44,7 +44,7 @@ Task<std::int64_t> IoController::write_back(std::int64_t amount, FileId excluded
 }
 
 IoController::IoController(Simulator& sim, PageCache& cache, const Memory& memory, FileTable& files, Flusher& flusher)
-    : sim_(&sim), cache_(&cache), memory_(&memory), files_(&files), flusher_(&flusher), throttle_(sim, cache, flusher) {
+    : sim_(&sim), cache_(&cache), memories_{&memory}, files_(&files), flusher_(&flusher), throttle_(sim, cache, flusher) {
   machine_at_rest();
   cache_->set_progress_hook([this] {
     if (progress_ && !progress_->triggered()) progress_->trigger();
@@ -100,18 +100,19 @@ Task<void> IoController::make_room(std::int64_t required, FileId spared, FileId 
   }
 }
 
-Task<void> IoController::hold_memory(std::int64_t bytes, GroupId group) {
+Task<void> IoController::hold_memory(std::int64_t bytes, GroupId group, NodeId node) {
   if (bytes <= 0) co_return;
-  co_await take_buffer(bytes, group, kNoFile, "the task's memory");
+  co_await take_buffer(bytes, group, kNoFile, "the task's memory", node);
 }
 
-Task<void> IoController::take_buffer(std::int64_t bytes, GroupId group, FileId subject, const char* verb) {
+Task<void> IoController::take_buffer(std::int64_t bytes, GroupId group, FileId subject, const char* verb, NodeId node) {
   // Room in the group, then in the host; while the host's waited, others of the group may
   // have taken its room again.
   do {
     co_await make_group_room(group, bytes, subject, verb);
     co_await make_room(bytes, kNoFile, subject, verb);
   } while (cache_->group_headroom(group) < bytes);
+  cache_->touch_from(node);
   cache_->allocate_anonymous(bytes, group);
 }
 
@@ -170,18 +171,18 @@ Task<std::int64_t> IoController::room_for_chunk(FileId file, std::int64_t file_s
   }
 }
 
-Task<IoTally> IoController::write_chunk(FileId file, std::int64_t chunk, std::int64_t at) {
+Task<IoTally> IoController::write_chunk(FileId file, std::int64_t chunk, std::int64_t at, NodeId node) {
   const FileInfo& info = (*files_)[file];
   if (info.is_remote()) {
     // No client write cache (the paper's NFS setting): every write goes to the server.
     co_await info.remote.server->serve_write(info.remote.server_file, chunk, *info.remote.route);
     co_return IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
   }
-  if (cache_->settings().write_mode == WriteMode::Writethrough) co_return co_await write_chunk_writethrough(file, chunk, at);
-  co_return co_await write_chunk_writeback(file, chunk, at);
+  if (cache_->settings().write_mode == WriteMode::Writethrough) co_return co_await write_chunk_writethrough(file, chunk, at, node);
+  co_return co_await write_chunk_writeback(file, chunk, at, node);
 }
 
-Task<std::int64_t> IoController::write_to_cache(FileId file, std::int64_t bytes, std::int64_t reclaimed, std::int64_t at) {
+Task<std::int64_t> IoController::write_to_cache(FileId file, std::int64_t bytes, std::int64_t reclaimed, std::int64_t at, NodeId node) {
   // The pages are taken now and hold the data once the copy is done: the dirty block's entry
   // time is the end of the copy. The file's group is charged for them.
   if (const GroupId group = cache_->group_of(file); group != kRootGroup) {
@@ -192,8 +193,11 @@ Task<std::int64_t> IoController::write_to_cache(FileId file, std::int64_t bytes,
     if (bytes == 0) co_return 0;
   }
   const std::int64_t cold = cold_taken();
+  const RemoteTally before = cache_->remote();
+  cache_->touch_from(node);
   cache_->reserve(bytes);
-  co_await memory_->write(bytes, std::min(reclaimed, bytes), cold_taken() - cold);
+  co_await memory(node).write(bytes, std::min(reclaimed, bytes), cold_taken() - cold, remote_since(&RemoteTally::reserved, before, bytes));
+  cache_->touch_from(node);
   commit_write(file, at, bytes);
   flusher_->notify_dirty(cache_->group_of(file));
   co_return bytes;
@@ -208,7 +212,8 @@ void IoController::commit_write(FileId file, std::int64_t at, std::int64_t bytes
   else cache_->commit_dirty_at(file, at, bytes, sim_->now());
 }
 
-Task<IoResult> IoController::write_file_throttled(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool whole_file, std::int64_t at) {
+Task<IoResult> IoController::write_file_throttled(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool whole_file, std::int64_t at,
+                                                  NodeId node) {
   const double start = sim_->now();
   if (whole_file) cache_->set_being_written(file, true);
   const double device_bw = (*files_)[file].disk->write_bandwidth();
@@ -220,6 +225,8 @@ Task<IoResult> IoController::write_file_throttled(FileId file, std::int64_t byte
       // What is evicted from here to the copy frees the pages the copy fills.
       std::int64_t evicted = cache_->evicted_bytes();
       const std::int64_t cold = cold_taken();
+      const RemoteTally before = cache_->remote();
+      cache_->touch_from(node);  // the step's pages are reserved on the writer's node first
       const DirtyThrottle::Step step = writer.next(remaining);
       if (step.kind == DirtyThrottle::Step::Pause) {
         co_await sim_->sleep(step.pause);
@@ -235,7 +242,9 @@ Task<IoResult> IoController::write_file_throttled(FileId file, std::int64_t byte
       } else {
         if (group != kRootGroup) co_await make_group_room(group, step.to_cache, file, "writing");
         evicted = cache_->evicted_bytes() - evicted;
-        co_await memory_->write(step.to_cache, std::min(evicted, step.to_cache), cold_taken() - cold);
+        co_await memory(node).write(step.to_cache, std::min(evicted, step.to_cache), cold_taken() - cold,
+                                    remote_since(&RemoteTally::reserved, before, step.to_cache));
+        cache_->touch_from(node);
         commit_write(file, at == ReadRequest::kWholeFile ? at : at + offset + std::min(chunk_size, bytes - offset) - remaining, step.to_cache);
         flusher_->notify_dirty(group);
         remaining -= step.to_cache;
@@ -246,16 +255,16 @@ Task<IoResult> IoController::write_file_throttled(FileId file, std::int64_t byte
   co_return file_result(start, sim_->now(), IoTally{.bytes = bytes, .cache_bytes = bytes, .disk_bytes = 0});
 }
 
-Task<IoTally> IoController::write_chunk_writeback(FileId file, std::int64_t chunk, std::int64_t at) {
+Task<IoTally> IoController::write_chunk_writeback(FileId file, std::int64_t chunk, std::int64_t at, NodeId node) {
   if (throttles_writers()) {
-    const IoResult r = co_await write_file_throttled(file, chunk, chunk, false, at);
+    const IoResult r = co_await write_file_throttled(file, chunk, chunk, false, at, node);
     co_return IoTally{.bytes = r.bytes, .cache_bytes = r.cache_bytes, .disk_bytes = r.disk_bytes};
   }
   std::int64_t to_memory = 0;
   if (const WriteStart start = plan_write_start(*cache_, chunk); start.under_threshold) {
     const std::int64_t evicted = cache_->evict(start.evict, file);
     to_memory = plan_write_start(*cache_, chunk).to_cache;  // as memory is after the eviction
-    if (to_memory > 0) to_memory = co_await write_to_cache(file, to_memory, evicted, at);
+    if (to_memory > 0) to_memory = co_await write_to_cache(file, to_memory, evicted, at, node);
   }
   std::int64_t remaining = chunk - to_memory;
   while (remaining > 0) {
@@ -268,15 +277,16 @@ Task<IoTally> IoController::write_chunk_writeback(FileId file, std::int64_t chun
       check_writer_can_wait(file, remaining);
       co_await wait_for_progress();
     }
-    if (to_cache > 0) to_cache = co_await write_to_cache(file, to_cache, evicted, at == ReadRequest::kWholeFile ? at : at + chunk - remaining);
+    if (to_cache > 0) to_cache = co_await write_to_cache(file, to_cache, evicted, at == ReadRequest::kWholeFile ? at : at + chunk - remaining, node);
     remaining -= to_cache;
   }
   co_return IoTally{.bytes = chunk, .cache_bytes = chunk, .disk_bytes = 0};
 }
 
-Task<IoTally> IoController::write_chunk_writethrough(FileId file, std::int64_t chunk, std::int64_t at) {
+Task<IoTally> IoController::write_chunk_writethrough(FileId file, std::int64_t chunk, std::int64_t at, NodeId node) {
   co_await (*files_)[file].disk->write(chunk);
   cache_->evict(chunk - cache_->free(), file);
+  cache_->touch_from(node);
   // A range written through is cached clean, as if read: what was not cached of it, if it fits.
   if (at != ReadRequest::kWholeFile && chunk - cache_->cached_in(file, at, chunk) <= cache_->free()) cache_->read_range(file, at, chunk, sim_->now());
   else if (at == ReadRequest::kWholeFile) cache_->add_clean(file, std::min(chunk, cache_->free()), sim_->now());
@@ -295,13 +305,18 @@ void IoController::check_request(std::int64_t chunk_size) const {
   if (chunk_size <= 0) throw ConfigError(fmt::format("chunk size must be > 0, got {}", chunk_size));
 }
 
-Task<IoResult> IoController::read_file(FileId file, std::int64_t chunk_size, bool direct, GroupId group) {
+Task<IoResult> IoController::read_file(FileId file, std::int64_t chunk_size, bool direct, GroupId group, NodeId node) {
   check_request(chunk_size);
-  if ((*files_)[file].is_remote()) return read_remote_file(file, chunk_size, direct, group);
-  return read_whole_file(file, chunk_size, direct, group);
+  if ((*files_)[file].is_remote()) return read_remote_file(file, chunk_size, direct, group, node);
+  return read_whole_file(file, chunk_size, direct, group, node);
 }
 
-Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_size, bool direct, GroupId group) {
+RemoteShare IoController::remote_since(std::int64_t RemoteTally::*what, const RemoteTally& before, std::int64_t bytes) const noexcept {
+  const RemoteTally& now = cache_->remote();
+  return RemoteShare{.source = 0.0, .destination = share(now.*what - before.*what, bytes)};
+}
+
+Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_size, bool direct, GroupId group, NodeId node) {
   const double start = sim_->now();
   const FileInfo& info = (*files_)[file];
   // What the loop needs of the file, kept here: with many readers the file's record is out of
@@ -319,8 +334,10 @@ Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_siz
     if (direct) {
       // O_DIRECT: only the application's buffer takes memory; the data comes from the disk.
       const std::int64_t cold = cold_taken();
-      co_await take_buffer(chunk, group, file, "reading");
-      co_await disk->read(chunk, memory_->fresh_copy_rate(share(cold_taken() - cold, chunk)), chunk);  // requests of the chunk
+      const RemoteTally before = cache_->remote();
+      co_await take_buffer(chunk, group, file, "reading", node);
+      const double rate = memory(node).fresh_copy_rate(share(cold_taken() - cold, chunk), remote_since(&RemoteTally::anonymous, before, chunk));
+      co_await disk->read(chunk, rate, chunk);  // requests of the chunk
       total += IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
       continue;
     }
@@ -338,40 +355,46 @@ Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_siz
     if (disk_read < 0) disk_read = co_await room_for_chunk(file, size, chunk, chunk, at, group, "reading");
     const std::int64_t cache_read = chunk - disk_read;
     const std::int64_t cold = cold_taken();
+    const RemoteTally before = cache_->remote();
+    cache_->touch_from(node);
     cursor = start_chunk(*cache_, {.file = file, .file_size = size, .bytes = chunk, .anonymous = chunk, .offset = at}, disk_read, cursor, group,
                          sim_->now());
+    // Where the new cache pages, the cached data read and the buffer are, from the reader's node.
+    const double buffer_remote = share(cache_->remote().anonymous - before.anonymous, chunk);
+    const RemoteShare from_disk{.source = share(cache_->remote().cache - before.cache, disk_read), .destination = buffer_remote};
+    const RemoteShare from_cache{.source = share(cache_->remote().reread - before.reread, cache_read), .destination = buffer_remote};
     // Taken back by the host: new cache pages (the device's transfer fills them) and the
     // buffer (the reader's first touch), their faults one after the other (measured: a cold
     // read goes at about 1 / (2 / cold_fault) where both are cold), per byte of the chunk.
     const double cold_share = share(cold_taken() - cold, chunk);
     if (disk_read > 0) {
-      double bound = memory_->fresh_copy_rate(cold_share);
+      double bound = memory(node).fresh_copy_rate(cold_share, from_disk);
       if (readahead) {
         const double rate = static_cast<double>(disk_read) / readahead->seconds(disk_read, disk->request_latency(), disk->read_bandwidth());
         bound = std::min(bound, rate);
       }
-      if (cold_share > 0.0) co_await memory_->device_read(*disk, disk_read, bound, cold_share);
+      if (cold_share > 0.0) co_await memory(node).device_read(*disk, disk_read, bound, cold_share);
       else co_await disk->read(disk_read, bound);
     }
-    if (cache_read > 0) co_await memory_->read_into_fresh(cache_read, cold_share);
+    if (cache_read > 0) co_await memory(node).read_into_fresh(cache_read, cold_share, from_cache);
     total += IoTally{.bytes = chunk, .cache_bytes = cache_read, .disk_bytes = disk_read};
   }
   co_return file_result(start, sim_->now(), total);
 }
 
-Task<IoResult> IoController::write_file(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool direct, GroupId group) {
+Task<IoResult> IoController::write_file(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool direct, GroupId group, NodeId node) {
   check_request(chunk_size);
   cache_->charge_file(file, group);
   const FileInfo& info = (*files_)[file];
   if (!direct && !info.is_remote() && cache_->settings().write_mode == WriteMode::Writeback && throttles_writers()) {
     chunks_ += static_cast<std::uint64_t>((bytes + chunk_size - 1) / chunk_size);
     // A file held by range is written in place, from its start.
-    return write_file_throttled(file, bytes, chunk_size, true, cache_->ranged(file) ? 0 : ReadRequest::kWholeFile);
+    return write_file_throttled(file, bytes, chunk_size, true, cache_->ranged(file) ? 0 : ReadRequest::kWholeFile, node);
   }
-  return write_file_in_chunks(file, bytes, chunk_size, direct);
+  return write_file_in_chunks(file, bytes, chunk_size, direct, node);
 }
 
-Task<IoResult> IoController::write_file_in_chunks(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool direct) {
+Task<IoResult> IoController::write_file_in_chunks(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool direct, NodeId node) {
   const double start = sim_->now();
   IoTally total;
   cache_->set_being_written(file, true);
@@ -383,7 +406,7 @@ Task<IoResult> IoController::write_file_in_chunks(FileId file, std::int64_t byte
     const std::int64_t chunk = std::min(chunk_size, bytes - offset);
     ++chunks_;
     if (direct_to == nullptr) {
-      total += co_await write_chunk(file, chunk, in_place ? offset : ReadRequest::kWholeFile);
+      total += co_await write_chunk(file, chunk, in_place ? offset : ReadRequest::kWholeFile, node);
       continue;
     }
     co_await direct_to->write(chunk, chunk);  // O_DIRECT: straight to the disk, in requests of the chunk

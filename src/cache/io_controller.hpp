@@ -21,6 +21,7 @@
 #include <pagecache/host.hpp>
 #include <pagecache/simulator.hpp>
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -46,12 +47,15 @@ struct IoTally {
 class IoController {
  public:
   IoController(Simulator& sim, PageCache& cache, const Memory& memory, FileTable& files, Flusher& flusher);
+  /// The memory of the host's NUMA node `node` (> 0), as its threads copy (Memory::reach).
+  void set_node_memory(NodeId node, const Memory& memory) noexcept { memories_[node] = &memory; }
 
   /// Writes `chunk` bytes to `file` (Algorithm 3 in writeback mode; disk then cache in
   /// writethrough mode).
   /// `at`: where the chunk goes in a file held by range (ReadRequest::kWholeFile: a chunk of a
   /// whole-file write, new data after what is cached).
-  Task<IoTally> write_chunk(FileId file, std::int64_t chunk, std::int64_t at = ReadRequest::kWholeFile);
+  /// `node`: the writing thread's NUMA node (its new pages are taken there first).
+  Task<IoTally> write_chunk(FileId file, std::int64_t chunk, std::int64_t at = ReadRequest::kWholeFile, NodeId node = 0);
   /// Reads a whole file in chunks of `chunk_size` bytes (Algorithm 2 per chunk; each chunk's
   /// copy stays in application memory until released); `direct`: bypassing the page cache
   /// (O_DIRECT: from the disk into the application's buffer).
@@ -60,12 +64,14 @@ class IoController {
   /// hands out the read.
   /// `group`: the reader's memory group, charged with its buffers (and with the new cache data
   /// if the file is the group's, PageCache::charge_file).
-  Task<IoResult> read_file(FileId file, std::int64_t chunk_size, bool direct = false, GroupId group = kRootGroup);
+  /// `node`: the reading thread's NUMA node (PageCache::touch_from).
+  Task<IoResult> read_file(FileId file, std::int64_t chunk_size, bool direct = false, GroupId group = kRootGroup, NodeId node = 0);
   /// Writes `bytes` to `file` in chunks of `chunk_size` bytes; `direct`: straight to the disk.
   /// Not a coroutine itself: it checks the request as read_file does and hands out the task
   /// that writes the file (throttled or not).
   /// `group`: the writer's memory group, which the file is charged to if no group has it.
-  Task<IoResult> write_file(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool direct = false, GroupId group = kRootGroup);
+  Task<IoResult> write_file(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool direct = false, GroupId group = kRootGroup,
+                            NodeId node = 0);
   /// Reads parts of a local file, the requests `next` yields one after the other (ranges
   /// within the file), into one buffer of `buffer` bytes held meanwhile. Each request reads
   /// the pages it touches as a chunk of read_file does (Algorithm 2 on its range: the cached
@@ -76,12 +82,12 @@ class IoController {
   /// the task for a request outside the file or when the read cannot proceed.
   /// `direct`: O_DIRECT (Host::read_ranges).
   Task<IoResult> read_ranges(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group = kRootGroup,
-                             ReadAdvice advice = ReadAdvice::Normal, bool direct = false);
+                             ReadAdvice advice = ReadAdvice::Normal, bool direct = false, NodeId node = 0);
   /// Writes parts of a local file, the requests `next` yields one after the other, each the
   /// pages it touches as a chunk of write_file (Algorithm 3, dirty throttling): holes become
   /// new dirty data, cached parts are written in place (PageCache::write_range). The file is
   /// held by range from its start. Errors as read_ranges'.
-  Task<IoResult> write_ranges(FileId file, std::function<bool(ByteRange&)> next, GroupId group = kRootGroup, bool direct = false);
+  Task<IoResult> write_ranges(FileId file, std::function<bool(ByteRange&)> next, GroupId group = kRootGroup, bool direct = false, NodeId node = 0);
   /// posix_fadvise(POSIX_FADV_WILLNEED): the holes of `range` of a local file are read into the
   /// page cache by a process of their own (the call returns at once), as readahead (untouched,
   /// at the inactive list's MRU end), one device request.
@@ -91,7 +97,7 @@ class IoController {
   std::int64_t dont_need(FileId file, ByteRange range);
   /// Takes `bytes` of application memory (a task's working memory), writing back and
   /// evicting cached data to make room. Throws SimulationError when nothing can free enough.
-  Task<void> hold_memory(std::int64_t bytes, GroupId group = kRootGroup);
+  Task<void> hold_memory(std::int64_t bytes, GroupId group = kRootGroup, NodeId node = 0);
   /// Makes `group` able to take `bytes` more (the kernel's try_charge): evicts the group's
   /// clean data, writes back its dirty data, waits for writebacks in flight. Throws
   /// SimulationError, with the time and the group, when nothing can free enough (the kernel
@@ -140,53 +146,53 @@ class IoController {
   void check_request(std::int64_t chunk_size) const;
   /// Reads `bytes` of a remote file from its server into this host's fresh memory;
   /// `server_cursor` as serve_read's.
-  Task<void> serve_remote(FileId file, std::int64_t bytes, ReadCursor* server_cursor);
+  Task<void> serve_remote(FileId file, std::int64_t bytes, ReadCursor* server_cursor, NodeId node);
   /// serve_read's parts: `bytes` from this host's disk, or from its cache, to the client.
   Task<void> send_from_disk(const Route& route, const FileInfo& info, const FlowSpec& client_copy, std::int64_t bytes) const;
   Task<void> send_from_cache(const Route& route, const FlowSpec& client_copy, std::int64_t bytes) const;
   /// serve_write's in writethrough mode: `bytes` over the route to this host's disk.
   Task<void> send_to_disk(const Route& route, const FileInfo& info, std::int64_t bytes) const;
   /// read_ranges once checked.
-  Task<IoResult> read_ranges_of(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group, ReadAdvice advice);
-  Task<IoResult> write_ranges_of(FileId file, std::function<bool(ByteRange&)> next, GroupId group);
+  Task<IoResult> read_ranges_of(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group, ReadAdvice advice, NodeId node);
+  Task<IoResult> write_ranges_of(FileId file, std::function<bool(ByteRange&)> next, GroupId group, NodeId node);
   /// read_ranges and write_ranges with O_DIRECT, once checked: the device alone, request by
   /// request (a write then drops the clean cached data of its pages).
-  Task<IoResult> ranges_direct(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group, bool writing);
+  Task<IoResult> ranges_direct(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group, bool writing, NodeId node);
   /// will_need's process.
   Task<void> prefetch(FileId file, ByteRange range);
   /// A local file's read (read_file).
-  Task<IoResult> read_whole_file(FileId file, std::int64_t chunk_size, bool direct, GroupId group);
+  Task<IoResult> read_whole_file(FileId file, std::int64_t chunk_size, bool direct, GroupId group, NodeId node);
   /// A remote file's read (read_file): from this host's cache and the server.
-  Task<IoResult> read_remote_file(FileId file, std::int64_t chunk_size, bool direct, GroupId group);
+  Task<IoResult> read_remote_file(FileId file, std::int64_t chunk_size, bool direct, GroupId group, NodeId node);
   /// Takes `bytes` of application memory for `group` (a task's memory, an O_DIRECT read's
   /// buffer), making room in the group and in the host; errors name `verb` and `subject`.
-  Task<void> take_buffer(std::int64_t bytes, GroupId group, FileId subject, const char* verb);
+  Task<void> take_buffer(std::int64_t bytes, GroupId group, FileId subject, const char* verb, NodeId node);
   /// Flushes up to `amount` dirty bytes (skipping `excluded`) and waits for their writes.
   Task<std::int64_t> write_back(std::int64_t amount, FileId excluded, FlushCause cause, GroupId group = kAnyGroup);
   /// A writer short of `bytes` of memory, with nothing to flush or evict, waits for copies and
   /// writebacks in flight; with none, nothing will ever free memory: throws SimulationError.
   void check_writer_can_wait(FileId file, std::int64_t bytes) const;
-  Task<IoTally> write_chunk_writeback(FileId file, std::int64_t chunk, std::int64_t at = ReadRequest::kWholeFile);
+  Task<IoTally> write_chunk_writeback(FileId file, std::int64_t chunk, std::int64_t at = ReadRequest::kWholeFile, NodeId node = 0);
   /// Whether writeback-mode writers are paced (dirty throttling) rather than made to flush.
   bool throttles_writers() const noexcept;
   /// `bytes` of a file written in chunks in writeback mode under dirty throttling
   /// (CacheSettings::dirty_throttling).
   /// `whole_file`: a file's write (write_file), marking the file as being written meanwhile.
   /// `at`: where the bytes go in a file held by range, as write_chunk's.
-  Task<IoResult> write_file_throttled(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool whole_file, std::int64_t at);
+  Task<IoResult> write_file_throttled(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool whole_file, std::int64_t at, NodeId node);
   /// write_file chunk by chunk (not throttled), or straight to the disk.
-  Task<IoResult> write_file_in_chunks(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool direct);
+  Task<IoResult> write_file_in_chunks(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool direct, NodeId node);
   /// Copies `bytes` into the cache: the memory transfer, then a new dirty block; `reclaimed`:
   /// how many of its pages the writer evicted clean data for (Memory::write).
   /// Returns the bytes copied: all of them, unless the file's memory group had to make room
   /// and others took the memory meanwhile.
-  Task<std::int64_t> write_to_cache(FileId file, std::int64_t bytes, std::int64_t reclaimed, std::int64_t at);
+  Task<std::int64_t> write_to_cache(FileId file, std::int64_t bytes, std::int64_t reclaimed, std::int64_t at, NodeId node);
   /// A copy of `bytes` into the cache is done: new dirty data, at `at` in a file held by range.
   void commit_write(FileId file, std::int64_t at, std::int64_t bytes);
-  Task<IoTally> write_chunk_writethrough(FileId file, std::int64_t chunk, std::int64_t at);
+  Task<IoTally> write_chunk_writethrough(FileId file, std::int64_t chunk, std::int64_t at, NodeId node);
   /// A chunk of a client's read of a remote file; `cursor` and `server_cursor`: where the read
   /// left off in this host's cache and in the server's, updated.
-  Task<IoTally> read_chunk_remote(FileId file, std::int64_t chunk, ReadCursor& cursor, ReadCursor& server_cursor, GroupId group);
+  Task<IoTally> read_chunk_remote(FileId file, std::int64_t chunk, ReadCursor& cursor, ReadCursor& server_cursor, GroupId group, NodeId node);
   /// Makes room for `required` bytes (flush, then evict), sparing `spared`; if that is not
   /// enough while other transfers still hold memory (writebacks, copies in flight), waits for
   /// them and tries again. Throws SimulationError when nothing can ever free enough, naming
@@ -214,9 +220,14 @@ class IoController {
   FlushScratch take_scratch();
   void release_scratch(FlushScratch&& scratch);
 
+  /// The memory as a thread on `node` copies: its node's.
+  const Memory& memory(NodeId node) const noexcept { return *memories_[node]; }
+  /// The shares of `bytes` placed or read on other nodes than the toucher's since `before`.
+  RemoteShare remote_since(std::int64_t RemoteTally::*what, const RemoteTally& before, std::int64_t bytes) const noexcept;
+
   Simulator* sim_;
   PageCache* cache_;
-  const Memory* memory_;
+  std::array<const Memory*, kMaxNodes> memories_{};  // by node; one-node hosts: the first
   FileTable* files_;
   Flusher* flusher_;
   std::int64_t flushed_ = 0;

@@ -12,7 +12,7 @@
 
 namespace pagecache::cache {
 
-Task<IoResult> IoController::read_remote_file(FileId file, std::int64_t chunk_size, bool direct, GroupId group) {
+Task<IoResult> IoController::read_remote_file(FileId file, std::int64_t chunk_size, bool direct, GroupId group, NodeId node) {
   const double start = sim_->now();
   const std::int64_t size = (*files_)[file].size;
   IoTally total;
@@ -24,20 +24,20 @@ Task<IoResult> IoController::read_remote_file(FileId file, std::int64_t chunk_si
     const std::int64_t chunk = std::min(chunk_size, size - offset);
     ++chunks_;
     if (!direct) {
-      total += co_await read_chunk_remote(file, chunk, cursor, server_cursor, group);
+      total += co_await read_chunk_remote(file, chunk, cursor, server_cursor, group, node);
       continue;
     }
     // O_DIRECT: the server serves it as any read, from its cache or its disk, then cached
     // there (the server does not see the client's O_DIRECT); here only the buffer takes memory.
-    co_await take_buffer(chunk, group, file, "reading");
-    co_await serve_remote(file, chunk, &server_cursor);
+    co_await take_buffer(chunk, group, file, "reading", node);
+    co_await serve_remote(file, chunk, &server_cursor, node);
     total += IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
   }
   co_return IoResult{.start = start, .end = sim_->now(), .bytes = total.bytes, .cache_bytes = total.cache_bytes, .disk_bytes = total.disk_bytes};
 }
 
 Task<IoTally> IoController::read_chunk_remote(FileId file, std::int64_t chunk, ReadCursor& cursor, ReadCursor& server_cursor,
-                                              GroupId group) {
+                                              GroupId group, NodeId node) {
   // A client read (NFS): what this host's cache lacks comes from the server, over the link,
   // and is kept in this host's cache (clean); the rest is a hit in this host's cache.
   const FileInfo& info = (*files_)[file];
@@ -45,20 +45,24 @@ Task<IoTally> IoController::read_chunk_remote(FileId file, std::int64_t chunk, R
   std::int64_t remote_read = group == kRootGroup ? evict_for_chunk(*cache_, request) : -1;
   if (remote_read < 0) remote_read = co_await room_for_chunk(file, info.size, chunk, chunk, ReadRequest::kWholeFile, group, "reading");
   const std::int64_t cache_read = chunk - remote_read;
+  const std::int64_t reread = cache_->remote().reread;
+  cache_->touch_from(node);
   cursor = start_chunk(*cache_, request, remote_read, cursor, group, sim_->now());
-  if (remote_read > 0) co_await serve_remote(file, remote_read, &server_cursor);
-  if (cache_read > 0) co_await memory_->read_into_fresh(cache_read);
+  // The part re-read is priced from where it is cached; the server's part by the network.
+  const RemoteShare from_cache{.source = cache_read > 0 ? static_cast<double>(cache_->remote().reread - reread) / static_cast<double>(cache_read) : 0.0};
+  if (remote_read > 0) co_await serve_remote(file, remote_read, &server_cursor, node);
+  if (cache_read > 0) co_await memory(node).read_into_fresh(cache_read, 0.0, from_cache);
   // From this host's point of view, data from the server is not from its own cache.
   co_return IoTally{.bytes = chunk, .cache_bytes = cache_read, .disk_bytes = remote_read};
 }
 
-Task<void> IoController::serve_remote(FileId file, std::int64_t bytes, ReadCursor* server_cursor) {
+Task<void> IoController::serve_remote(FileId file, std::int64_t bytes, ReadCursor* server_cursor, NodeId node) {
   // The data lands in this host's memory (its cache, or with O_DIRECT the application's
   // buffer), fresh memory either way. Not a coroutine: the server's frame is all the read
   // holds while it waits, its spec copied there (10^6 clients reading at once).
   const FileInfo& info = (*files_)[file];
-  FlowSpec client_copy = memory_->write_spec(bytes);
-  client_copy.bound = std::min(client_copy.bound, memory_->fresh_copy_rate());
+  FlowSpec client_copy = memory(node).write_spec(bytes);
+  client_copy.bound = std::min(client_copy.bound, memory(node).fresh_copy_rate());
   return info.remote.server->serve_read(info.remote.server_file, bytes, *info.remote.route, client_copy, server_cursor);
 }
 
@@ -73,7 +77,7 @@ Task<void> IoController::send_from_disk(const Route& route, const FileInfo& info
 }
 
 Task<void> IoController::send_from_cache(const Route& route, const FlowSpec& client_copy, std::int64_t bytes) const {
-  const FlowSpec server_copy = memory_->read_spec(bytes);
+  const FlowSpec server_copy = memory(0).read_spec(bytes);
   FlowSpec spec = client_copy;
   spec.work = static_cast<double>(bytes);
   spec.bound = std::min(spec.bound, server_copy.bound);
@@ -91,6 +95,7 @@ Task<void> IoController::serve_read(FileId file, std::int64_t bytes, const Route
   if (disk_read < 0) disk_read = co_await room_for_chunk(file, info.size, bytes, 0, ReadRequest::kWholeFile, kRootGroup, "serving");
   const std::int64_t cache_read = bytes - disk_read;
   // The client's memory takes the copy: no anonymous memory here.
+  cache_->touch_from(0);  // the server's threads: on node 0
   const ReadCursor next = start_chunk(*cache_, ReadRequest{.file = file, .file_size = info.size, .bytes = bytes, .anonymous = 0}, disk_read,
                                       cursor != nullptr ? *cursor : ReadCursor{}, kRootGroup, sim_->now());
   if (cursor != nullptr) *cursor = next;
@@ -103,6 +108,7 @@ Task<void> IoController::serve_write(FileId file, std::int64_t bytes, const Rout
   if (cache_->settings().write_mode == WriteMode::Writethrough) {
     co_await send_to_disk(route, info, bytes);
     cache_->evict(bytes - cache_->free(), file);
+    cache_->touch_from(0);  // the server's threads: on node 0
     cache_->add_clean(file, std::min(bytes, cache_->free()), sim_->now());
     co_return;
   }

@@ -33,21 +33,29 @@ constexpr double kRequestTimeBatch = 1e-3;
 
 }  // namespace
 
+namespace {
+// `part` of `whole` as a fraction (0 for nothing).
+double share_of(std::int64_t part, std::int64_t whole) {
+  return whole > 0 ? static_cast<double>(part) / static_cast<double>(whole) : 0.0;
+}
+}  // namespace
+
 Task<IoResult> IoController::read_ranges(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group, ReadAdvice advice,
-                                         bool direct) {
+                                         bool direct, NodeId node) {
   const FileInfo& info = (*files_)[file];
   if (buffer <= 0) throw ConfigError(fmt::format("'{}': a read's buffer must be > 0 bytes, got {}", info.name, buffer));
   if (info.is_remote()) throw ConfigError(fmt::format("'{}': reads of parts of a file are of local files only", info.name));
-  if (direct) return ranges_direct(file, std::move(next), buffer, group, false);
-  return read_ranges_of(file, std::move(next), buffer, group, advice);
+  if (direct) return ranges_direct(file, std::move(next), buffer, group, false, node);
+  return read_ranges_of(file, std::move(next), buffer, group, advice, node);
 }
 
-Task<IoResult> IoController::ranges_direct(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group, bool writing) {
+Task<IoResult> IoController::ranges_direct(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group, bool writing,
+                                           NodeId node) {
   const double start = sim_->now();
   const FileInfo& info = (*files_)[file];
   const Disk* const disk = info.disk;
   // The application's buffer is the only memory it takes; a write's comes from it.
-  co_await take_buffer(buffer, group, file, writing ? "writing" : "reading");
+  co_await take_buffer(buffer, group, file, writing ? "writing" : "reading", node);
   if (writing) cache_->track_ranges(file);
   IoResult result{.start = start};
   double pending = 0.0;  // request time not yet slept
@@ -71,18 +79,19 @@ Task<IoResult> IoController::ranges_direct(FileId file, std::function<bool(ByteR
     result.disk_bytes += r.length;
   }
   if (pending > 0.0) co_await sim_->sleep(pending);
+  cache_->touch_from(node);
   cache_->release_anonymous(buffer, group);
   result.end = sim_->now();
   co_return result;
 }
 
 Task<IoResult> IoController::read_ranges_of(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group,
-                                            ReadAdvice advice) {
+                                            ReadAdvice advice, NodeId node) {
   const double start = sim_->now();
   const FileInfo& info = (*files_)[file];
   const std::int64_t size = info.size;
   const Disk* const disk = info.disk;
-  co_await take_buffer(buffer, group, file, "reading");
+  co_await take_buffer(buffer, group, file, "reading", node);
   cache_->track_ranges(file);
   RangeReadahead readahead(*disk, advice);
   IoResult result{.start = start};
@@ -102,7 +111,9 @@ Task<IoResult> IoController::read_ranges_of(FileId file, std::function<bool(Byte
     std::int64_t disk_read = group == kRootGroup ? evict_for_chunk(*cache_, request) : -1;
     if (disk_read < 0) disk_read = co_await room_for_chunk(file, size, request.bytes, 0, request.offset, group, "reading");
     const std::int64_t cold = cold_taken();
+    const RemoteTally before = cache_->remote();
     // The request's pages are read (the cached ones touched); the rest of the window only fills.
+    cache_->touch_from(node);
     cache_->charge_file(file, group);
     const std::int64_t missed = cache_->read_range(file, pages.offset, pages.length, sim_->now());
     const std::int64_t ahead = cache_->read_ahead(file, pages.offset + pages.length, window.length - pages.length, sim_->now());
@@ -112,27 +123,29 @@ Task<IoResult> IoController::read_ranges_of(FileId file, std::function<bool(Byte
     const std::int64_t copied = std::max<std::int64_t>(r.length - missed, 0);
     if (disk_read > 0) {
       const double cold_share = static_cast<double>(cold_taken() - cold) / static_cast<double>(disk_read);
-      co_await disk->read(disk_read, memory_->fresh_copy_rate(cold_share), disk_read);
+      const RemoteShare placed{.source = share_of(cache_->remote().cache - before.cache, disk_read), .destination = 0.0};
+      co_await disk->read(disk_read, memory(node).fresh_copy_rate(cold_share, placed), disk_read);
     }
-    if (copied > 0) co_await memory_->read(copied);
+    if (copied > 0) co_await memory(node).read(copied, RemoteShare{.source = share_of(cache_->remote().reread - before.reread, copied)});
     result.bytes += r.length;
     result.cache_bytes += copied;
     result.disk_bytes += disk_read;
   }
   if (pending > 0.0) co_await sim_->sleep(pending);
+  cache_->touch_from(node);
   cache_->release_anonymous(buffer, group);
   result.end = sim_->now();
   co_return result;
 }
 
-Task<IoResult> IoController::write_ranges(FileId file, std::function<bool(ByteRange&)> next, GroupId group, bool direct) {
+Task<IoResult> IoController::write_ranges(FileId file, std::function<bool(ByteRange&)> next, GroupId group, bool direct, NodeId node) {
   const FileInfo& info = (*files_)[file];
   if (info.is_remote()) throw ConfigError(fmt::format("'{}': writes of parts of a file are of local files only", info.name));
-  if (direct) return ranges_direct(file, std::move(next), kPageSize, group, true);
-  return write_ranges_of(file, std::move(next), group);
+  if (direct) return ranges_direct(file, std::move(next), kPageSize, group, true, node);
+  return write_ranges_of(file, std::move(next), group, node);
 }
 
-Task<IoResult> IoController::write_ranges_of(FileId file, std::function<bool(ByteRange&)> next, GroupId group) {
+Task<IoResult> IoController::write_ranges_of(FileId file, std::function<bool(ByteRange&)> next, GroupId group, NodeId node) {
   const double start = sim_->now();
   const FileInfo& info = (*files_)[file];
   cache_->charge_file(file, group);
@@ -151,7 +164,7 @@ Task<IoResult> IoController::write_ranges_of(FileId file, std::function<bool(Byt
     // A write of part of a page copies and dirties the page (the kernel would read it first
     // if it is not cached: not modelled).
     const ByteRange pages = pages_of(r, info.size);
-    const IoTally t = co_await write_chunk(file, pages.length, pages.offset);
+    const IoTally t = co_await write_chunk(file, pages.length, pages.offset, node);
     result.bytes += r.length;
     result.cache_bytes += t.cache_bytes;
     result.disk_bytes += t.disk_bytes;
@@ -176,11 +189,12 @@ Task<void> IoController::prefetch(FileId file, ByteRange range) {
   std::int64_t disk_read = evict_for_chunk(*cache_, request);
   if (disk_read < 0) disk_read = co_await room_for_chunk(file, info.size, request.bytes, 0, request.offset, kRootGroup, "prefetching");
   const std::int64_t cold = cold_taken();
+  cache_->touch_from(0);  // the kernel's readahead worker: node 0
   const std::int64_t added = cache_->read_ahead(file, range.offset, range.length, sim_->now());
   PC_ASSERT(added == disk_read);
   if (added > 0) {
     const double cold_share = static_cast<double>(cold_taken() - cold) / static_cast<double>(added);
-    co_await info.disk->read(added, memory_->fresh_copy_rate(cold_share), added);
+    co_await info.disk->read(added, memory(0).fresh_copy_rate(cold_share), added);
   }
 }
 

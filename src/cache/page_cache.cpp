@@ -68,6 +68,12 @@ void PageCache::allocate_anonymous(std::int64_t bytes, GroupId group) {
     PC_ASSERT(group == kRootGroup);
   }
   anonymous_ += bytes;
+  if (!nodes_.empty()) {
+    nodes_.place(bytes, toucher_, [&](NodeId node, std::int64_t part) {
+      nodes_[node].anonymous += part;
+      if (node != toucher_) remote_.anonymous += part;
+    });
+  }
   settle();
 }
 
@@ -78,6 +84,7 @@ void PageCache::release_anonymous(std::int64_t bytes, GroupId group) {
     groups_[group].anonymous -= bytes;
   }
   anonymous_ -= bytes;
+  if (!nodes_.empty()) nodes_.release(bytes, toucher_, &NodeUse::anonymous, [](NodeId, std::int64_t) {});
   settle();
   if (progress_hook_) progress_hook_();
 }
@@ -109,10 +116,11 @@ std::int64_t PageCache::dirty(FileId file) const noexcept {
 
 // --- Block bookkeeping: every list and counter changes here and only here -------------------
 
-BlockId PageCache::new_block(FileId file, std::int64_t size, BlockState state, double now) {
+BlockId PageCache::new_block(FileId file, std::int64_t size, BlockState state, double now, NodeId node) {
   const BlockId id = blocks_.take();
   Block& block = blocks_[id];
   block.file = file;
+  block.node = node;
   block.size = size;
   block.state = state;
   block.entry_time = now;
@@ -127,7 +135,7 @@ void PageCache::append(BlockId id, ListKind kind) {
   file_list(entry, kind).push_back(blocks_, id);
   ++entry.blocks;
   (kind == ListKind::Inactive ? entry.inactive_bytes : entry.active_bytes) += block.size;
-  charge(block.file, block.size);
+  charge(block.file, block.node, block.size);
   if (block.state == BlockState::Dirty) entry.dirty_bytes += block.size;
   if (block.state == BlockState::Clean) on_clean_linked(id);
   else charge_dirty(block.file, block.size);
@@ -142,12 +150,12 @@ void PageCache::unlink(BlockId id) {
   file_list(entry, block.list).erase(blocks_, id);
   --entry.blocks;
   (block.list == ListKind::Inactive ? entry.inactive_bytes : entry.active_bytes) -= block.size;
-  charge(block.file, -block.size);
+  charge(block.file, block.node, -block.size);
   if (block.state == BlockState::Dirty) entry.dirty_bytes -= block.size;
   if (block.state != BlockState::Clean) charge_dirty(block.file, -block.size);
 }
 
-bool PageCache::extend_tail(ListKind kind, FileId file, std::int64_t bytes, bool referenced) {
+bool PageCache::extend_tail(ListKind kind, FileId file, std::int64_t bytes, bool referenced, NodeId node) {
   // New clean data of the file at the most recently used end, right behind a clean block of
   // the same file in the same state: one block, not two. The bytes are in the same place on
   // the lists either way; a file read chunk by chunk then holds a block per run, not per
@@ -156,11 +164,11 @@ bool PageCache::extend_tail(ListKind kind, FileId file, std::int64_t bytes, bool
   const BlockId tail_id = list.back();
   if (tail_id == kNoBlock) return false;
   const Block& tail = blocks_[tail_id];
-  if (tail.file != file || tail.state != BlockState::Clean || tail.referenced != referenced || tail.ranged) return false;
+  if (tail.file != file || tail.state != BlockState::Clean || tail.referenced != referenced || tail.ranged || tail.node != node) return false;
   list.resize(tail_id, tail.size + bytes);
   FileEntry& entry = files_[file];
   (kind == ListKind::Inactive ? entry.inactive_bytes : entry.active_bytes) += bytes;
-  charge(file, bytes);
+  charge(file, node, bytes);
   return true;
 }
 
@@ -226,6 +234,7 @@ BlockId PageCache::split_front(BlockId id, std::int64_t head_size) {
   if (block.state == BlockState::Writeback) tail.writeback_batch = block.writeback_batch;
   else tail.entry_time = block.entry_time;
   tail.referenced = block.referenced;
+  tail.node = block.node;
   if (block.ranged) {
     tail.ranged = true;
     ranges_.insert(block.file, tail_id, ranges_.offset(id) + head_size, tail.size);
@@ -262,13 +271,23 @@ void PageCache::add_new(FileId file, std::int64_t bytes, BlockState state, doubl
   if (bytes > free()) {
     throw SimulationError(fmt::format("cannot cache {} bytes: only {} free", bytes, free()));
   }
-  if (state == BlockState::Clean && extend_tail(ListKind::Inactive, file, bytes, referenced)) {
-    settle();
-    return;
+  if (nodes_.empty()) {
+    add_new_on(0, file, bytes, state, now, referenced);
+  } else {
+    nodes_.place(bytes, toucher_, [&](NodeId node, std::int64_t part) {
+      if (node != toucher_) remote_.cache += part;
+      add_new_on(node, file, part, state, now, referenced);
+    });
   }
+  settle();
+}
+
+void PageCache::add_new_on(NodeId node, FileId file, std::int64_t bytes, BlockState state, double now, bool referenced) {
+  if (state == BlockState::Clean && extend_tail(ListKind::Inactive, file, bytes, referenced, node)) return;
   // A ranged file's data written whole goes after its last cached byte (ranged writes place
   // their own).
-  const BlockId id = ranged(file) ? new_ranged_block(file, ranges_.file_end(file), bytes, state, now) : new_block(file, bytes, state, now);
+  const BlockId id =
+      ranged(file) ? new_ranged_block(file, ranges_.file_end(file), bytes, state, now, node) : new_block(file, bytes, state, now, node);
   blocks_[id].referenced = referenced;
   append(id, ListKind::Inactive);
   if (state == BlockState::Dirty) {
@@ -279,7 +298,6 @@ void PageCache::add_new(FileId file, std::int64_t bytes, BlockState state, doubl
     if (after == kNoBlock) dirty_by_age_.push_front(blocks_, id);
     else dirty_by_age_.insert_after(blocks_, after, id);
   }
-  settle();
 }
 
 void PageCache::add_clean(FileId file, std::int64_t bytes, double now) { add_new(file, bytes, BlockState::Clean, now); }
@@ -299,13 +317,27 @@ void PageCache::reserve(std::int64_t bytes) {
   PC_ASSERT(bytes >= 0);
   if (bytes > free()) throw SimulationError(fmt::format("cannot reserve {} bytes: only {} free", bytes, free()));
   reserved_ += bytes;
+  if (!nodes_.empty()) {
+    nodes_.place(bytes, toucher_, [&](NodeId node, std::int64_t part) {
+      nodes_[node].reserved += part;
+      if (node != toucher_) remote_.reserved += part;
+    });
+  }
   settle();
 }
 
 void PageCache::commit_dirty(FileId file, std::int64_t bytes, double now) {
   PC_ASSERT(bytes >= 0 && bytes <= reserved_);
   reserved_ -= bytes;
-  add_dirty(file, bytes, now);
+  if (nodes_.empty()) {
+    add_dirty(file, bytes, now);
+  } else {
+    // The pages the copy filled: its reservation's, on their nodes.
+    nodes_.release(bytes, toucher_, &NodeUse::reserved,
+                   [&](NodeId node, std::int64_t part) { add_new_on(node, file, part, BlockState::Dirty, now, false); });
+    peak_dirty_ = std::max(peak_dirty_, dirty());
+    settle();
+  }
   if (progress_hook_) progress_hook_();
 }
 
@@ -314,13 +346,13 @@ ReadCursor PageCache::reaccess(FileId file, std::int64_t bytes, double now, Read
   PC_ASSERT_MSG(!ranged(file), "a file held by range is re-accessed by range (read_range)");
   FileEntry& entry = file_entry(file);
   std::int64_t left = bytes;
-  std::int64_t merged_clean[2] = {0, 0};  // by the list it goes to
+  std::int64_t merged_clean[2][kMaxNodes] = {};  // by the list it goes to and the node it is on
   // A block read moves to the MRU end of `to`: clean data read is merged into one new block
   // there; dirty (or writeback) data moves on its own, keeping its entry time.
   auto move = [&](BlockId id, ListKind to) {
     Block& block = blocks_[id];
     if (block.state == BlockState::Clean) {
-      merged_clean[static_cast<int>(to)] += block.size;
+      merged_clean[static_cast<int>(to)][block.node] += block.size;
       destroy(id);
     } else {
       unlink(id);
@@ -338,6 +370,7 @@ ReadCursor PageCache::reaccess(FileId file, std::int64_t bytes, double now, Read
       at = FileOrder::next(blocks_, id);
       Block& block = blocks_[id];
       left -= block.size;
+      if (block.node != toucher_) remote_.reread += block.size;
       const Policy::Reread what = policy_->reread(block);
       switch (what) {
         case Policy::Reread::Mark: block.referenced = true; break;
@@ -366,6 +399,7 @@ ReadCursor PageCache::reaccess(FileId file, std::int64_t bytes, double now, Read
     const BlockId front = entry.active.front();
     const BlockId id = blocks_[front].size > left ? split_front(front, left) : front;
     left -= blocks_[id].size;
+    if (blocks_[id].node != toucher_) remote_.reread += blocks_[id].size;
     move(id, ListKind::Active);
   }
   // More than this read left untouched (others read or evicted meanwhile): the blocks it
@@ -376,8 +410,10 @@ ReadCursor PageCache::reaccess(FileId file, std::int64_t bytes, double now, Read
   }
   PC_ASSERT(left == 0);
   for (ListKind to : {ListKind::Active, ListKind::Inactive}) {
-    const std::int64_t merged = merged_clean[static_cast<int>(to)];
-    if (merged > 0 && !extend_tail(to, file, merged, false)) append(new_block(file, merged, BlockState::Clean, now), to);
+    for (NodeId node = 0; node < kMaxNodes; ++node) {
+      const std::int64_t merged = merged_clean[static_cast<int>(to)][node];
+      if (merged > 0 && !extend_tail(to, file, merged, false, node)) append(new_block(file, merged, BlockState::Clean, now, node), to);
+    }
   }
   balance();  // after every read, under every policy
   settle();

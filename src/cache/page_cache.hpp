@@ -14,7 +14,8 @@
 // cached = inactive + active, every list's byte counter equals its block sum, every block is
 // in exactly one LRU list and in its file's list for that LRU list; with the clean index, every
 // clean block is in its file's clean list for that LRU list, and every file not being written
-// that has clean data there is in reclaimable_ (when the policy spares files being written).
+// that has clean data there is in reclaimable_ (when the policy spares files being written);
+// with NUMA nodes, each node's counters equal its blocks' sums and its free memory is >= 0.
 
 #include "cache/block.hpp"
 #include "cache/block_list.hpp"
@@ -22,6 +23,7 @@
 #include "cache/file_heap.hpp"
 #include "cache/file_ranges.hpp"
 #include "cache/lru_list.hpp"
+#include "cache/numa_nodes.hpp"
 #include "cache/policy.hpp"
 #include "cache/tracer.hpp"
 
@@ -126,23 +128,23 @@ class PageCache {
   std::int64_t group_dirty_and_writeback(GroupId group) const noexcept { return groups_[group].dirty; }
   /// What the group may still take before memory.max or memory.high, whichever is lower
   /// (mem_cgroup_wb_stats' headroom); >= 0.
-  std::int64_t group_ceiling_headroom(GroupId group) const noexcept {
-    const Group& g = groups_[group];
-    const std::int64_t ceiling = g.high > 0 ? std::min(g.max, g.high) : g.max;
-    return std::max<std::int64_t>(ceiling - group_usage(group), 0);
-  }
+  std::int64_t group_ceiling_headroom(GroupId group) const noexcept;
   std::int64_t group_max(GroupId group) const noexcept { return groups_[group].max; }
   /// How far the group is above memory.high after taking `bytes` more (<= 0: not above).
-  std::int64_t group_over_high(GroupId group, std::int64_t bytes) const noexcept {
-    if (groups_.empty() || group == kRootGroup || groups_[group].high == 0) return 0;
-    return group_usage(group) + bytes - groups_[group].high;
-  }
+  std::int64_t group_over_high(GroupId group, std::int64_t bytes) const noexcept;
   /// What the group may still take before its limit, as far as free memory allows.
   std::int64_t group_room(GroupId group) const noexcept;
   /// What the group may still take before its limit (free memory aside); the root's: unlimited.
-  std::int64_t group_headroom(GroupId group) const noexcept {
-    return groups_.empty() || group == kRootGroup ? std::numeric_limits<std::int64_t>::max() : groups_[group].max - group_usage(group);
-  }
+  std::int64_t group_headroom(GroupId group) const noexcept;
+
+  // --- NUMA nodes (docs/model.md §6.20; page_cache_nodes.cpp) ------------------------------
+  void set_nodes(int count);  ///< splits the memory evenly among 1 to kMaxNodes nodes, before anything is held
+  std::size_t node_count() const noexcept { return std::max<std::size_t>(nodes_.size(), 1); }
+  /// The node of the thread whose operations follow (0 until set): they take new memory there
+  /// first (NumaNodes::place), give memory back there first, and read the cache from there.
+  void touch_from(NodeId node) noexcept { toucher_ = node; }
+  NodeUse node(NodeId node) const noexcept;  ///< a node's memory (a one-node host's: the whole)
+  const RemoteTally& remote() const noexcept { return remote_; }
 
   // --- Per file ---------------------------------------------------------------------------
   std::int64_t cached(FileId file) const noexcept;
@@ -310,12 +312,12 @@ class PageCache {
   }
   FileHeap& reclaimable(ListKind kind) noexcept { return reclaimable_[static_cast<std::size_t>(kind)]; }
 
-  BlockId new_block(FileId file, std::int64_t size, BlockState state, double now);
+  BlockId new_block(FileId file, std::int64_t size, BlockState state, double now, NodeId node);
   /// Adds `bytes` to the clean block at the MRU end of `kind` if it is the file's with the
   /// same referenced mark; false if there is no such block.
-  bool extend_tail(ListKind kind, FileId file, std::int64_t bytes, bool referenced);
+  bool extend_tail(ListKind kind, FileId file, std::int64_t bytes, bool referenced, NodeId node);
   /// A block of a ranged file holding [offset, offset + size), indexed, on no list yet.
-  BlockId new_ranged_block(FileId file, std::int64_t offset, std::int64_t size, BlockState state, double now);
+  BlockId new_ranged_block(FileId file, std::int64_t offset, std::int64_t size, BlockState state, double now, NodeId node);
   using Located = FileRanges::Located;
   /// [offset, min(end, its end)) of `block`, which holds `offset`, as a block of its own (cut
   /// off on either side as needed).
@@ -330,7 +332,9 @@ class PageCache {
   /// New data of a ranged file, [offset, offset + bytes), at the MRU end of the inactive list:
   /// clean (marked `referenced`) or dirty (entered at `now`). Merged into the tail there if
   /// that is the file's data ending at `offset` in the same state, mark and entry time.
-  void add_ranged(FileId file, std::int64_t offset, std::int64_t bytes, BlockState state, double now, bool referenced);
+  void add_ranged(FileId file, std::int64_t offset, std::int64_t bytes, BlockState state, double now, bool referenced, NodeId node);
+  /// add_ranged for new memory: on the nodes NumaNodes::place gives, by offset.
+  void place_ranged(FileId file, std::int64_t offset, std::int64_t bytes, BlockState state, double now, bool referenced);
   /// Puts one dirty block in writeback under a new token.
   Flushed take_for_writeback(BlockId block);
   /// A dirty block goes into writeback as part of the write `token` (held in its entry time's
@@ -338,6 +342,11 @@ class PageCache {
   void start_writeback(BlockId block, std::uint64_t token);
   /// New data of `file` at the MRU end of the inactive list, taken from free memory.
   void add_new(FileId file, std::int64_t bytes, BlockState state, double now, bool referenced = false);
+  /// add_new's data on one node (its memory already counted as free there, or reserved).
+  void add_new_on(NodeId node, FileId file, std::int64_t bytes, BlockState state, double now, bool referenced);
+  /// evict() by node: each node an equal share of its own data, then the others what it could not.
+  std::int64_t evict_by_node(std::int64_t amount, FileId excluded);
+  void check_nodes() const;
   void append(BlockId block, ListKind kind);
   void unlink(BlockId block);
   void destroy(BlockId block);
@@ -387,16 +396,8 @@ class PageCache {
   LruList inactive_{ListKind::Inactive, blocks_};
   LruList active_{ListKind::Active, blocks_};
   DirtyOrder dirty_by_age_;  // dirty blocks, oldest entry time first
-  // Where the last search for expired data stopped: every dirty block before `after` in
-  // next_dirty's order has an entry time later than `cutoff`. The flusher takes expired blocks
-  // one at a time under one cutoff; with many writers they sit behind many dirty blocks not
-  // yet expired, which the next search with that cutoff need not walk again. Cleared when a
-  // dirty block of entry time <= cutoff is linked anywhere, or when `after` leaves the dirty
-  // blocks.
-  struct ExpiryScan {
-    BlockId after = kNoBlock;
-    double cutoff = 0.0;
-  };
+  // Where the last search for expired data stopped (page_cache_writeback.cpp, lru_expired).
+  struct ExpiryScan { BlockId after = kNoBlock; double cutoff = 0.0; };
   ExpiryScan expiry_scan_;
   std::vector<FileEntry> files_;
   std::vector<FileWriteback> writeback_;  // by file, its blocks in writeback (in no order)
@@ -418,20 +419,21 @@ class PageCache {
   std::vector<Group> groups_;
   std::vector<GroupId> file_group_;
   GroupId target_ = kAnyGroup;
-  bool in_target(const Block& block) const noexcept { return target_ == kAnyGroup || group_of(block.file) == target_; }
-  /// Adds `bytes` to the cached bytes of the file's group.
-  void charge(FileId file, std::int64_t bytes) noexcept { if (!groups_.empty()) groups_[group_of(file)].cached += bytes; }
+  bool in_target(const Block& block) const noexcept {
+    return (target_ == kAnyGroup || group_of(block.file) == target_) && (target_node_ == kAnyNode || block.node == target_node_);
+  }
+  NumaNodes nodes_;  // empty on a one-node host
+  NodeId toucher_ = 0, target_node_ = kAnyNode;  // target: reclaim's node (evict_by_node)
+  RemoteTally remote_;
+  /// Adds `bytes` to the cached bytes of the file's group and of the node.
+  void charge(FileId file, NodeId node, std::int64_t bytes) noexcept {
+    if (!groups_.empty()) groups_[group_of(file)].cached += bytes;
+    if (!nodes_.empty()) nodes_[node].cached += bytes;
+  }
   /// Adds `bytes` to the dirty or writeback bytes of the file's group.
   void charge_dirty(FileId file, std::int64_t bytes) noexcept { if (!groups_.empty()) groups_[group_of(file)].dirty += bytes; }
-  // Per LRU list, with the clean index: where an eviction that spares the files
-  // being written finds its next victim without walking past their clean blocks. Every file
-  // not being written that has clean data in the list is in it, under a key no higher than
-  // the order key of its first clean block there. Keys are lowered at once (a clean block
-  // comes first in the file's clean list, or the file's last write ends) and raised, or the
-  // file dropped (it has no clean data left there, or is being written), only when the file
-  // comes to the top: so when the top's key is its first clean block's, that block is the
-  // least recently used clean block of any file not being written. Two files' first clean
-  // blocks never share an order key (equal keys are pieces of one file's block).
+  // Per LRU list, with the clean index: the files an eviction sparing the files being written
+  // takes from, by their first clean block (page_cache_reclaim.cpp, next_unwritten_clean).
   std::array<FileHeap, 2> reclaimable_;  // by ListKind
   std::uint64_t next_token_ = 1;
   std::int64_t evicted_total_ = 0;

@@ -33,6 +33,7 @@ void PageCache::check_invariants() const {
   for (std::size_t f = 0; f < files_.size(); ++f) blocks_in_files += check_file(f, most);
   PC_ASSERT_MSG(blocks_in_files == inactive_.size() + active_.size(), "a block is missing from its file's list");
   if (!groups_.empty()) check_groups();
+  check_nodes();
   PC_ASSERT(target_ == kAnyGroup);
   for (const FileHeap& files : reclaimable_) {
     files.check();

@@ -46,4 +46,19 @@ std::int64_t PageCache::group_room(GroupId group) const noexcept {
   return std::min(groups_[group].max - group_usage(group), free());
 }
 
+std::int64_t PageCache::group_ceiling_headroom(GroupId group) const noexcept {
+  const Group& g = groups_[group];
+  const std::int64_t ceiling = g.high > 0 ? std::min(g.max, g.high) : g.max;
+  return std::max<std::int64_t>(ceiling - group_usage(group), 0);
+}
+
+std::int64_t PageCache::group_over_high(GroupId group, std::int64_t bytes) const noexcept {
+  if (groups_.empty() || group == kRootGroup || groups_[group].high == 0) return 0;
+  return group_usage(group) + bytes - groups_[group].high;
+}
+
+std::int64_t PageCache::group_headroom(GroupId group) const noexcept {
+  return groups_.empty() || group == kRootGroup ? std::numeric_limits<std::int64_t>::max() : groups_[group].max - group_usage(group);
+}
+
 }  // namespace pagecache::cache

@@ -41,8 +41,8 @@ std::int64_t PageCache::cached_in(FileId file, std::int64_t offset, std::int64_t
   return cached;
 }
 
-BlockId PageCache::new_ranged_block(FileId file, std::int64_t offset, std::int64_t size, BlockState state, double now) {
-  const BlockId id = new_block(file, size, state, now);
+BlockId PageCache::new_ranged_block(FileId file, std::int64_t offset, std::int64_t size, BlockState state, double now, NodeId node) {
+  const BlockId id = new_block(file, size, state, now, node);
   blocks_[id].ranged = true;
   ranges_.insert(file, id, offset, size);
   return id;
@@ -69,7 +69,8 @@ void PageCache::move_ranged(BlockId id, std::int64_t offset, ListKind to) {
   const BlockId tail_id = list_of(to).back();
   if (block.state == BlockState::Clean && tail_id != kNoBlock) {
     const Block& tail = blocks_[tail_id];
-    if (tail.file == block.file && tail.ranged && tail.state == BlockState::Clean && !tail.referenced && ranges_.end(tail_id) == offset) {
+    if (tail.file == block.file && tail.ranged && tail.state == BlockState::Clean && !tail.referenced && tail.node == block.node &&
+        ranges_.end(tail_id) == offset) {
       // Contiguous clean data of the file, one after the other at the MRU end: one block.
       const std::int64_t size = block.size;
       block.size = 0;
@@ -79,25 +80,34 @@ void PageCache::move_ranged(BlockId id, std::int64_t offset, ListKind to) {
       ranges_.resize(tail.file, tail_id, tail.size);
       FileEntry& entry = files_[tail.file];
       (to == ListKind::Inactive ? entry.inactive_bytes : entry.active_bytes) += size;
-      charge(tail.file, size);
+      charge(tail.file, tail.node, size);
       return;
     }
   }
   append(id, to);
 }
 
-void PageCache::add_ranged(FileId file, std::int64_t offset, std::int64_t bytes, BlockState state, double now, bool referenced) {
+void PageCache::place_ranged(FileId file, std::int64_t offset, std::int64_t bytes, BlockState state, double now, bool referenced) {
+  if (nodes_.empty()) return add_ranged(file, offset, bytes, state, now, referenced, 0);
+  nodes_.place(bytes, toucher_, [&](NodeId node, std::int64_t part) {
+    if (node != toucher_) remote_.cache += part;
+    add_ranged(file, offset, part, state, now, referenced, node);
+    offset += part;
+  });
+}
+
+void PageCache::add_ranged(FileId file, std::int64_t offset, std::int64_t bytes, BlockState state, double now, bool referenced, NodeId node) {
   LruList& list = list_of(ListKind::Inactive);
   const BlockId tail_id = list.back();
   if (tail_id != kNoBlock) {
     const Block& tail = blocks_[tail_id];
-    if (tail.file == file && tail.ranged && tail.state == state && tail.referenced == referenced &&
+    if (tail.file == file && tail.ranged && tail.state == state && tail.referenced == referenced && tail.node == node &&
         (state == BlockState::Clean || tail.entry_time == now) && ranges_.offset(tail_id) + tail.size == offset) {
       list.resize(tail_id, tail.size + bytes);
       ranges_.resize(file, tail_id, tail.size);
       FileEntry& entry = files_[file];
       entry.inactive_bytes += bytes;
-      charge(file, bytes);
+      charge(file, node, bytes);
       if (state == BlockState::Dirty) {
         entry.dirty_bytes += bytes;
         charge_dirty(file, bytes);
@@ -105,7 +115,7 @@ void PageCache::add_ranged(FileId file, std::int64_t offset, std::int64_t bytes,
       return;
     }
   }
-  const BlockId id = new_ranged_block(file, offset, bytes, state, now);
+  const BlockId id = new_ranged_block(file, offset, bytes, state, now, node);
   blocks_[id].referenced = referenced;
   append(id, ListKind::Inactive);
   if (state == BlockState::Dirty) dirty_by_age_.push_back(blocks_, id);  // time only goes forward: the newest
@@ -124,6 +134,7 @@ std::int64_t PageCache::read_range(FileId file, std::int64_t offset, std::int64_
     if (part.offset == held_to) held_to = part.end;
     at = part.end < end ? ranges_.at_or_after(file, part.end) : Located{};
     Block& block = blocks_[part.id];
+    if (block.node != toucher_) remote_.reread += block.size;
     if (block.list == ListKind::Active) {
       move_ranged(part.id, part.offset, ListKind::Active);
     } else {
@@ -149,7 +160,7 @@ std::int64_t PageCache::fill_holes(FileId file, std::int64_t offset, std::int64_
     const std::int64_t hole_end = next.id == kNoBlock ? end : std::min(end, next.offset);
     if (hole_end > at) {
       if (hole_end - at > free()) throw SimulationError(fmt::format("cannot cache {} bytes: only {} free", hole_end - at, free()));
-      add_ranged(file, at, hole_end - at, BlockState::Clean, now, referenced);
+      place_ranged(file, at, hole_end - at, BlockState::Clean, now, referenced);
       added += hole_end - at;
     }
     at = next.id == kNoBlock ? end : next.end;
@@ -190,7 +201,7 @@ std::int64_t PageCache::write_range(FileId file, std::int64_t offset, std::int64
     const std::int64_t hole_end = next.id == kNoBlock ? end : std::min(end, next.offset);
     if (hole_end > at) {
       if (hole_end - at > free()) throw SimulationError(fmt::format("cannot cache {} bytes: only {} free", hole_end - at, free()));
-      add_ranged(file, at, hole_end - at, BlockState::Dirty, now, false);
+      place_ranged(file, at, hole_end - at, BlockState::Dirty, now, false);
       missing += hole_end - at;
       at = hole_end;
       continue;
@@ -199,8 +210,9 @@ std::int64_t PageCache::write_range(FileId file, std::int64_t offset, std::int64
     const Located part = cut(next, at, end);
     if (blocks_[part.id].state != BlockState::Dirty) {
       // Its pages are written anew: the same memory, now dirty data entered now.
+      const NodeId node = blocks_[part.id].node;
       destroy(part.id);
-      add_ranged(file, at, part.end - part.offset, BlockState::Dirty, now, false);
+      add_ranged(file, at, part.end - part.offset, BlockState::Dirty, now, false, node);
     }
     at = part.end;
   }
@@ -212,6 +224,8 @@ std::int64_t PageCache::write_range(FileId file, std::int64_t offset, std::int64
 void PageCache::commit_dirty_at(FileId file, std::int64_t offset, std::int64_t bytes, double now) {
   PC_ASSERT(bytes >= 0 && bytes <= reserved_);
   reserved_ -= bytes;
+  // The pages reserved are freed and taken again where write_range places the holes.
+  if (!nodes_.empty()) nodes_.release(bytes, toucher_, &NodeUse::reserved, [](NodeId, std::int64_t) {});
   write_range(file, offset, bytes, now);
   if (progress_hook_) progress_hook_();
 }

@@ -28,7 +28,8 @@ void prefetch_victims(const LruList& list, const BlockPool& blocks, const FileRa
 
 std::int64_t PageCache::evict(std::int64_t amount, FileId excluded, GroupId group) {
   target_ = group;
-  const std::int64_t evicted = amount > 0 ? policy_->reclaim(*this, amount, excluded) : 0;
+  std::int64_t evicted = 0;
+  if (amount > 0) evicted = nodes_.empty() || group != kAnyGroup ? policy_->reclaim(*this, amount, excluded) : evict_by_node(amount, excluded);
   target_ = kAnyGroup;
   if (evicted > 0) prefetch_victims(inactive_, blocks_, ranges_);
   settle();
@@ -48,7 +49,7 @@ std::int64_t PageCache::evict_clean(ListKind kind, std::int64_t budget, FileId e
     destroy(victim);
     policy_->evicted(*this, file, kind, size);
   };
-  if (spare_written && target_ == kAnyGroup) {
+  if (spare_written && target_ == kAnyGroup && target_node_ == kAnyNode) {
     // The same victims in the same order as the walk below, without walking past the clean
     // blocks of the files being written.
     bool set_aside = false;
@@ -108,6 +109,13 @@ std::int64_t PageCache::deactivate_oldest(std::int64_t budget, FileId excluded, 
   return evicted;
 }
 
+// reclaimable_, per LRU list: every file not being written that has clean data in the list is
+// in it, under a key no higher than the order key of its first clean block there. Keys are
+// lowered at once (a clean block comes first in the file's clean list, or the file's last write
+// ends) and raised, or the file dropped (it has no clean data left there, or is being written),
+// only when the file comes to the top: so when the top's key is its first clean block's, that
+// block is the least recently used clean block of any file not being written. Two files' first
+// clean blocks never share an order key (equal keys are pieces of one file's block).
 BlockId PageCache::next_unwritten_clean(ListKind kind, FileId excluded, bool& set_aside) {
   // The least recently used clean block, unless spared; if it is, the first clean block of
   // the top file of reclaimable_, once the top's key is that block's.

@@ -96,6 +96,11 @@ PageCache::Flushed PageCache::flush_expired_block(double cutoff) {
   return id == kNoBlock ? Flushed{kNoFile, 0} : take_for_writeback(id);
 }
 
+// Where the last search for expired data stopped (expiry_scan_): every dirty block before `after`
+// in next_dirty's order has an entry time later than `cutoff`. The flusher takes expired blocks
+// one at a time under one cutoff; with many writers they sit behind many dirty blocks not yet
+// expired, which the next search with that cutoff need not walk again. Cleared when a dirty
+// block of entry time <= cutoff is linked anywhere, or when `after` leaves the dirty blocks.
 BlockId PageCache::lru_expired(double cutoff) {
   // A search under the cutoff of the previous one resumes where that one stopped.
   BlockId id = kNoBlock;

@@ -85,6 +85,8 @@ class Policy {
   /// Whether the page cache allocates multi-page folios, which memory freed by applications'
   /// buffers (single pages) cannot serve (FreePageReporting). Not by default.
   virtual bool large_folios() const noexcept { return false; }
+  /// Whether a platform's NUMA nodes are modelled (HostSpec::numa); not: one uniform memory.
+  virtual bool numa_nodes() const noexcept { return false; }
 
   // --- Dirty limits -----------------------------------------------------------------------
   /// Memory the dirty ratios are fractions of.

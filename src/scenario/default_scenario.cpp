@@ -33,6 +33,13 @@ dirty_background_ratio = 0.1
 dirty_expire = "30 s"
 writeback_interval = "5 s"
 
+# Two sockets, the remote rates derived from the Platinum 8180's published figures.
+[hosts.numa]
+nodes = 2
+remote_copy_ratio = 0.62
+remote_first_touch_ratio = 0.62
+remote_aggregate_ratio = 0.47
+
 [[hosts.disks]]
 name = "ssd"
 read_bw = "510 MB/s"

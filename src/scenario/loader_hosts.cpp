@@ -95,6 +95,20 @@ void read_free_page_reporting(TomlReader& r, HostConfig& h) {
   if (!(h.request_time >= 0.0 && h.request_time <= 1.0)) r.fail("request_time", "must be >= 0 s and at most 1 s (a system call's time)");
 }
 
+// [hosts.numa] (docs/model.md §6.20): absent, one node. A table amending a host keeps what it
+// does not give.
+void read_numa(const toml::table* table, const TomlReader& parent, NumaSpec& numa, const std::string& file) {
+  if (table == nullptr) return;
+  TomlReader r(*table, parent.child_path("numa"), file);
+  numa.nodes = static_cast<int>(r.optional_integer("nodes", 1, 2).value_or(numa.nodes));
+  for (auto [key, ratio] : {std::pair{"remote_copy_ratio", &numa.remote.copy}, std::pair{"remote_first_touch_ratio", &numa.remote.first_touch},
+                            std::pair{"remote_aggregate_ratio", &numa.remote.aggregate}}) {
+    *ratio = r.optional_number(key).value_or(*ratio);
+    if (!(*ratio > 0.0 && *ratio <= 10.0)) r.fail(key, fmt::format("must be > 0 and at most 10 (a remote rate over the local one), got {}", *ratio));
+  }
+  r.finish();
+}
+
 // A disk's requests and write cache (DiskBandwidth): each absent or 0, not modelled. A table
 // amending a disk keeps what it does not give, and the checks hold for the disk as amended.
 void read_disk_requests(TomlReader& d, DiskSpec& disk) {
@@ -199,6 +213,7 @@ HostConfig read_host(const toml::table& table, std::string path, std::size_t ind
   const toml::table* page_cache = r.optional_table("page_cache");
   h.cache = read_page_cache(page_cache, r, h.cache, file);
   if (page_cache != nullptr || fresh) cache_origin = page_cache != nullptr ? Origin{page_cache, r.child_path("page_cache"), &file} : host_origin;
+  read_numa(r.optional_table("numa"), r, h.numa, file);
   read_disks(r, file, fresh, h, disk_origins);
   if (count != nullptr) {
     *count = r.optional_integer("count", 1, kMaxGroupHosts).value_or(0);

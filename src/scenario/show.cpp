@@ -144,6 +144,10 @@ void write_host(std::string& out, const HostConfig& h) {
   if (h.speed > 0.0) out += fmt::format("speed = {}\n", h.speed);  // flop/s, read back to the same double
   write_memory(out, h);
   write_page_cache(out, h.cache);
+  if (h.numa.nodes > 1) {
+    out += fmt::format("\n[hosts.numa]\nnodes = {}\nremote_copy_ratio = {}\nremote_first_touch_ratio = {}\nremote_aggregate_ratio = {}\n", h.numa.nodes,
+                       h.numa.remote.copy, h.numa.remote.first_touch, h.numa.remote.aggregate);
+  }
   for (const DiskSpec& d : h.disks) write_disk(out, d);
 }
 

@@ -163,6 +163,40 @@ Memory::Memory(FairShare& share, std::string name, MemoryBandwidth bandwidth)
   resource_ = share.add_resource(std::move(name));
 }
 
+void Memory::reach(const Memory& other, NumaRatios ratios, std::string link_name) {
+  for (const double ratio : {ratios.copy, ratios.first_touch, ratios.aggregate}) {
+    if (!(ratio > 0.0) || !std::isfinite(ratio)) throw ConfigError(fmt::format("{}: NUMA ratios must be > 0, got {}", link_name, ratio));
+  }
+  other_ = &other;
+  ratios_ = ratios;
+  link_ = share_->add_resource(std::move(link_name));
+}
+
+namespace {
+// Adds `cost` per unit on `resource` to the flow, to its usage if it has one there.
+FlowSpec& add_cost(FlowSpec& spec, ResourceId resource, double cost) {
+  for (std::size_t i = 0; i < spec.usage_count; ++i) {
+    if (spec.usages[i].resource == resource) {
+      spec.usages[i].cost += cost;
+      return spec;
+    }
+  }
+  return spec.through({resource, cost});
+}
+}  // namespace
+
+FlowSpec& Memory::load(FlowSpec& spec, double cost, double share) const {
+  if (!(share > 0.0) || other_ == nullptr) return add_cost(spec, resource_, cost);
+  if (share < 1.0) add_cost(spec, resource_, (1.0 - share) * cost);
+  add_cost(spec, other_->resource_, share * cost);  // the nodes are equal halves of the host
+  return add_cost(spec, link_, share * cost / ratios_.aggregate);
+}
+
+double Memory::remote_rate(double rate, double share, double ratio) noexcept {
+  // Time per byte: local bytes at `rate`, remote ones at `ratio` of it.
+  return share > 0.0 && ratio != 1.0 ? rate / (1.0 + share * (1.0 / ratio - 1.0)) : rate;
+}
+
 FlowSpec& Memory::faulting(FlowSpec& spec, double cold_share) const {
   if (!(cold_share > 0.0) || bandwidth_.cold_fault <= 0.0) return spec;
   return spec.through({faults_, cold_share / bandwidth_.aggregate_cold_fault});
@@ -173,13 +207,15 @@ FlowAwaiter Memory::device_read(const Disk& disk, std::int64_t bytes, double bou
   return share_->transfer(disk.reading(faulting(spec, cold_share)));
 }
 
-FlowSpec Memory::read_spec(std::int64_t bytes) const {
+FlowSpec Memory::read_spec(std::int64_t bytes, RemoteShare remote) const {
   require_bytes(bytes, "memory read");
-  return FlowSpec{.work = static_cast<double>(bytes), .bound = bandwidth_.read}.through(
-      {resource_, 1.0 / bandwidth_.aggregate_read});
+  // A byte copied is remote when its source or its destination is: the larger share.
+  const double share = std::max(remote.source, remote.destination);
+  FlowSpec spec{.work = static_cast<double>(bytes), .bound = remote_rate(bandwidth_.read, share, ratios_.copy)};
+  return load(spec, 1.0 / bandwidth_.aggregate_read, share);
 }
 
-FlowSpec Memory::write_spec(std::int64_t bytes, std::int64_t reclaimed, std::int64_t cold) const {
+FlowSpec Memory::write_spec(std::int64_t bytes, std::int64_t reclaimed, std::int64_t cold, RemoteShare remote) const {
   require_bytes(bytes, "memory write");
   double bound = bandwidth_.write;
   if (reclaimed > 0 && bandwidth_.reclaimed_write > 0.0 && bytes > 0) {
@@ -189,24 +225,28 @@ FlowSpec Memory::write_spec(std::int64_t bytes, std::int64_t reclaimed, std::int
     bound = static_cast<double>(bytes) / seconds;
   }
   const double cold_share = cold > 0 && bytes > 0 ? static_cast<double>(std::min(cold, bytes)) / static_cast<double>(bytes) : 0.0;
-  FlowSpec spec = FlowSpec{.work = static_cast<double>(bytes), .bound = with_cold(bound, cold_share)}.through(
-      {resource_, 1.0 / bandwidth_.aggregate_write});
+  const double share = std::max(remote.source, remote.destination);
+  bound = remote_rate(bound, share, ratios_.copy);
+  FlowSpec spec = FlowSpec{.work = static_cast<double>(bytes), .bound = with_cold(bound, cold_share)};
+  load(spec, 1.0 / bandwidth_.aggregate_write, share);
   return faulting(spec, cold_share);
 }
 
-FlowSpec Memory::read_into_fresh_spec(std::int64_t bytes, double cold_share) const {
-  FlowSpec spec = read_spec(bytes);
+FlowSpec Memory::read_into_fresh_spec(std::int64_t bytes, double cold_share, RemoteShare remote) const {
+  FlowSpec spec = read_spec(bytes, remote);
   if (bandwidth_.first_touch > 0.0) {
-    spec.bound = fresh_copy_rate();
-    spec.usages[0].cost += 1.0 / bandwidth_.aggregate_write;
+    spec.bound = fresh_copy_rate(0.0, remote);
+    load(spec, 1.0 / bandwidth_.aggregate_write, remote.destination);  // the zeroing, where the buffer is
   }
   spec.bound = with_cold(spec.bound, cold_share);  // the copy's own rate when first touch is free
   return faulting(spec, cold_share);
 }
 
-double Memory::fresh_copy_rate(double cold_share) const noexcept {
+double Memory::fresh_copy_rate(double cold_share, RemoteShare remote) const noexcept {
   if (bandwidth_.first_touch <= 0.0) return with_cold(kUnbounded, cold_share);
-  return with_cold(1.0 / (1.0 / bandwidth_.read + 1.0 / bandwidth_.first_touch), cold_share);
+  const double copy = remote_rate(bandwidth_.read, std::max(remote.source, remote.destination), ratios_.copy);
+  const double touch = remote_rate(bandwidth_.first_touch, remote.destination, ratios_.first_touch);
+  return with_cold(1.0 / (1.0 / copy + 1.0 / touch), cold_share);
 }
 
 double Memory::with_cold(double rate, double cold_share) const noexcept {
@@ -222,12 +262,12 @@ FlowSpec Memory::on_core(FlowSpec spec) const {
   return spec.through({cpu_->resource(), 1.0 / (cpu_->cores() * spec.bound)}).with_weight(spec.bound);
 }
 
-FlowAwaiter Memory::read(std::int64_t bytes) const { return share_->transfer(on_core(read_spec(bytes))); }
-FlowAwaiter Memory::read_into_fresh(std::int64_t bytes, double cold_share) const {
-  return share_->transfer(on_core(read_into_fresh_spec(bytes, cold_share)));
+FlowAwaiter Memory::read(std::int64_t bytes, RemoteShare remote) const { return share_->transfer(on_core(read_spec(bytes, remote))); }
+FlowAwaiter Memory::read_into_fresh(std::int64_t bytes, double cold_share, RemoteShare remote) const {
+  return share_->transfer(on_core(read_into_fresh_spec(bytes, cold_share, remote)));
 }
-FlowAwaiter Memory::write(std::int64_t bytes, std::int64_t reclaimed, std::int64_t cold) const {
-  return share_->transfer(on_core(write_spec(bytes, reclaimed, cold)));
+FlowAwaiter Memory::write(std::int64_t bytes, std::int64_t reclaimed, std::int64_t cold, RemoteShare remote) const {
+  return share_->transfer(on_core(write_spec(bytes, reclaimed, cold, remote)));
 }
 
 Link::Link(FairShare& share, std::string name, double bandwidth, double latency, LinkSharing sharing)

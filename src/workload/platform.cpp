@@ -20,7 +20,7 @@ Platform::Platform(Simulator& sim, FairShare& share, const Scenario& scenario, F
 void Platform::add_host(Simulator& sim, FairShare& share, const HostConfig& config, Disks& disks) {
   auto host = std::make_unique<Host>(sim, share,
                                      HostSpec{config.name, config.cores, config.memory, config.memory_bandwidth, config.cache, config.memory_in_use,
-                                              config.page_reporting_delay, config.memory_freed_at_start, config.request_time});
+                                              config.page_reporting_delay, config.memory_freed_at_start, config.request_time, config.numa});
   std::map<std::string, DiskRef> named;
   for (const DiskSpec& d : config.disks) {
     named[d.name] = host->add_disk(config.name + ":" + d.name,  // named as the host's cpu and memory are

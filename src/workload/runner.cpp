@@ -60,9 +60,9 @@ std::vector<std::vector<Event*>> prerequisites_of(const WorkflowSpec& w, std::de
   return waits;
 }
 
-Task<IoResult> transfer(Host& host, FileRef file, const TaskPlan& plan, bool reading) {
-  return reading ? host.read_file(file, plan.chunk_size, plan.direct_io, plan.group)
-                 : host.write_file(file, plan.chunk_size, plan.direct_io, plan.group);
+Task<IoResult> transfer(Host& host, FileRef file, const TaskPlan& plan, Thread thread, bool reading) {
+  return reading ? host.read_file(file, plan.chunk_size, plan.direct_io, thread)
+                 : host.write_file(file, plan.chunk_size, plan.direct_io, thread);
 }
 
 constexpr std::array<PhaseKind, 3> kPhases{PhaseKind::Read, PhaseKind::Compute, PhaseKind::Write};
@@ -210,7 +210,8 @@ void Runner::summarize(std::chrono::steady_clock::time_point wall_start) {
 // application ends it (finish_one).
 Task<void> Runner::run_tasks(const std::string& app, std::span<const TaskPlan> plans, Host& host, bool ends_app) {
   for (const TaskPlan& plan : plans) {
-    if (plan.memory > 0) co_await host.hold_memory(plan.memory, plan.group);
+    const Thread thread = host.start_thread(plan.group);
+    if (plan.memory > 0) co_await host.hold_memory(plan.memory, thread);
     std::int64_t read_bytes = 0;
     for (std::uint8_t phase = 0; phase < kPhases.size(); ++phase) {
       const PhaseKind kind = kPhases[phase];
@@ -223,16 +224,17 @@ Task<void> Runner::run_tasks(const std::string& app, std::span<const TaskPlan> p
         for (std::uint32_t f = reading ? plan.reads : plan.writes; f < (reading ? plan.writes : plan.deletes); ++f) {
           if (!deleted_.empty()) deleted_.note_access(plans_.file(f), reading, app, plans_.task_name(plan), ends_app);
           const FileRef file = platform_.file_on(host, planned(f));
-          add_moved(sum, co_await transfer(host, file, plan, reading));
+          add_moved(sum, co_await transfer(host, file, plan, thread, reading));
           if (!reading && plan.fsync) co_await host.fsync(file);
         }
         if (reading) read_bytes = sum.bytes;
       }
       const std::uint32_t row = trace_->report_phase(app, plans_.task_name(plan), host, kind, start, sim_.now(), sum);
       if (kind != PhaseKind::Compute) trace_->record_cache(row);
-      if (kind == PhaseKind::Read && plan.accesses != plan.accesses_end) co_await run_accesses(app, plan, host, ends_app);
+      if (kind == PhaseKind::Read && plan.accesses != plan.accesses_end) co_await run_accesses(app, plan, host, thread, ends_app);
     }
-    host.release_memory(read_bytes + plan.memory, plan.group);  // the task's memory is freed when it ends
+    host.release_memory(read_bytes + plan.memory, thread);  // the task's memory is freed when it ends
+    host.end_thread(thread);
     for (std::uint32_t f = plan.deletes; f < plan.end; ++f) {
       const PlacedFile& stored = planned(f);
       co_await host.delete_file(platform_.file_on(host, stored));
@@ -245,17 +247,17 @@ Task<void> Runner::run_tasks(const std::string& app, std::span<const TaskPlan> p
 
 // A task's accesses, after its reads, in order. A frame of its own, made only for the tasks
 // that have accesses.
-Task<void> Runner::run_accesses(const std::string& app, const TaskPlan& plan, Host& host, bool ends_app) {
+Task<void> Runner::run_accesses(const std::string& app, const TaskPlan& plan, Host& host, Thread thread, bool ends_app) {
   for (std::uint32_t a = plan.accesses; a < plan.accesses_end; ++a) {
     const AccessPlan& access = plans_.access(a);
-    if (access.of_file) co_await access_file(app, plan, access, host, ends_app);
-    else co_await read_file_set(app, plan, access, host);
+    if (access.of_file) co_await access_file(app, plan, access, host, thread, ends_app);
+    else co_await read_file_set(app, plan, access, host, thread);
   }
 }
 
 // Each epoch reads its files whole, one after the other, freeing each file's buffer once read,
 // and is reported as a read row of its own, its task named "TASK:SET[epoch N]".
-Task<void> Runner::read_file_set(const std::string& app, const TaskPlan& plan, const AccessPlan& access, Host& host) {
+Task<void> Runner::read_file_set(const std::string& app, const TaskPlan& plan, const AccessPlan& access, Host& host, Thread thread) {
   SampleOrder order(access.set.count, access.order, access.seed);
   for (std::int64_t epoch = 1; epoch <= access.repeat; ++epoch) {
     const double start = sim_.now();
@@ -263,8 +265,8 @@ Task<void> Runner::read_file_set(const std::string& app, const TaskPlan& plan, c
     order.start_epoch();
     for (std::int64_t i = 0; i < access.count; ++i) {
       const PlacedFile& stored = platform_.files()[access.set.first + order.next()];
-      const IoResult read = co_await host.read_file(platform_.file_on(host, stored), plan.chunk_size, plan.direct_io, plan.group);
-      host.release_memory(read.bytes, plan.group);  // a data loader keeps no sample
+      const IoResult read = co_await host.read_file(platform_.file_on(host, stored), plan.chunk_size, plan.direct_io, thread);
+      host.release_memory(read.bytes, thread);  // a data loader keeps no sample
       add_moved(sum, read);
     }
     const std::string label = fmt::format("{}:{}[epoch {}]", plans_.task_name(plan), plans_.set_name(access), epoch);
@@ -274,7 +276,7 @@ Task<void> Runner::read_file_set(const std::string& app, const TaskPlan& plan, c
 
 // Each epoch one read_ranges or write_ranges of the pattern's requests (the read holds a
 // request's buffer while it runs), reported as a read or write row, "TASK:FILE[epoch N]".
-Task<void> Runner::access_file(const std::string& app, const TaskPlan& plan, const AccessPlan& access, Host& host, bool ends_app) {
+Task<void> Runner::access_file(const std::string& app, const TaskPlan& plan, const AccessPlan& access, Host& host, Thread thread, bool ends_app) {
   const PlacedFile& stored = platform_.files()[access.file];
   const std::string& name = stored.host->file_name(stored.ref);
   // The loader refuses these; a scenario built in code is told here.
@@ -293,10 +295,10 @@ Task<void> Runner::access_file(const std::string& app, const TaskPlan& plan, con
     stream.start_epoch(access.reshuffle ? epoch - 1 : 0);
     Moved sum;
     if (access.writing) {
-      add_moved(sum, co_await host.write_ranges(stored.ref, next, plan.group, plan.direct_io));
+      add_moved(sum, co_await host.write_ranges(stored.ref, next, thread, plan.direct_io));
       if (plan.fsync) co_await host.fsync(stored.ref);
     } else {
-      add_moved(sum, co_await host.read_ranges(stored.ref, next, access.requests.request, plan.group, access.advice, plan.direct_io));
+      add_moved(sum, co_await host.read_ranges(stored.ref, next, access.requests.request, thread, access.advice, plan.direct_io));
     }
     if (access.drop_after) drop_region(host, stored.ref, access.requests);
     const std::string label = fmt::format("{}:{}[epoch {}]", plans_.task_name(plan), name, epoch);

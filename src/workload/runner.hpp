@@ -50,9 +50,9 @@ class Runner {
   Task<void> run_tasks(const std::string& app, std::span<const TaskPlan> plans, Host& host, bool ends_app);
   /// Application `index` once `before` have ended; then its end is app_done_[index].
   Task<void> run_app_in_order(std::size_t index, std::vector<Event*> before);
-  Task<void> run_accesses(const std::string& app, const TaskPlan& plan, Host& host, bool ends_app);
-  Task<void> read_file_set(const std::string& app, const TaskPlan& plan, const AccessPlan& access, Host& host);
-  Task<void> access_file(const std::string& app, const TaskPlan& plan, const AccessPlan& access, Host& host, bool ends_app);
+  Task<void> run_accesses(const std::string& app, const TaskPlan& plan, Host& host, Thread thread, bool ends_app);
+  Task<void> read_file_set(const std::string& app, const TaskPlan& plan, const AccessPlan& access, Host& host, Thread thread);
+  Task<void> access_file(const std::string& app, const TaskPlan& plan, const AccessPlan& access, Host& host, Thread thread, bool ends_app);
   Task<void> run_workflow_task(const WorkflowSpec& w, const TaskSpec& task, const TaskPlan& plan, WorkflowHosts& hosts, std::size_t index,
                                std::vector<Event*> prerequisites, Event& done);
   void finish_one();

@@ -2,34 +2,22 @@
 // /sys/devices/system/node tree in a temporary folder (good, malformed, absent).
 #include "calibrate/numa_topology.hpp"
 
+#include "calibrate/fake_node_tree.hpp"
+
 #include <pagecache/error.hpp>
 
 #include <catch2/catch.hpp>
 
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 using namespace pagecache;
 using namespace pagecache::calibrate;
 namespace fs = std::filesystem;
 
 namespace {
-
-// A fake node folder, removed with the object.
-struct FakeNodeTree {
-  fs::path root = fs::temp_directory_path() / ("pcsim-numa-" + std::to_string(::getpid()));
-  FakeNodeTree() { fs::remove_all(root); }
-  ~FakeNodeTree() { fs::remove_all(root); }
-  void write(const fs::path& file, const std::string& text) const {
-    fs::create_directories((root / file).parent_path());
-    std::ofstream(root / file) << text;
-  }
-};
 
 // The message of what `read` throws.
 template <typename Read>

@@ -1,7 +1,9 @@
 #include "calibrate/calibrate.hpp"
 
 #include "calibrate/measure.hpp"
+#include "calibrate/node_binding.hpp"
 #include "calibrate/notes.hpp"
+#include "calibrate/numa_steps.hpp"
 #include "calibrate/scratch.hpp"
 #include "calibrate/steps.hpp"
 #include "calibrate/text.hpp"
@@ -108,6 +110,8 @@ Calibration calibrate(const Options& options) {
   Calibration c;
   c.system = read_system_info(options.dir);
   c.date = utc_now();
+  c.numa.topology = read_numa_topology();  // before measuring: a malformed sysfs stops calibrate at once
+  const int nodes = static_cast<int>(c.numa.topology.nodes.size());
   choose_sizes(c, options);
   const Budget budget = choose_budget(c, options);
   check_room(c, options, budget);
@@ -115,7 +119,7 @@ Calibration calibrate(const Options& options) {
   c.before = idle_activity(options.quick);
   const ActivityMark measuring;
   const Scratch scratch(options.dir, "pcsim-calibrate");
-  Session s{options, c.system, budget, scratch, started, 0, 13 + (budget.cold ? 1 : 0) + (budget.reclaim ? 1 : 0)};
+  Session s{options, c.system, budget, scratch, started, 0, 13 + (budget.cold ? 1 : 0) + (budget.reclaim ? 1 : 0) + (nodes > 1 ? 1 : 0)};
 
   // --- The device: O_DIRECT, large requests; one stream, then several at once. The single
   // stream's file stays until the buffered reads into memory the host took back.
@@ -138,6 +142,8 @@ Calibration calibrate(const Options& options) {
   measure_every_core(c, s, cached);
   sync_and_drop(cached);
   scratch.remove(cached);
+  SystemNodeBinding binding;
+  measure_numa(c, s, binding, numa_probes(s, nodes));
   if (budget.cold) measure_cold_memory(c, s, one);
   c.cold_fault = cold_fault_rate(c.system.free_page_reporting, c.memory_write, c.memory_write_cold);
   if (c.system.free_page_reporting && options.quick) c.cold_fault.why = "not measured with --quick";

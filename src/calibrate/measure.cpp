@@ -310,8 +310,9 @@ Rate cached_read(const std::filesystem::path& file, std::int64_t request, bool f
   return total;
 }
 
-Rate memory_copy(std::int64_t bytes, const Deadline& deadline) {
+Rate memory_copy(std::int64_t bytes, const Deadline& deadline, const std::function<void()>& before_destination) {
   const AlignedBuffer from(bytes);
+  if (before_destination) before_destination();
   const AlignedBuffer to(bytes);
   volatile char sink = 0;
   std::int64_t done = 0;

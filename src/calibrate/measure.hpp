@@ -100,7 +100,9 @@ void sync_file(const std::filesystem::path& file);
 /// touched (`fresh` true: every page faulted in and zeroed by the kernel as the copy lands).
 Rate cached_read(const std::filesystem::path& file, std::int64_t request, bool fresh, const Deadline& deadline);
 /// memcpy between two touched buffers of `bytes` each, repeatedly, in one thread.
-Rate memory_copy(std::int64_t bytes, const Deadline& deadline);
+/// `before_destination`, if given, runs once the source is touched and before the destination
+/// is allocated: the NUMA measurement places the two on different nodes with it.
+Rate memory_copy(std::int64_t bytes, const Deadline& deadline, const std::function<void()>& before_destination = {});
 /// Touches one byte per page of `bytes` of new anonymous memory: the page faults and zeroing
 /// of first touch.
 Rate first_touch(std::int64_t bytes, std::int64_t page_size, const Deadline& deadline);

@@ -39,6 +39,42 @@ void settle(const SystemInfo& s) {
 
 }  // namespace
 
+// The measurements the memory steps and the NUMA step share (steps.hpp).
+
+void write_cached(const Session& s, const std::filesystem::path& file) {
+  cache_write(file, s.budget.cache_file, s.budget.chunk, Deadline(s.budget.memory_seconds * 8));
+  sync_file(file);  // clean, and still cached: the reads read it
+}
+
+std::int64_t touch_bytes(const SystemInfo& sys) { return std::min(GiB, sys.memory_available / 8); }
+
+Figure first_touch_figure(const Session& s, std::int64_t bytes) {
+  const SystemInfo& sys = s.sys;
+  first_touch(bytes, sys.page_size, Deadline(s.budget.memory_seconds * 4));  // warm-up
+  return repeated(s.budget.repeat, [&](int) { return first_touch(bytes, sys.page_size, Deadline(s.budget.memory_seconds)); },
+                  fmt::format("one byte written per {}-byte page of new anonymous memory just freed, one thread (transparent huge pages: {})",
+                              sys.page_size, sys.transparent_hugepages.empty() ? "absent" : sys.transparent_hugepages));
+}
+
+std::int64_t copy_bytes(const Options& options) { return options.quick ? 32 * MiB : 256 * MiB; }
+
+Figure copy_figure(const Session& s, int repeat, const std::function<void()>& source, const std::function<void()>& destination) {
+  const std::int64_t bytes = copy_bytes(s.options);
+  return repeated(
+      repeat,
+      [&](int) {
+        if (source) source();
+        return memory_copy(bytes, Deadline(s.budget.memory_seconds), destination);
+      },
+      fmt::format("memcpy of {}, one thread", size_text(bytes)));
+}
+
+Figure cached_reads_figure(const Session& s, const std::filesystem::path& cached, int threads) {
+  const auto read_once = [&](int) { return cached_read(cached, s.budget.chunk, false, Deadline(s.budget.memory_seconds)); };
+  return repeated(s.budget.repeat, [&](int) { return in_threads(threads, read_once); },
+                  fmt::format("read() of cached data into reused buffers, {} threads at once", threads));
+}
+
 // Writes into free memory take memory just freed, as a task reusing what its own or others'
 // work freed does (here's real runs: 1.9 GB into the cache at 2.6 GB/s), so each repetition is
 // preceded by the free of the same amount (the first by an untimed warm-up).
@@ -57,8 +93,7 @@ void measure_cache_write(Calibration& c, Session& s, const std::filesystem::path
   write_dropped("warm-up", Deadline(memory_seconds * 8));
   c.memory_write = repeated(s.budget.repeat, [&](int i) { return write_dropped(fmt::format("write-{}", i), Deadline(memory_seconds * 4)); },
                             cache_write_how(chunk) + ", into memory just freed");
-  cache_write(cached, cache_file, chunk, Deadline(memory_seconds * 8));
-  sync_file(cached);  // clean, and still cached: the reads below read it
+  write_cached(s, cached);
 }
 
 void measure_cached_reads(Calibration& c, Session& s, const std::filesystem::path& cached) {
@@ -72,21 +107,15 @@ void measure_cached_reads(Calibration& c, Session& s, const std::filesystem::pat
 }
 
 void measure_first_touch(Calibration& c, Session& s) {
-  const SystemInfo& sys = s.sys;
-  const double memory_seconds = s.budget.memory_seconds;
   s.next("memory: first touch");
-  const std::int64_t touch = std::min(GiB, sys.memory_available / 8);
-  first_touch(touch, sys.page_size, Deadline(memory_seconds * 4));  // warm-up
-  c.first_touch = repeated(s.budget.repeat, [&](int) { return first_touch(touch, sys.page_size, Deadline(memory_seconds)); },
-                           fmt::format("one byte written per {}-byte page of new anonymous memory just freed, one thread (transparent huge pages: {})",
-                                       sys.page_size, sys.transparent_hugepages.empty() ? "absent" : sys.transparent_hugepages));
+  c.first_touch = first_touch_figure(s, touch_bytes(s.sys));
 }
 
 void measure_copies(Calibration& c, Session& s) {
   const double memory_seconds = s.budget.memory_seconds;
   s.next("memory: copies, one thread and every core");
-  const std::int64_t copy = s.options.quick ? 32 * MiB : 256 * MiB;
-  c.copy_one = repeated(kOnce, [&](int) { return memory_copy(copy, Deadline(memory_seconds)); }, fmt::format("memcpy of {}, one thread", size_text(copy)));
+  const std::int64_t copy = copy_bytes(s.options);
+  c.copy_one = copy_figure(s, kOnce);
   c.copy_all = repeated(kOnce, [&](int) { return in_threads(s.sys.cores, [&](int) { return memory_copy(copy / 2, Deadline(memory_seconds)); }); },
                         fmt::format("memcpy of {} per thread, {} threads at once", size_text(copy / 2), s.sys.cores));
 }
@@ -96,9 +125,7 @@ void measure_every_core(Calibration& c, Session& s, const std::filesystem::path&
   const std::int64_t chunk = s.budget.chunk;
   const double memory_seconds = s.budget.memory_seconds;
   s.next("page cache: every core at once");
-  c.memory_aggregate_read = repeated(
-      s.budget.repeat, [&](int) { return in_threads(sys.cores, [&](int) { return cached_read(cached, chunk, false, Deadline(memory_seconds)); }); },
-      fmt::format("read() of cached data into reused buffers, {} threads at once", sys.cores));
+  c.memory_aggregate_read = cached_reads_figure(s, cached, sys.cores);
   const std::int64_t share = std::max<std::int64_t>(chunk, s.budget.cache_file / sys.cores / chunk * chunk);
   const auto write_together = [&](const std::string& name) {
     std::vector<std::filesystem::path> written;

@@ -114,6 +114,7 @@ void add_notes(Calibration& c) {
   }
   add_device_notes(c);
   add_write_cache_note(c);
+  for (std::string& note : numa_notes(c.numa)) c.notes.push_back(std::move(note));
 }
 
 }  // namespace pagecache::calibrate

@@ -116,6 +116,8 @@ std::string disk_toml(const Calibration& c) {
 
 }  // namespace
 
-std::string platform_toml(const Calibration& c) { return header_comments(c) + host_toml(c) + page_cache_toml(c.system) + disk_toml(c); }
+std::string platform_toml(const Calibration& c) {
+  return header_comments(c) + host_toml(c) + page_cache_toml(c.system) + numa_toml(c.numa) + disk_toml(c);
+}
 
 }  // namespace pagecache::calibrate

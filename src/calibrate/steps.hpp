@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -69,6 +70,24 @@ void measure_buffered_read(Calibration& c, Session& s, const std::filesystem::pa
 void measure_device_write_cache(Calibration& c, Session& s, bool direct);
 
 // --- Memory and the page cache (memory_steps.cpp) --------------------------------------------
+// One measurement each, as the platform's memory figures are made; the NUMA step makes them
+// again with the thread and its memory placed on nodes.
+/// Writes `file` through the page cache and syncs it: it stays cached, clean, for the reads.
+void write_cached(const Session& s, const std::filesystem::path& file);
+/// Bytes of new anonymous memory memory_first_touch_bw is measured on.
+std::int64_t touch_bytes(const SystemInfo& sys);
+/// One thread touching `bytes` of new anonymous memory: an untimed warm-up, then the
+/// budget's repetitions.
+Figure first_touch_figure(const Session& s, std::int64_t bytes);
+/// Bytes of each buffer of the one-thread copy.
+std::int64_t copy_bytes(const Options& options);
+/// One thread's memcpy, `repeat` times; before each, `source` runs before the source buffer is
+/// allocated and `destination` before the destination is (either may be empty).
+Figure copy_figure(const Session& s, int repeat, const std::function<void()>& source = {}, const std::function<void()>& destination = {});
+/// `threads` threads at once reading `cached` into reused buffers of their own, the budget's
+/// repetitions.
+Figure cached_reads_figure(const Session& s, const std::filesystem::path& cached, int threads);
+
 /// Writes into free memory, then writes `cached`, which stays cached (clean) for the reads.
 void measure_cache_write(Calibration& c, Session& s, const std::filesystem::path& cached);
 void measure_cached_reads(Calibration& c, Session& s, const std::filesystem::path& cached);

@@ -35,7 +35,7 @@ void add_calibrate_command(CLI::App& app, CalibrateCommand& c) {
 namespace {
 
 // The NUMA ratios with the two figures of each; nothing where they were not measured (a note says why).
-void print_numa(std::FILE* summary, const cal::NumaRatios& n) {
+void print_numa(std::FILE* summary, const cal::NumaFigures& n) {
   if (!n.measured) return;
   for (const cal::NumaKey& k : cal::kNumaKeys) {
     const cal::NumaPair& p = n.*k.pair;

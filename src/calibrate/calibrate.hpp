@@ -7,7 +7,7 @@
 
 #include "calibrate/cold_memory.hpp"
 #include "calibrate/figure.hpp"
-#include "calibrate/numa_ratios.hpp"
+#include "calibrate/numa_figures.hpp"
 #include "calibrate/request_latency.hpp"
 #include "calibrate/system_info.hpp"
 #include "calibrate/write_cache.hpp"
@@ -64,7 +64,7 @@ struct Calibration {
   Figure first_touch;          ///< new anonymous memory, one thread
   Figure copy_one, copy_all;   ///< memcpy, for comparison
   /// The nodes, and the memory figures with the other node's memory over their own's.
-  NumaRatios numa;
+  NumaFigures numa;
   /// The machine before measuring (a moment of doing nothing) and while measuring.
   Activity before, during;
   /// What could not be measured or may mislead, for the user.

@@ -26,7 +26,7 @@ class Release {
 
 // Each probe with the memory local, then remote, one after the other so that the two see the
 // machine alike.
-void measure_pairs(NumaRatios& n, Session& s, NodeBinding& binding, const NumaProbes& probes) {
+void measure_pairs(NumaFigures& n, Session& s, NodeBinding& binding, const NumaProbes& probes) {
   const auto place = [&binding](int node) { return [&binding, node] { binding.allocate_on(node); }; };
   const auto both = [&](NumaPair& pair, const std::function<Figure(int node)>& measure) {
     pair.local = measure(n.local);
@@ -71,7 +71,7 @@ NumaProbes numa_probes(const Session& s, int nodes) {
 }
 
 void measure_numa(Calibration& c, Session& s, NodeBinding& binding, const NumaProbes& probes) {
-  NumaRatios& n = c.numa;
+  NumaFigures& n = c.numa;
   const std::vector<NumaNode>& nodes = n.topology.nodes;
   if (nodes.size() < 2) {
     n.why = kOneNumaNode;

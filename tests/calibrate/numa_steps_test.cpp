@@ -135,7 +135,7 @@ TEST_CASE("calibrate measures each NUMA ratio with the thread on node 0 and the 
   FakeBinding binding;
   FakeMachine machine{binding};
   measure_numa(b.c, b.session, binding, machine.probes());
-  const NumaRatios& n = b.c.numa;
+  const NumaFigures& n = b.c.numa;
   REQUIRE(n.measured);
   CHECK(b.steps == std::vector<std::string>{"memory: node 0's and node 1's, from node 0's CPUs"});
   CHECK(n.local == 0);
@@ -174,6 +174,17 @@ TEST_CASE("calibrate measures each NUMA ratio with the thread on node 0 and the 
   CHECK(toml_ratio(platform, "remote_first_touch_ratio") == Approx(0.625));
   CHECK(toml_ratio(platform, "remote_aggregate_ratio") == Approx(0.47));
   CHECK(numa_notes(n).empty());
+  // pcsim reads the section (in a host of its own: the fake measured nothing else).
+  const std::size_t at = platform.find("\n[hosts.numa]\n");
+  const std::string section = platform.substr(at, platform.find("\n[", at + 1) - at);
+  const Scenario s = parse_scenario("[pipelines]\ncount = 1\nfile_size = \"1 MB\"\ntasks = 1\n[[hosts]]\nname = \"h\"\nmemory = \"1 GB\"\n"
+                                    "memory_read_bw = \"1 GB/s\"\nmemory_write_bw = \"1 GB/s\"\n[[hosts.disks]]\nname = \"d\"\n"
+                                    "read_bw = \"1 GB/s\"\nwrite_bw = \"1 GB/s\"" + section,
+                                    "platform.toml");
+  CHECK(s.hosts[0].numa.nodes == 2);
+  CHECK(s.hosts[0].numa.remote.copy == Approx(0.62));
+  CHECK(s.hosts[0].numa.remote.first_touch == Approx(0.625));
+  CHECK(s.hosts[0].numa.remote.aggregate == Approx(0.47));
 }
 
 TEST_CASE("calibrate writes a NUMA ratio above 1 as measured, with a note", "[calibrate][numa]") {
@@ -257,7 +268,7 @@ TEST_CASE("calibrate's own NUMA probes run the memory steps' measurements where 
   b.c.numa.topology = two_nodes(tree);
   FakeBinding binding;
   measure_numa(b.c, b.session, binding, numa_probes(b.session, 2));
-  const NumaRatios& n = b.c.numa;
+  const NumaFigures& n = b.c.numa;
   REQUIRE(n.measured);
   for (const NumaKey& k : kNumaKeys) {
     INFO(k.key);

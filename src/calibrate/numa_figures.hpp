@@ -1,5 +1,5 @@
 #pragma once
-// NumaRatios: how fast calibrate's memory measurements go with the other NUMA node's memory,
+// NumaFigures: how fast calibrate's memory measurements go with the other NUMA node's memory,
 // over the same with the measuring threads' own node's: one thread's copy, one thread's first
 // touch, and all of a node's CPUs reading together. The platform's [hosts.numa] section, and
 // the notes on it. Ratios are written as measured, one above 1 included (with a note).
@@ -24,7 +24,7 @@ struct NumaPair {
   double ratio() const { return remote.value / local.value; }
 };
 
-struct NumaRatios {
+struct NumaFigures {
   NumaTopology topology;
   bool measured = false;
   std::string why;            ///< not measured: why (one node, a system call refused)
@@ -39,17 +39,17 @@ struct NumaRatios {
 struct NumaKey {
   const char* key;
   const char* what;
-  NumaPair NumaRatios::*pair;
+  NumaPair NumaFigures::*pair;
 };
-inline constexpr NumaKey kNumaKeys[] = {{"remote_copy_ratio", "copy, one thread", &NumaRatios::copy},
-                                        {"remote_first_touch_ratio", "first touch, one thread", &NumaRatios::first_touch},
-                                        {"remote_aggregate_ratio", "cached reads, a node's CPUs", &NumaRatios::aggregate_read}};
+inline constexpr NumaKey kNumaKeys[] = {{"remote_copy_ratio", "copy, one thread", &NumaFigures::copy},
+                                        {"remote_first_touch_ratio", "first touch, one thread", &NumaFigures::first_touch},
+                                        {"remote_aggregate_ratio", "cached reads, a node's CPUs", &NumaFigures::aggregate_read}};
 
 /// The [hosts.numa] section, each ratio under how it was measured; empty if not measured.
-std::string numa_toml(const NumaRatios& n);
+std::string numa_toml(const NumaFigures& n);
 
 /// For the user: why nothing was measured, a ratio above 1, a noisy pair, nodes of unequal
 /// CPUs, a binding not undone.
-std::vector<std::string> numa_notes(const NumaRatios& n);
+std::vector<std::string> numa_notes(const NumaFigures& n);
 
 }  // namespace pagecache::calibrate

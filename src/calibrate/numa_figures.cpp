@@ -1,4 +1,4 @@
-#include "calibrate/numa_ratios.hpp"
+#include "calibrate/numa_figures.hpp"
 
 #include "calibrate/text.hpp"
 
@@ -10,7 +10,7 @@ namespace pagecache::calibrate {
 
 namespace {
 
-std::string nodes_toml(const NumaRatios& n) {
+std::string nodes_toml(const NumaFigures& n) {
   std::string cpus;
   for (const NumaNode& node : n.topology.nodes) {
     cpus += fmt::format("{}node {}: {}", cpus.empty() ? "" : ", ", node.id, node.cpus.empty() ? "none" : kernel_list_text(node.cpus));
@@ -20,7 +20,7 @@ std::string nodes_toml(const NumaRatios& n) {
                      n.topology.root.string(), n.topology.online, cpus, n.topology.nodes.size());
 }
 
-std::string ratio_toml(const NumaRatios& n, const NumaKey& k) {
+std::string ratio_toml(const NumaFigures& n, const NumaKey& k) {
   const NumaPair& p = n.*k.pair;
   if (!p.measured()) return fmt::format("# {} not set: {} / {}\n", k.key, p.remote.how, p.local.how);
   std::string out = fmt::format("# {}: remote / local\n", p.placement);
@@ -31,7 +31,7 @@ std::string ratio_toml(const NumaRatios& n, const NumaKey& k) {
 }
 
 // A ratio above 1 or from noisy figures, nodes of unequal CPUs.
-std::vector<std::string> measured_notes(const NumaRatios& n) {
+std::vector<std::string> measured_notes(const NumaFigures& n) {
   std::vector<std::string> notes;
   for (const NumaKey& k : kNumaKeys) {
     const NumaPair& p = n.*k.pair;
@@ -56,14 +56,14 @@ std::vector<std::string> measured_notes(const NumaRatios& n) {
 
 }  // namespace
 
-std::string numa_toml(const NumaRatios& n) {
+std::string numa_toml(const NumaFigures& n) {
   if (!n.measured) return "";
   std::string out = "\n[hosts.numa]\n" + nodes_toml(n);
   for (const NumaKey& k : kNumaKeys) out += ratio_toml(n, k);
   return out;
 }
 
-std::vector<std::string> numa_notes(const NumaRatios& n) {
+std::vector<std::string> numa_notes(const NumaFigures& n) {
   std::vector<std::string> notes;
   if (n.measured) notes = measured_notes(n);
   else notes.push_back(n.why);

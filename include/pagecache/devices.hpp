@@ -173,6 +173,14 @@ struct RemoteShare {
   double destination = 0.0;
 };
 
+/// The part of a copy's bytes with a page on the other node (the larger share), and where the
+/// part's own pages are: a thread copies a run of pages in order, so a copy split in two, its
+/// local part then this one, takes the time of the pages it copies (Memory::remote_part).
+struct RemotePart {
+  std::int64_t bytes = 0;
+  RemoteShare share;  ///< of `bytes`: the larger side 1
+};
+
 class Cpu;
 
 class Memory {
@@ -192,6 +200,10 @@ class Memory {
   /// share (the `remote` arguments below) are slower and load the other node and the link.
   /// Both must outlive the flows. Throws ConfigError for a ratio not > 0.
   void reach(const Memory& other, NumaRatios ratios, std::string link_name);
+  /// The remote part of a copy of `bytes` with `remote` shares (none: 0 bytes). Copying the rest
+  /// with no share and this part with its own keeps each flow on one resource: the node's
+  /// memory, or the interconnect.
+  static RemotePart remote_part(std::int64_t bytes, RemoteShare remote) noexcept;
 
   FlowAwaiter read(std::int64_t bytes, RemoteShare remote = {}) const;
   /// A write of `bytes` into the page cache, `reclaimed` of them into pages the writer
@@ -226,7 +238,8 @@ class Memory {
 
   /// `spec` also through the host's faults for `cold_share` of its bytes.
   FlowSpec& faulting(FlowSpec& spec, double cold_share) const;
-  /// `spec` loading the memory `cost` per byte, `share` of it on the other node (and the link).
+  /// `spec` loading the memory `cost` per byte, `share` of it remote: that share through the
+  /// interconnect alone (the other node's memory is not charged: the link is the narrower).
   FlowSpec& load(FlowSpec& spec, double cost, double share) const;
   /// One thread's `rate` with `share` of its bytes on the other node, at `ratio` of it there.
   static double remote_rate(double rate, double share, double ratio) noexcept;

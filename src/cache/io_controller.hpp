@@ -44,6 +44,11 @@ struct IoTally {
   }
 };
 
+/// A whole file's read or write as Host reports it: its span and what it moved.
+inline IoResult file_result(double start, double end, const IoTally& t) {
+  return IoResult{.start = start, .end = end, .bytes = t.bytes, .cache_bytes = t.cache_bytes, .disk_bytes = t.disk_bytes};
+}
+
 class IoController {
  public:
   IoController(Simulator& sim, PageCache& cache, const Memory& memory, FileTable& files, Flusher& flusher);
@@ -187,6 +192,9 @@ class IoController {
   /// Returns the bytes copied: all of them, unless the file's memory group had to make room
   /// and others took the memory meanwhile.
   Task<std::int64_t> write_to_cache(FileId file, std::int64_t bytes, std::int64_t reclaimed, std::int64_t at, NodeId node);
+  /// The copy of a write into the cache by a thread on `node`, `remote` of its pages on the
+  /// other node: those after the others, each part one flow (Memory::write, RemotePart).
+  Task<void> copy_to_cache(NodeId node, std::int64_t bytes, std::int64_t reclaimed, std::int64_t cold, RemoteShare remote);
   /// A copy of `bytes` into the cache is done: new dirty data, at `at` in a file held by range.
   void commit_write(FileId file, std::int64_t at, std::int64_t bytes);
   Task<IoTally> write_chunk_writethrough(FileId file, std::int64_t chunk, std::int64_t at, NodeId node);

@@ -9,8 +9,9 @@ namespace pagecache::cache {
 void LruList::link_state(BlockId id) {
   // With no other block of its state before it (the one block taken for writeback) it is
   // placed at once.
-  const BlockState state = (*pool_)[id].state;
-  link_in_order(*pool_, blocks_, by_state_[index(state)], id, [state](const Block& b) { return b.state == state; });
+  const Block& block = (*pool_)[id];
+  const std::size_t sub = sub_list(block);
+  link_in_order(*pool_, blocks_, by_state_[sub], id, [sub](const Block& b) { return sub_list(b) == sub; });
 }
 
 void LruList::push_back(BlockId id) {
@@ -19,7 +20,7 @@ void LruList::push_back(BlockId id) {
   block.list = kind_;
   block.order = ++last_order_;
   blocks_.push_back(*pool_, id);
-  by_state_[index(block.state)].push_back(*pool_, id);
+  by_state_[sub_list(block)].push_back(*pool_, id);
   bytes_ += block.size;
   state_bytes_[index(block.state)] += block.size;
 }
@@ -31,7 +32,7 @@ void LruList::insert_after(BlockId position, BlockId id) {
   block.list = kind_;
   block.order = at.order;
   blocks_.insert_after(*pool_, position, id);
-  if (block.state == at.state) by_state_[index(block.state)].insert_after(*pool_, position, id);
+  if (sub_list(block) == sub_list(at)) by_state_[sub_list(block)].insert_after(*pool_, position, id);
   else link_state(id);
   bytes_ += block.size;
   state_bytes_[index(block.state)] += block.size;
@@ -41,7 +42,7 @@ void LruList::erase(BlockId id) {
   const Block& block = (*pool_)[id];
   PC_ASSERT(block.list == kind_);
   blocks_.erase(*pool_, id);
-  by_state_[index(block.state)].erase(*pool_, id);
+  by_state_[sub_list(block)].erase(*pool_, id);
   bytes_ -= block.size;
   state_bytes_[index(block.state)] -= block.size;
 }
@@ -49,7 +50,7 @@ void LruList::erase(BlockId id) {
 void LruList::set_state(BlockId id, BlockState state) {
   Block& block = (*pool_)[id];
   if (block.state == state) return;
-  by_state_[index(block.state)].erase(*pool_, id);
+  by_state_[sub_list(block)].erase(*pool_, id);
   state_bytes_[index(block.state)] -= block.size;
   block.state = state;
   state_bytes_[index(state)] += block.size;
@@ -64,10 +65,18 @@ void LruList::resize(BlockId id, std::int64_t new_size) {
   block.size = new_size;
 }
 
+std::size_t LruList::blocks_in(BlockState state) const noexcept {
+  std::size_t count = by_state_[index(state)].size();
+  if (state == BlockState::Clean) {
+    for (std::size_t s = 3; s < kSubLists; ++s) count += by_state_[s].size();
+  }
+  return count;
+}
+
 void LruList::check() const {
   std::int64_t total = 0;
   std::array<std::int64_t, 3> per_state{};
-  std::array<std::size_t, 3> counts{};
+  std::array<std::size_t, kSubLists> counts{};
   std::size_t seen = 0;
   const Block* previous = nullptr;
   for (const Block& b : blocks()) {
@@ -82,19 +91,19 @@ void LruList::check() const {
     previous = &b;
     total += b.size;
     per_state[index(b.state)] += b.size;
-    ++counts[index(b.state)];
+    ++counts[sub_list(b)];
     ++seen;
   }
   PC_ASSERT_MSG(seen == blocks_.size(), fmt::format("list counts {} blocks, holds {}", blocks_.size(), seen));
   PC_ASSERT_MSG(total == bytes_, fmt::format("list bytes {} != block sum {}", bytes_, total));
-  for (std::size_t s = 0; s < 3; ++s) {
-    PC_ASSERT(per_state[s] == state_bytes_[s]);
+  for (std::size_t s = 0; s < 3; ++s) PC_ASSERT(per_state[s] == state_bytes_[s]);
+  for (std::size_t s = 0; s < kSubLists; ++s) {
     PC_ASSERT(counts[s] == by_state_[s].size());
     // Each sub-list follows the LRU order of the main list.
     auto sub = by_state_[s].range(*pool_).begin();
     const auto all = blocks();
     for (auto it = all.begin(); it != all.end(); ++it) {
-      if (index(it->state) != s) continue;
+      if (sub_list(*it) != s) continue;
       PC_ASSERT_MSG(sub.id() == it.id(), "state sub-list out of LRU order");
       ++sub;
     }

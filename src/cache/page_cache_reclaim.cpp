@@ -5,6 +5,7 @@
 #include "engine/check.hpp"
 
 #include <algorithm>
+#include <array>
 #include <limits>
 
 namespace pagecache::cache {
@@ -49,7 +50,7 @@ std::int64_t PageCache::evict_clean(ListKind kind, std::int64_t budget, FileId e
     destroy(victim);
     policy_->evicted(*this, file, kind, size);
   };
-  if (spare_written && target_ == kAnyGroup && target_node_ == kAnyNode) {
+  if (spare_written && target_ == kAnyGroup && nodes_.empty()) {
     // The same victims in the same order as the walk below, without walking past the clean
     // blocks of the files being written.
     bool set_aside = false;
@@ -62,13 +63,33 @@ std::int64_t PageCache::evict_clean(ListKind kind, std::int64_t budget, FileId e
     if (set_aside) reclaimable(kind).lower(excluded, blocks_[file_clean_list(files_[excluded], kind).front()].order);
     return evicted;
   }
-  LruList& list = list_of(kind);
-  BlockId id = list.front(BlockState::Clean);
-  while (id != kNoBlock && evicted < budget) {
-    const BlockId next = list.next_in_state(id);
-    const Block& block = blocks_[id];
-    if (block.file != excluded && in_target(block) && !(spare_written && files_[block.file].writers > 0)) take(id);
-    id = next;
+  const LruList& list = list_of(kind);
+  auto eligible = [&](const Block& block) {
+    return block.file != excluded && in_target(block) && !(spare_written && files_[block.file].writers > 0);
+  };
+  if (nodes_.empty() || target_node_ != kAnyNode) {
+    // One node's clean blocks: its own sub-list (a one-node host's are all node 0's).
+    BlockId id = list.front(BlockState::Clean, target_node_ == kAnyNode ? 0 : target_node_);
+    while (id != kNoBlock && evicted < budget) {
+      const BlockId next = list.next_in_state(id);
+      if (eligible(blocks_[id])) take(id);
+      id = next;
+    }
+    return evicted;
+  }
+  // Every node's clean blocks in the list's order: the older of the nodes' next ones each time.
+  std::array<BlockId, kMaxNodes> at;
+  at.fill(kNoBlock);
+  for (NodeId n = 0; n < nodes_.size(); ++n) at[n] = list.front(BlockState::Clean, n);
+  while (evicted < budget) {
+    std::size_t oldest = kMaxNodes;
+    for (std::size_t n = 0; n < kMaxNodes; ++n) {
+      if (at[n] != kNoBlock && (oldest == kMaxNodes || blocks_[at[n]].order < blocks_[at[oldest]].order)) oldest = n;
+    }
+    if (oldest == kMaxNodes) break;
+    const BlockId id = at[oldest];
+    at[oldest] = list.next_in_state(id);
+    if (eligible(blocks_[id])) take(id);
   }
   return evicted;
 }

@@ -188,8 +188,15 @@ FlowSpec& add_cost(FlowSpec& spec, ResourceId resource, double cost) {
 FlowSpec& Memory::load(FlowSpec& spec, double cost, double share) const {
   if (!(share > 0.0) || other_ == nullptr) return add_cost(spec, resource_, cost);
   if (share < 1.0) add_cost(spec, resource_, (1.0 - share) * cost);
-  add_cost(spec, other_->resource_, share * cost);  // the nodes are equal halves of the host
   return add_cost(spec, link_, share * cost / ratios_.aggregate);
+}
+
+RemotePart Memory::remote_part(std::int64_t bytes, RemoteShare remote) noexcept {
+  const double larger = std::max(remote.source, remote.destination);
+  if (!(larger > 0.0)) return {};
+  const auto part = std::clamp<std::int64_t>(std::llround(larger * static_cast<double>(bytes)), 0, bytes);
+  if (part == 0) return {};
+  return RemotePart{.bytes = part, .share = RemoteShare{.source = remote.source / larger, .destination = remote.destination / larger}};
 }
 
 double Memory::remote_rate(double rate, double share, double ratio) noexcept {
@@ -236,7 +243,7 @@ FlowSpec Memory::read_into_fresh_spec(std::int64_t bytes, double cold_share, Rem
   FlowSpec spec = read_spec(bytes, remote);
   if (bandwidth_.first_touch > 0.0) {
     spec.bound = fresh_copy_rate(0.0, remote);
-    load(spec, 1.0 / bandwidth_.aggregate_write, remote.destination);  // the zeroing, where the buffer is
+    load(spec, 1.0 / bandwidth_.aggregate_write, std::max(remote.source, remote.destination));  // the zeroing, beside the copy
   }
   spec.bound = with_cold(spec.bound, cold_share);  // the copy's own rate when first touch is free
   return faulting(spec, cold_share);

@@ -242,7 +242,9 @@ class Memory {
   /// interconnect alone (the other node's memory is not charged: the link is the narrower).
   FlowSpec& load(FlowSpec& spec, double cost, double share) const;
   /// One thread's `rate` with `share` of its bytes on the other node, at `ratio` of it there.
-  static double remote_rate(double rate, double share, double ratio) noexcept;
+  static double remote_rate(double rate, double share, double ratio) noexcept {
+    return share > 0.0 && ratio != 1.0 ? rate / (1.0 + share * (1.0 / ratio - 1.0)) : rate;  // remote bytes at `ratio` of it
+  }
 
   FairShare* share_;
   ResourceId resource_;

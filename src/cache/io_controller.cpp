@@ -180,9 +180,39 @@ Task<IoResult> IoController::read_file(FileId file, std::int64_t chunk_size, boo
   return read_whole_file(file, chunk_size, direct, group, node);
 }
 
-RemoteShare IoController::remote_since(std::int64_t RemoteTally::*what, const RemoteTally& before, std::int64_t bytes) const noexcept {
+IoController::ChunkCopies IoController::start_read_chunk(const ReadRequest& request, std::int64_t disk_read, ReadCursor& cursor, GroupId group,
+                                                         NodeId node, storage::Readahead* readahead, const Disk& disk) {
+  const std::int64_t cold = cold_taken();
+  const RemoteTally before = cache_->remote();
+  cache_->touch_from(node);
+  cursor = start_chunk(*cache_, request, disk_read, cursor, group, sim_->now());
+  ChunkCopies copies;
+  // Taken back by the host: new cache pages (the device's transfer fills them) and the buffer
+  // (the reader's first touch), their faults one after the other (measured: a cold read goes
+  // at about 1 / (2 / cold_fault) where both are cold), per byte of the chunk.
+  copies.cold_share = share(cold_taken() - cold, request.bytes);
+  const ChunkRemote places = numa_ ? chunk_remote(before, request.bytes, disk_read) : ChunkRemote{};
+  copies.remote = places.from_cache;
+  if (disk_read > 0) {
+    copies.bound = memory(node).fresh_copy_rate(copies.cold_share, places.from_disk);
+    if (readahead != nullptr) {
+      copies.bound = std::min(copies.bound, static_cast<double>(disk_read) / readahead->seconds(disk_read, disk.request_latency(), disk.read_bandwidth()));
+    }
+  }
+  return copies;
+}
+
+IoController::ChunkRemote IoController::chunk_remote(const RemoteTally& before, std::int64_t chunk, std::int64_t disk_read) const noexcept {
+  // Where the new cache pages, the cached data read and the buffer are, from the reader's node.
   const RemoteTally& now = cache_->remote();
-  return RemoteShare{.source = 0.0, .destination = share(now.*what - before.*what, bytes)};
+  const double buffer = share(now.anonymous - before.anonymous, chunk);
+  const RemoteShare from_cache{.source = share(now.reread - before.reread, chunk - disk_read), .destination = buffer};
+  return ChunkRemote{.from_disk = RemoteShare{.source = share(now.cache - before.cache, disk_read), .destination = buffer},
+                     .from_cache = Memory::remote_part(chunk - disk_read, from_cache)};
+}
+
+RemoteShare IoController::remote_since(std::int64_t RemoteTally::*what, std::int64_t before, std::int64_t bytes) const noexcept {
+  return RemoteShare{.source = 0.0, .destination = share(cache_->remote().*what - before, bytes)};
 }
 
 Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_size, bool direct, GroupId group, NodeId node) {
@@ -203,9 +233,9 @@ Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_siz
     if (direct) {
       // O_DIRECT: only the application's buffer takes memory; the data comes from the disk.
       const std::int64_t cold = cold_taken();
-      const RemoteTally before = cache_->remote();
+      const std::int64_t placed = cache_->remote().anonymous;
       co_await take_buffer(chunk, group, file, "reading", node);
-      const double rate = memory(node).fresh_copy_rate(share(cold_taken() - cold, chunk), remote_since(&RemoteTally::anonymous, before, chunk));
+      const double rate = memory(node).fresh_copy_rate(share(cold_taken() - cold, chunk), remote_since(&RemoteTally::anonymous, placed, chunk));
       co_await disk->read(chunk, rate, chunk);  // requests of the chunk
       total += IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
       continue;
@@ -223,34 +253,16 @@ Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_siz
         group == kRootGroup ? evict_for_chunk(*cache_, {.file = file, .file_size = size, .bytes = chunk, .anonymous = chunk, .offset = at}) : -1;
     if (disk_read < 0) disk_read = co_await room_for_chunk(file, size, chunk, chunk, at, group, "reading");
     const std::int64_t cache_read = chunk - disk_read;
-    const std::int64_t cold = cold_taken();
-    const RemoteTally before = cache_->remote();
-    cache_->touch_from(node);
-    cursor = start_chunk(*cache_, {.file = file, .file_size = size, .bytes = chunk, .anonymous = chunk, .offset = at}, disk_read, cursor, group,
-                         sim_->now());
-    // Where the new cache pages, the cached data read and the buffer are, from the reader's node.
-    const double buffer_remote = share(cache_->remote().anonymous - before.anonymous, chunk);
-    const RemoteShare from_disk{.source = share(cache_->remote().cache - before.cache, disk_read), .destination = buffer_remote};
-    const RemoteShare from_cache{.source = share(cache_->remote().reread - before.reread, cache_read), .destination = buffer_remote};
-    // Taken back by the host: new cache pages (the device's transfer fills them) and the
-    // buffer (the reader's first touch), their faults one after the other (measured: a cold
-    // read goes at about 1 / (2 / cold_fault) where both are cold), per byte of the chunk.
-    const double cold_share = share(cold_taken() - cold, chunk);
+    const ChunkCopies copies = start_read_chunk({.file = file, .file_size = size, .bytes = chunk, .anonymous = chunk, .offset = at}, disk_read,
+                                                cursor, group, node, readahead ? &*readahead : nullptr, *disk);
     if (disk_read > 0) {
-      double bound = memory(node).fresh_copy_rate(cold_share, from_disk);
-      if (readahead) {
-        const double rate = static_cast<double>(disk_read) / readahead->seconds(disk_read, disk->request_latency(), disk->read_bandwidth());
-        bound = std::min(bound, rate);
-      }
-      if (cold_share > 0.0) co_await memory(node).device_read(*disk, disk_read, bound, cold_share);
-      else co_await disk->read(disk_read, bound);
+      if (copies.cold_share > 0.0) co_await memory(node).device_read(*disk, disk_read, copies.bound, copies.cold_share);
+      else co_await disk->read(disk_read, copies.bound);
     }
-    if (cache_read > 0) {
-      // The pages on the reader's node, then the others (one resource a flow: see RemotePart).
-      const RemotePart remote = Memory::remote_part(cache_read, from_cache);
-      if (remote.bytes < cache_read) co_await memory(node).read_into_fresh(cache_read - remote.bytes, cold_share);
-      if (remote.bytes > 0) co_await memory(node).read_into_fresh(remote.bytes, cold_share, remote.share);
-    }
+    const RemotePart& remote = copies.remote;
+    if (cache_read > remote.bytes) co_await memory(node).read_into_fresh(cache_read - remote.bytes, copies.cold_share);
+    // The pages on the other node after those on the reader's (one resource a flow: see RemotePart).
+    if (remote.bytes > 0) co_await memory(node).read_into_fresh(remote.bytes, copies.cold_share, remote.share);
     total += IoTally{.bytes = chunk, .cache_bytes = cache_read, .disk_bytes = disk_read};
   }
   co_return file_result(start, sim_->now(), total);

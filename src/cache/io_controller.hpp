@@ -15,6 +15,7 @@
 #include "cache/free_page_reporting.hpp"
 #include "cache/page_cache.hpp"
 #include "cache/plan.hpp"
+#include "storage/readahead.hpp"
 
 #include <pagecache/devices.hpp>
 #include <pagecache/event.hpp>
@@ -53,7 +54,7 @@ class IoController {
  public:
   IoController(Simulator& sim, PageCache& cache, const Memory& memory, FileTable& files, Flusher& flusher);
   /// The memory of the host's NUMA node `node` (> 0), as its threads copy (Memory::reach).
-  void set_node_memory(NodeId node, const Memory& memory) noexcept { memories_[node] = &memory; }
+  void set_node_memory(NodeId node, const Memory& memory) noexcept { memories_[node] = &memory, numa_ = true; }
 
   /// Writes `chunk` bytes to `file` (Algorithm 3 in writeback mode; disk then cache in
   /// writethrough mode).
@@ -198,6 +199,8 @@ class IoController {
   /// A copy of `bytes` into the cache is done: new dirty data, at `at` in a file held by range.
   void commit_write(FileId file, std::int64_t at, std::int64_t bytes);
   Task<IoTally> write_chunk_writethrough(FileId file, std::int64_t chunk, std::int64_t at, NodeId node);
+  /// A chunk of a remote file: to its server (write_chunk).
+  Task<IoTally> write_chunk_remote(FileId file, std::int64_t chunk);
   /// A chunk of a client's read of a remote file; `cursor` and `server_cursor`: where the read
   /// left off in this host's cache and in the server's, updated.
   Task<IoTally> read_chunk_remote(FileId file, std::int64_t chunk, ReadCursor& cursor, ReadCursor& server_cursor, GroupId group, NodeId node);
@@ -230,12 +233,34 @@ class IoController {
 
   /// The memory as a thread on `node` copies: its node's.
   const Memory& memory(NodeId node) const noexcept { return *memories_[node]; }
-  /// The shares of `bytes` placed or read on other nodes than the toucher's since `before`.
-  RemoteShare remote_since(std::int64_t RemoteTally::*what, const RemoteTally& before, std::int64_t bytes) const noexcept;
+  /// What a chunk read's transfers need: the share of its new pages the host took back, the
+  /// bound of its device read into new cache pages and the buffer, the remote part of its
+  /// cached data's copy.
+  struct ChunkCopies {
+    double cold_share = 0.0;
+    double bound = kUnbounded;
+    RemotePart remote;
+  };
+  /// A chunk read's steps between making its room and its transfers (start_chunk from the
+  /// reader's node), and what its transfers need. Not a coroutine: what it reads of the
+  /// tallies stays out of the reader's frame (10^5 readers).
+  ChunkCopies start_read_chunk(const ReadRequest& request, std::int64_t disk_read, ReadCursor& cursor, GroupId group, NodeId node,
+                               storage::Readahead* readahead, const Disk& disk);
+  /// Where a chunk read's copies are (RemoteTally since `before`): the device read's new cache
+  /// pages and buffer, and the remote part of the cached data's copy. NUMA hosts only.
+  struct ChunkRemote {
+    RemoteShare from_disk;
+    RemotePart from_cache;
+  };
+  ChunkRemote chunk_remote(const RemoteTally& before, std::int64_t chunk, std::int64_t disk_read) const noexcept;
+  /// The share of `bytes` placed on other nodes than the toucher's since the tally's `what`
+  /// was `before`, as a destination share.
+  RemoteShare remote_since(std::int64_t RemoteTally::*what, std::int64_t before, std::int64_t bytes) const noexcept;
 
   Simulator* sim_;
   PageCache* cache_;
   std::array<const Memory*, kMaxNodes> memories_{};  // by node; one-node hosts: the first
+  bool numa_ = false;                                 // several nodes: copies priced by where their pages are
   FileTable* files_;
   Flusher* flusher_;
   std::int64_t flushed_ = 0;

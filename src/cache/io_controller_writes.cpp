@@ -13,15 +13,18 @@
 
 namespace pagecache::cache {
 
+// Not a coroutine: it hands out the task that writes the chunk, a frame fewer per chunk.
 Task<IoTally> IoController::write_chunk(FileId file, std::int64_t chunk, std::int64_t at, NodeId node) {
+  if ((*files_)[file].is_remote()) return write_chunk_remote(file, chunk);
+  if (cache_->settings().write_mode == WriteMode::Writethrough) return write_chunk_writethrough(file, chunk, at, node);
+  return write_chunk_writeback(file, chunk, at, node);
+}
+
+Task<IoTally> IoController::write_chunk_remote(FileId file, std::int64_t chunk) {
+  // No client write cache (the paper's NFS setting): every write goes to the server.
   const FileInfo& info = (*files_)[file];
-  if (info.is_remote()) {
-    // No client write cache (the paper's NFS setting): every write goes to the server.
-    co_await info.remote.server->serve_write(info.remote.server_file, chunk, *info.remote.route);
-    co_return IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
-  }
-  if (cache_->settings().write_mode == WriteMode::Writethrough) co_return co_await write_chunk_writethrough(file, chunk, at, node);
-  co_return co_await write_chunk_writeback(file, chunk, at, node);
+  co_await info.remote.server->serve_write(info.remote.server_file, chunk, *info.remote.route);
+  co_return IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
 }
 
 Task<std::int64_t> IoController::write_to_cache(FileId file, std::int64_t bytes, std::int64_t reclaimed, std::int64_t at, NodeId node) {
@@ -35,10 +38,10 @@ Task<std::int64_t> IoController::write_to_cache(FileId file, std::int64_t bytes,
     if (bytes == 0) co_return 0;
   }
   const std::int64_t cold = cold_taken();
-  const RemoteTally before = cache_->remote();
+  const std::int64_t reserved = cache_->remote().reserved;
   cache_->touch_from(node);
   cache_->reserve(bytes);
-  if (const RemoteShare remote = remote_since(&RemoteTally::reserved, before, bytes); remote.destination > 0.0) {
+  if (const RemoteShare remote = numa_ ? remote_since(&RemoteTally::reserved, reserved, bytes) : RemoteShare{}; remote.destination > 0.0) {
     co_await copy_to_cache(node, bytes, std::min(reclaimed, bytes), cold_taken() - cold, remote);
   } else {
     co_await memory(node).write(bytes, std::min(reclaimed, bytes), cold_taken() - cold);
@@ -79,7 +82,7 @@ Task<IoResult> IoController::write_file_throttled(FileId file, std::int64_t byte
       // What is evicted from here to the copy frees the pages the copy fills.
       std::int64_t evicted = cache_->evicted_bytes();
       const std::int64_t cold = cold_taken();
-      const RemoteTally before = cache_->remote();
+      const std::int64_t reserved = cache_->remote().reserved;
       cache_->touch_from(node);  // the step's pages are reserved on the writer's node first
       const DirtyThrottle::Step step = writer.next(remaining);
       if (step.kind == DirtyThrottle::Step::Pause) {
@@ -96,7 +99,8 @@ Task<IoResult> IoController::write_file_throttled(FileId file, std::int64_t byte
       } else {
         if (group != kRootGroup) co_await make_group_room(group, step.to_cache, file, "writing");
         evicted = cache_->evicted_bytes() - evicted;
-        if (const RemoteShare remote = remote_since(&RemoteTally::reserved, before, step.to_cache); remote.destination > 0.0) {
+        if (const RemoteShare remote = numa_ ? remote_since(&RemoteTally::reserved, reserved, step.to_cache) : RemoteShare{};
+            remote.destination > 0.0) {
           co_await copy_to_cache(node, step.to_cache, std::min(evicted, step.to_cache), cold_taken() - cold, remote);
         } else {
           co_await memory(node).write(step.to_cache, std::min(evicted, step.to_cache), cold_taken() - cold);

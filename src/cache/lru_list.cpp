@@ -10,8 +10,10 @@ void LruList::link_state(BlockId id) {
   // With no other block of its state before it (the one block taken for writeback) it is
   // placed at once.
   const Block& block = (*pool_)[id];
-  const std::size_t sub = sub_list(block);
-  link_in_order(*pool_, blocks_, by_state_[sub], id, [sub](const Block& b) { return sub_list(b) == sub; });
+  const BlockState state = block.state;
+  const NodeId node = block.node;
+  link_in_order(*pool_, blocks_, by_state_[sub_list(block)], id,
+                [state, node](const Block& b) { return b.state == state && (state != BlockState::Clean || b.node == node); });
 }
 
 void LruList::push_back(BlockId id) {

@@ -199,11 +199,6 @@ RemotePart Memory::remote_part(std::int64_t bytes, RemoteShare remote) noexcept 
   return RemotePart{.bytes = part, .share = RemoteShare{.source = remote.source / larger, .destination = remote.destination / larger}};
 }
 
-double Memory::remote_rate(double rate, double share, double ratio) noexcept {
-  // Time per byte: local bytes at `rate`, remote ones at `ratio` of it.
-  return share > 0.0 && ratio != 1.0 ? rate / (1.0 + share * (1.0 / ratio - 1.0)) : rate;
-}
-
 FlowSpec& Memory::faulting(FlowSpec& spec, double cold_share) const {
   if (!(cold_share > 0.0) || bandwidth_.cold_fault <= 0.0) return spec;
   return spec.through({faults_, cold_share / bandwidth_.aggregate_cold_fault});
@@ -216,6 +211,7 @@ FlowAwaiter Memory::device_read(const Disk& disk, std::int64_t bytes, double bou
 
 FlowSpec Memory::read_spec(std::int64_t bytes, RemoteShare remote) const {
   require_bytes(bytes, "memory read");
+  if (other_ == nullptr) return FlowSpec{.work = static_cast<double>(bytes), .bound = bandwidth_.read}.through({resource_, 1.0 / bandwidth_.aggregate_read});
   // A byte copied is remote when its source or its destination is: the larger share.
   const double share = std::max(remote.source, remote.destination);
   FlowSpec spec{.work = static_cast<double>(bytes), .bound = remote_rate(bandwidth_.read, share, ratios_.copy)};
@@ -232,6 +228,10 @@ FlowSpec Memory::write_spec(std::int64_t bytes, std::int64_t reclaimed, std::int
     bound = static_cast<double>(bytes) / seconds;
   }
   const double cold_share = cold > 0 && bytes > 0 ? static_cast<double>(std::min(cold, bytes)) / static_cast<double>(bytes) : 0.0;
+  if (other_ == nullptr) {
+    FlowSpec spec = FlowSpec{.work = static_cast<double>(bytes), .bound = with_cold(bound, cold_share)}.through({resource_, 1.0 / bandwidth_.aggregate_write});
+    return faulting(spec, cold_share);
+  }
   const double share = std::max(remote.source, remote.destination);
   bound = remote_rate(bound, share, ratios_.copy);
   FlowSpec spec = FlowSpec{.work = static_cast<double>(bytes), .bound = with_cold(bound, cold_share)};

@@ -173,14 +173,6 @@ struct RemoteShare {
   double destination = 0.0;
 };
 
-/// The part of a copy's bytes with a page on the other node (the larger share), and where the
-/// part's own pages are: a thread copies a run of pages in order, so a copy split in two, its
-/// local part then this one, takes the time of the pages it copies (Memory::remote_part).
-struct RemotePart {
-  std::int64_t bytes = 0;
-  RemoteShare share;  ///< of `bytes`: the larger side 1
-};
-
 class Cpu;
 
 class Memory {
@@ -195,15 +187,12 @@ class Memory {
   /// charged: they are parts of transfers through other devices.
   void copy_on(const Cpu* cpu) noexcept { cpu_ = cpu; }
 
-  /// Makes this memory one NUMA node's, reaching `other` (the host's other node) over an
-  /// interconnect `link_name` of its own at `ratios` of its own rates: copies with a remote
-  /// share (the `remote` arguments below) are slower and load the other node and the link.
-  /// Both must outlive the flows. Throws ConfigError for a ratio not > 0.
-  void reach(const Memory& other, NumaRatios ratios, std::string link_name);
-  /// The remote part of a copy of `bytes` with `remote` shares (none: 0 bytes). Copying the rest
-  /// with no share and this part with its own keeps each flow on one resource: the node's
-  /// memory, or the interconnect.
-  static RemotePart remote_part(std::int64_t bytes, RemoteShare remote) noexcept;
+  /// Makes this memory one NUMA node's of a host with another: copies by its threads with a
+  /// remote share (the `remote` arguments below) go at `ratios` of its rates for that share,
+  /// and a remote byte costs this node's aggregate 1 / ratios.aggregate of a local one (the
+  /// interconnect, folded into the node: each copy stays one flow on one resource). Throws
+  /// ConfigError, naming `name`, for a ratio not > 0.
+  void set_numa(NumaRatios ratios, const std::string& name);
 
   FlowAwaiter read(std::int64_t bytes, RemoteShare remote = {}) const;
   /// A write of `bytes` into the page cache, `reclaimed` of them into pages the writer
@@ -238,8 +227,7 @@ class Memory {
 
   /// `spec` also through the host's faults for `cold_share` of its bytes.
   FlowSpec& faulting(FlowSpec& spec, double cold_share) const;
-  /// `spec` loading the memory `cost` per byte, `share` of it remote: that share through the
-  /// interconnect alone (the other node's memory is not charged: the link is the narrower).
+  /// `spec` loading the memory `cost` per byte, `share` of it remote (at 1 / ratios_.aggregate).
   FlowSpec& load(FlowSpec& spec, double cost, double share) const;
   /// One thread's `rate` with `share` of its bytes on the other node, at `ratio` of it there.
   static double remote_rate(double rate, double share, double ratio) noexcept {
@@ -251,8 +239,7 @@ class Memory {
   ResourceId faults_{};  // the host's faults into cold memory, with cold_fault only
   MemoryBandwidth bandwidth_;
   const Cpu* cpu_ = nullptr;
-  const Memory* other_ = nullptr;  // the host's other NUMA node, if any (reach)
-  ResourceId link_{};
+  bool numa_ = false;  // one node of several (set_numa)
   NumaRatios ratios_;
 };
 

@@ -57,10 +57,9 @@ struct Host::Impl {
         io(s, cache, memory, files, flusher) {
     cache.set_nodes(nodes);
     if (nodes > 1) {
-      // Two nodes, each reaching the other over an interconnect link each way.
       other_node.emplace(fs, memory_name(spec, nodes, 1), node_bandwidth(spec, nodes));
-      memory.reach(*other_node, spec.numa.remote, spec.name + ":interconnect 0->1");
-      other_node->reach(memory, spec.numa.remote, spec.name + ":interconnect 1->0");
+      memory.set_numa(spec.numa.remote, spec.name);
+      other_node->set_numa(spec.numa.remote, spec.name);
       io.set_node_memory(1, *other_node);
     }
     if (cache.policy().copies_hold_cores()) {

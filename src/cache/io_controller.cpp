@@ -208,7 +208,7 @@ IoController::ChunkRemote IoController::chunk_remote(const RemoteTally& before, 
   const double buffer = share(now.anonymous - before.anonymous, chunk);
   const RemoteShare from_cache{.source = share(now.reread - before.reread, chunk - disk_read), .destination = buffer};
   return ChunkRemote{.from_disk = RemoteShare{.source = share(now.cache - before.cache, disk_read), .destination = buffer},
-                     .from_cache = Memory::remote_part(chunk - disk_read, from_cache)};
+                     .from_cache = from_cache};
 }
 
 RemoteShare IoController::remote_since(std::int64_t RemoteTally::*what, std::int64_t before, std::int64_t bytes) const noexcept {
@@ -259,10 +259,7 @@ Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_siz
       if (copies.cold_share > 0.0) co_await memory(node).device_read(*disk, disk_read, copies.bound, copies.cold_share);
       else co_await disk->read(disk_read, copies.bound);
     }
-    const RemotePart& remote = copies.remote;
-    if (cache_read > remote.bytes) co_await memory(node).read_into_fresh(cache_read - remote.bytes, copies.cold_share);
-    // The pages on the other node after those on the reader's (one resource a flow: see RemotePart).
-    if (remote.bytes > 0) co_await memory(node).read_into_fresh(remote.bytes, copies.cold_share, remote.share);
+    if (cache_read > 0) co_await memory(node).read_into_fresh(cache_read, copies.cold_share, copies.remote);
     total += IoTally{.bytes = chunk, .cache_bytes = cache_read, .disk_bytes = disk_read};
   }
   co_return file_result(start, sim_->now(), total);

@@ -53,7 +53,7 @@ inline IoResult file_result(double start, double end, const IoTally& t) {
 class IoController {
  public:
   IoController(Simulator& sim, PageCache& cache, const Memory& memory, FileTable& files, Flusher& flusher);
-  /// The memory of the host's NUMA node `node` (> 0), as its threads copy (Memory::reach).
+  /// The memory of the host's NUMA node `node` (> 0), as its threads copy (Memory::set_numa).
   void set_node_memory(NodeId node, const Memory& memory) noexcept { memories_[node] = &memory, numa_ = true; }
 
   /// Writes `chunk` bytes to `file` (Algorithm 3 in writeback mode; disk then cache in
@@ -193,9 +193,6 @@ class IoController {
   /// Returns the bytes copied: all of them, unless the file's memory group had to make room
   /// and others took the memory meanwhile.
   Task<std::int64_t> write_to_cache(FileId file, std::int64_t bytes, std::int64_t reclaimed, std::int64_t at, NodeId node);
-  /// The copy of a write into the cache by a thread on `node`, `remote` of its pages on the
-  /// other node: those after the others, each part one flow (Memory::write, RemotePart).
-  Task<void> copy_to_cache(NodeId node, std::int64_t bytes, std::int64_t reclaimed, std::int64_t cold, RemoteShare remote);
   /// A copy of `bytes` into the cache is done: new dirty data, at `at` in a file held by range.
   void commit_write(FileId file, std::int64_t at, std::int64_t bytes);
   Task<IoTally> write_chunk_writethrough(FileId file, std::int64_t chunk, std::int64_t at, NodeId node);
@@ -234,12 +231,12 @@ class IoController {
   /// The memory as a thread on `node` copies: its node's.
   const Memory& memory(NodeId node) const noexcept { return *memories_[node]; }
   /// What a chunk read's transfers need: the share of its new pages the host took back, the
-  /// bound of its device read into new cache pages and the buffer, the remote part of its
-  /// cached data's copy.
+  /// bound of its device read into new cache pages and the buffer, where its cached data's
+  /// copy is.
   struct ChunkCopies {
     double cold_share = 0.0;
     double bound = kUnbounded;
-    RemotePart remote;
+    RemoteShare remote;  // of the cached part's copy
   };
   /// A chunk read's steps between making its room and its transfers (start_chunk from the
   /// reader's node), and what its transfers need. Not a coroutine: what it reads of the
@@ -247,10 +244,10 @@ class IoController {
   ChunkCopies start_read_chunk(const ReadRequest& request, std::int64_t disk_read, ReadCursor& cursor, GroupId group, NodeId node,
                                storage::Readahead* readahead, const Disk& disk);
   /// Where a chunk read's copies are (RemoteTally since `before`): the device read's new cache
-  /// pages and buffer, and the remote part of the cached data's copy. NUMA hosts only.
+  /// pages and buffer, and the cached data's copy. NUMA hosts only.
   struct ChunkRemote {
     RemoteShare from_disk;
-    RemotePart from_cache;
+    RemoteShare from_cache;
   };
   ChunkRemote chunk_remote(const RemoteTally& before, std::int64_t chunk, std::int64_t disk_read) const noexcept;
   /// The share of `bytes` placed on other nodes than the toucher's since the tally's `what`

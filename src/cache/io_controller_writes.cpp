@@ -41,23 +41,12 @@ Task<std::int64_t> IoController::write_to_cache(FileId file, std::int64_t bytes,
   const std::int64_t reserved = cache_->remote().reserved;
   cache_->touch_from(node);
   cache_->reserve(bytes);
-  if (const RemoteShare remote = numa_ ? remote_since(&RemoteTally::reserved, reserved, bytes) : RemoteShare{}; remote.destination > 0.0) {
-    co_await copy_to_cache(node, bytes, std::min(reclaimed, bytes), cold_taken() - cold, remote);
-  } else {
-    co_await memory(node).write(bytes, std::min(reclaimed, bytes), cold_taken() - cold);
-  }
+  co_await memory(node).write(bytes, std::min(reclaimed, bytes), cold_taken() - cold,
+                              numa_ ? remote_since(&RemoteTally::reserved, reserved, bytes) : RemoteShare{});
   cache_->touch_from(node);
   commit_write(file, at, bytes);
   flusher_->notify_dirty(cache_->group_of(file));
   co_return bytes;
-}
-
-Task<void> IoController::copy_to_cache(NodeId node, std::int64_t bytes, std::int64_t reclaimed, std::int64_t cold, RemoteShare remote) {
-  const RemotePart part = Memory::remote_part(bytes, remote);
-  // The pages on the writer's node, then the others, each with its share of the reclaimed and cold ones.
-  const auto share_of = [&](std::int64_t n) { return n * part.bytes / std::max<std::int64_t>(bytes, 1); };
-  if (part.bytes < bytes) co_await memory(node).write(bytes - part.bytes, reclaimed - share_of(reclaimed), cold - share_of(cold));
-  if (part.bytes > 0) co_await memory(node).write(part.bytes, share_of(reclaimed), share_of(cold), part.share);
 }
 
 // The whole file is written here, chunk after chunk, rather than a coroutine per chunk: with
@@ -99,12 +88,8 @@ Task<IoResult> IoController::write_file_throttled(FileId file, std::int64_t byte
       } else {
         if (group != kRootGroup) co_await make_group_room(group, step.to_cache, file, "writing");
         evicted = cache_->evicted_bytes() - evicted;
-        if (const RemoteShare remote = numa_ ? remote_since(&RemoteTally::reserved, reserved, step.to_cache) : RemoteShare{};
-            remote.destination > 0.0) {
-          co_await copy_to_cache(node, step.to_cache, std::min(evicted, step.to_cache), cold_taken() - cold, remote);
-        } else {
-          co_await memory(node).write(step.to_cache, std::min(evicted, step.to_cache), cold_taken() - cold);
-        }
+        co_await memory(node).write(step.to_cache, std::min(evicted, step.to_cache), cold_taken() - cold,
+                                    numa_ ? remote_since(&RemoteTally::reserved, reserved, step.to_cache) : RemoteShare{});
         cache_->touch_from(node);
         commit_write(file, at == ReadRequest::kWholeFile ? at : at + offset + std::min(chunk_size, bytes - offset) - remaining, step.to_cache);
         flusher_->notify_dirty(group);

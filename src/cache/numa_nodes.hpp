@@ -17,7 +17,7 @@ namespace pagecache::cache {
 using NodeId = std::uint8_t;
 /// As a reclaim target: every node.
 inline constexpr NodeId kAnyNode = 0xff;
-/// The most nodes a host may have: one other node a copy may reach (the interconnect is one link each way).
+/// The most nodes a host may have: a copy has one other node its pages may be on.
 inline constexpr int kMaxNodes = 2;
 
 /// One node's memory.

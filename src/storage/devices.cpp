@@ -163,13 +163,12 @@ Memory::Memory(FairShare& share, std::string name, MemoryBandwidth bandwidth)
   resource_ = share.add_resource(std::move(name));
 }
 
-void Memory::reach(const Memory& other, NumaRatios ratios, std::string link_name) {
+void Memory::set_numa(NumaRatios ratios, const std::string& name) {
   for (const double ratio : {ratios.copy, ratios.first_touch, ratios.aggregate}) {
-    if (!(ratio > 0.0) || !std::isfinite(ratio)) throw ConfigError(fmt::format("{}: NUMA ratios must be > 0, got {}", link_name, ratio));
+    if (!(ratio > 0.0) || !std::isfinite(ratio)) throw ConfigError(fmt::format("{}: NUMA ratios must be > 0, got {}", name, ratio));
   }
-  other_ = &other;
+  numa_ = true;
   ratios_ = ratios;
-  link_ = share_->add_resource(std::move(link_name));
 }
 
 namespace {
@@ -186,17 +185,8 @@ FlowSpec& add_cost(FlowSpec& spec, ResourceId resource, double cost) {
 }  // namespace
 
 FlowSpec& Memory::load(FlowSpec& spec, double cost, double share) const {
-  if (!(share > 0.0) || other_ == nullptr) return add_cost(spec, resource_, cost);
-  if (share < 1.0) add_cost(spec, resource_, (1.0 - share) * cost);
-  return add_cost(spec, link_, share * cost / ratios_.aggregate);
-}
-
-RemotePart Memory::remote_part(std::int64_t bytes, RemoteShare remote) noexcept {
-  const double larger = std::max(remote.source, remote.destination);
-  if (!(larger > 0.0)) return {};
-  const auto part = std::clamp<std::int64_t>(std::llround(larger * static_cast<double>(bytes)), 0, bytes);
-  if (part == 0) return {};
-  return RemotePart{.bytes = part, .share = RemoteShare{.source = remote.source / larger, .destination = remote.destination / larger}};
+  if (!(share > 0.0) || !numa_) return add_cost(spec, resource_, cost);
+  return add_cost(spec, resource_, (1.0 - share) * cost + share * cost / ratios_.aggregate);
 }
 
 FlowSpec& Memory::faulting(FlowSpec& spec, double cold_share) const {
@@ -211,7 +201,7 @@ FlowAwaiter Memory::device_read(const Disk& disk, std::int64_t bytes, double bou
 
 FlowSpec Memory::read_spec(std::int64_t bytes, RemoteShare remote) const {
   require_bytes(bytes, "memory read");
-  if (other_ == nullptr) return FlowSpec{.work = static_cast<double>(bytes), .bound = bandwidth_.read}.through({resource_, 1.0 / bandwidth_.aggregate_read});
+  if (!numa_) return FlowSpec{.work = static_cast<double>(bytes), .bound = bandwidth_.read}.through({resource_, 1.0 / bandwidth_.aggregate_read});
   // A byte copied is remote when its source or its destination is: the larger share.
   const double share = std::max(remote.source, remote.destination);
   FlowSpec spec{.work = static_cast<double>(bytes), .bound = remote_rate(bandwidth_.read, share, ratios_.copy)};
@@ -228,7 +218,7 @@ FlowSpec Memory::write_spec(std::int64_t bytes, std::int64_t reclaimed, std::int
     bound = static_cast<double>(bytes) / seconds;
   }
   const double cold_share = cold > 0 && bytes > 0 ? static_cast<double>(std::min(cold, bytes)) / static_cast<double>(bytes) : 0.0;
-  if (other_ == nullptr) {
+  if (!numa_) {
     FlowSpec spec = FlowSpec{.work = static_cast<double>(bytes), .bound = with_cold(bound, cold_share)}.through({resource_, 1.0 / bandwidth_.aggregate_write});
     return faulting(spec, cold_share);
   }

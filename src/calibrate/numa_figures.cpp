@@ -57,7 +57,7 @@ std::vector<std::string> measured_notes(const NumaFigures& n) {
 }  // namespace
 
 std::string numa_toml(const NumaFigures& n) {
-  if (!n.measured) return "";
+  if (!n.measured || n.topology.nodes.size() > kMaxModelledNodes) return "";
   std::string out = "\n[hosts.numa]\n" + nodes_toml(n);
   for (const NumaKey& k : kNumaKeys) out += ratio_toml(n, k);
   return out;
@@ -67,6 +67,11 @@ std::vector<std::string> numa_notes(const NumaFigures& n) {
   std::vector<std::string> notes;
   if (n.measured) notes = measured_notes(n);
   else notes.push_back(n.why);
+  if (n.measured && n.topology.nodes.size() > kMaxModelledNodes) {
+    notes.push_back(fmt::format("{} NUMA nodes: pcsim models at most {}, so the platform has no [hosts.numa]; the ratios measured between "
+                                "node {} and node {} are in these notes",
+                                n.topology.nodes.size(), kMaxModelledNodes, n.local, n.remote));
+  }
   if (!n.release_failed.empty()) {
     notes.push_back(fmt::format("after the NUMA measurements, {} failed: what calibrate measured after them ran where they had left it",
                                 n.release_failed));

@@ -7,6 +7,7 @@
 #include "calibrate/figure.hpp"
 #include "calibrate/numa_topology.hpp"
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -14,6 +15,8 @@
 namespace pagecache::calibrate {
 
 /// What calibrate says and notes on a machine of one node.
+/// The most NUMA nodes pcsim's hosts have ([hosts.numa] nodes; cache::kMaxNodes).
+inline constexpr std::size_t kMaxModelledNodes = 2;
 inline constexpr std::string_view kOneNumaNode = "one NUMA node: no remote memory to measure; the platform has no [hosts.numa]";
 
 /// One measurement with the memory on the measuring threads' node (local) and on the other (remote).

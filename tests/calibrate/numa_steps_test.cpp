@@ -224,6 +224,27 @@ TEST_CASE("calibrate runs the NUMA measurements on the first node with CPUs", "[
   CHECK(machine.seen.at(1) == "first touch: thread on 1, memory on 0");
 }
 
+TEST_CASE("calibrate on more nodes than pcsim models measures, notes the ratios and writes no [hosts.numa]", "[calibrate][numa]") {
+  const FakeNodeTree tree;
+  tree.write("online", "0-2\n");
+  tree.write("node0/cpulist", "0-1\n");
+  tree.write("node1/cpulist", "2-3\n");
+  tree.write("node2/cpulist", "4-5\n");
+  Bench b;
+  b.c.numa.topology = read_numa_topology(tree.root);
+  FakeBinding binding;
+  FakeMachine machine{binding};
+  measure_numa(b.c, b.session, binding, machine.probes());
+  REQUIRE(b.c.numa.measured);
+  add_notes(b.c);
+  const std::string platform = platform_toml(b.c);
+  INFO(platform);
+  CHECK_THAT(platform, !Catch::Contains("\n[hosts.numa]") &&
+                           Catch::Contains("3 NUMA nodes: pcsim models at most 2, so the platform has no [hosts.numa]; the ratios measured "
+                                           "between node 0 and node 1"));
+  CHECK_FALSE(toml::parse(platform)["hosts"][0]["numa"]);
+}
+
 TEST_CASE("calibrate with one NUMA node says so and writes no [hosts.numa]", "[calibrate][numa]") {
   Bench b;
   b.c.numa.topology = read_numa_topology(fs::temp_directory_path() / "pcsim-no-such-node-folder");

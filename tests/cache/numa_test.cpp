@@ -149,6 +149,29 @@ TEST_CASE("a reader reads a file cached on the other node at the remote copy rat
   }
 }
 
+TEST_CASE("a reader on node 0 reads a file a reader on node 1 cached at the remote rate", "[cache][numa][host]") {
+  // A thread on node 1 reads 100 MB from a 1000 MB/s disk (0.1 s): its cache pages are node
+  // 1's. At 1 s a thread on node 0 reads it again from the cache: the source is remote, 0.5 x
+  // 1000 MB/s, 0.2 s; a thread on node 1 would take 0.1 s.
+  for (const auto& [node, expected] : {std::pair{0, 0.2}, std::pair{1, 0.1}}) {
+    Simulator sim;
+    FairShare share(sim);
+    Host host(sim, share, two_node_host(0.5));
+    const FileRef file = host.add_file("in", 100 * MB, host.add_disk("d", 1000e6, 1000e6));
+    double first = 0;
+    double end = 0;
+    sim.spawn(read_on(sim, host, file, Thread{GroupRef{}, NodeRef{1}}, first));
+    sim.spawn([](Simulator& s, Host& h, FileRef f, int reader, double& done) -> Task<void> {
+      co_await s.sleep(1.0);
+      co_await read_on(s, h, f, Thread(GroupRef(), NodeRef{static_cast<std::uint8_t>(reader)}), done);
+    }(sim, host, file, node, end));
+    sim.run_until(10.0);
+    INFO("second reader on node " << node);
+    CHECK(first == Catch::Detail::Approx(0.1).epsilon(1e-9));
+    CHECK(end - 1.0 == Catch::Detail::Approx(expected).epsilon(1e-9));
+  }
+}
+
 TEST_CASE("a buffer on the other node pays the remote copy and first touch", "[cache][numa][host]") {
   // Node 0 (500 MB): 100 MB cached, 400 MB held. A reader on node 0 of the cached file gets its
   // buffer on node 1: the copy at 0.5 x 1000, the first touch at 0.25 x 1000 MB/s:

@@ -13,7 +13,7 @@ import json, os, sys
 scratch = sys.argv[1]
 lines = [json.loads(l) for l in open(os.path.join(scratch, "out.txt")) if l.startswith("{")]
 shapes = {r["shape"] for r in lines}
-expected = {"exp2-paper", "exp2-linux", "writers", "cluster", "dag"}
+expected = {"exp2-paper", "exp2-linux", "exp2-numa", "writers", "cluster", "dag"}
 assert shapes == expected, f"shapes {sorted(shapes)}, expected {sorted(expected)}"
 for r in lines:
     label = f"{r['shape']}-{r['n']}"

@@ -162,13 +162,6 @@ Task<std::int64_t> IoController::room_for_chunk(FileId file, std::int64_t file_s
   }
 }
 
-namespace {
-// `part` of `whole` as a fraction (0 for nothing).
-double share(std::int64_t part, std::int64_t whole) {
-  return whole > 0 ? static_cast<double>(part) / static_cast<double>(whole) : 0.0;
-}
-}  // namespace
-
 // read_file and write_file check their request when called, not when their task is awaited.
 void IoController::check_request(std::int64_t chunk_size) const {
   if (chunk_size <= 0) throw ConfigError(fmt::format("chunk size must be > 0, got {}", chunk_size));
@@ -191,24 +184,21 @@ IoController::ChunkCopies IoController::start_read_chunk(const ReadRequest& requ
   // (the reader's first touch), their faults one after the other (measured: a cold read goes
   // at about 1 / (2 / cold_fault) where both are cold), per byte of the chunk.
   copies.cold_share = share(cold_taken() - cold, request.bytes);
-  const ChunkRemote places = numa_ ? chunk_remote(before, request.bytes, disk_read) : ChunkRemote{};
-  copies.remote = places.from_cache;
+  // Where the new cache pages, the cached data read and the buffer are, from the reader's node.
+  RemoteShare from_disk;
+  if (numa_) {
+    const RemoteTally& now = cache_->remote();
+    const double buffer = share(now.anonymous - before.anonymous, request.bytes);
+    from_disk = RemoteShare{.source = share(now.cache - before.cache, disk_read), .destination = buffer};
+    copies.remote = RemoteShare{.source = share(now.reread - before.reread, request.bytes - disk_read), .destination = buffer};
+  }
   if (disk_read > 0) {
-    copies.bound = memory(node).fresh_copy_rate(copies.cold_share, places.from_disk);
+    copies.bound = memory(node).fresh_copy_rate(copies.cold_share, from_disk);
     if (readahead != nullptr) {
       copies.bound = std::min(copies.bound, static_cast<double>(disk_read) / readahead->seconds(disk_read, disk.request_latency(), disk.read_bandwidth()));
     }
   }
   return copies;
-}
-
-IoController::ChunkRemote IoController::chunk_remote(const RemoteTally& before, std::int64_t chunk, std::int64_t disk_read) const noexcept {
-  // Where the new cache pages, the cached data read and the buffer are, from the reader's node.
-  const RemoteTally& now = cache_->remote();
-  const double buffer = share(now.anonymous - before.anonymous, chunk);
-  const RemoteShare from_cache{.source = share(now.reread - before.reread, chunk - disk_read), .destination = buffer};
-  return ChunkRemote{.from_disk = RemoteShare{.source = share(now.cache - before.cache, disk_read), .destination = buffer},
-                     .from_cache = from_cache};
 }
 
 RemoteShare IoController::remote_since(std::int64_t RemoteTally::*what, std::int64_t before, std::int64_t bytes) const noexcept {

@@ -45,6 +45,11 @@ struct IoTally {
   }
 };
 
+/// `part` of `whole` as a fraction (0 for nothing).
+inline double share(std::int64_t part, std::int64_t whole) {
+  return whole > 0 ? static_cast<double>(part) / static_cast<double>(whole) : 0.0;
+}
+
 /// A whole file's read or write as Host reports it: its span and what it moved.
 inline IoResult file_result(double start, double end, const IoTally& t) {
   return IoResult{.start = start, .end = end, .bytes = t.bytes, .cache_bytes = t.cache_bytes, .disk_bytes = t.disk_bytes};
@@ -243,13 +248,6 @@ class IoController {
   /// tallies stays out of the reader's frame (10^5 readers).
   ChunkCopies start_read_chunk(const ReadRequest& request, std::int64_t disk_read, ReadCursor& cursor, GroupId group, NodeId node,
                                storage::Readahead* readahead, const Disk& disk);
-  /// Where a chunk read's copies are (RemoteTally since `before`): the device read's new cache
-  /// pages and buffer, and the cached data's copy. NUMA hosts only.
-  struct ChunkRemote {
-    RemoteShare from_disk;
-    RemoteShare from_cache;
-  };
-  ChunkRemote chunk_remote(const RemoteTally& before, std::int64_t chunk, std::int64_t disk_read) const noexcept;
   /// The share of `bytes` placed on other nodes than the toucher's since the tally's `what`
   /// was `before`, as a destination share.
   RemoteShare remote_since(std::int64_t RemoteTally::*what, std::int64_t before, std::int64_t bytes) const noexcept;

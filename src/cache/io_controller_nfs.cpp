@@ -49,7 +49,7 @@ Task<IoTally> IoController::read_chunk_remote(FileId file, std::int64_t chunk, R
   cache_->touch_from(node);
   cursor = start_chunk(*cache_, request, remote_read, cursor, group, sim_->now());
   // The part re-read is priced from where it is cached; the server's part by the network.
-  const RemoteShare from_cache{.source = cache_read > 0 ? static_cast<double>(cache_->remote().reread - reread) / static_cast<double>(cache_read) : 0.0};
+  const RemoteShare from_cache{.source = share(cache_->remote().reread - reread, cache_read)};
   if (remote_read > 0) co_await serve_remote(file, remote_read, &server_cursor, node);
   if (cache_read > 0) co_await memory(node).read_into_fresh(cache_read, 0.0, from_cache);
   // From this host's point of view, data from the server is not from its own cache.

@@ -33,13 +33,6 @@ constexpr double kRequestTimeBatch = 1e-3;
 
 }  // namespace
 
-namespace {
-// `part` of `whole` as a fraction (0 for nothing).
-double share_of(std::int64_t part, std::int64_t whole) {
-  return whole > 0 ? static_cast<double>(part) / static_cast<double>(whole) : 0.0;
-}
-}  // namespace
-
 Task<IoResult> IoController::read_ranges(FileId file, std::function<bool(ByteRange&)> next, std::int64_t buffer, GroupId group, ReadAdvice advice,
                                          bool direct, NodeId node) {
   const FileInfo& info = (*files_)[file];
@@ -123,10 +116,10 @@ Task<IoResult> IoController::read_ranges_of(FileId file, std::function<bool(Byte
     const std::int64_t copied = std::max<std::int64_t>(r.length - missed, 0);
     if (disk_read > 0) {
       const double cold_share = static_cast<double>(cold_taken() - cold) / static_cast<double>(disk_read);
-      const RemoteShare placed{.source = share_of(cache_->remote().cache - before.cache, disk_read), .destination = 0.0};
+      const RemoteShare placed{.source = share(cache_->remote().cache - before.cache, disk_read), .destination = 0.0};
       co_await disk->read(disk_read, memory(node).fresh_copy_rate(cold_share, placed), disk_read);
     }
-    if (copied > 0) co_await memory(node).read(copied, RemoteShare{.source = share_of(cache_->remote().reread - before.reread, copied)});
+    if (copied > 0) co_await memory(node).read(copied, RemoteShare{.source = share(cache_->remote().reread - before.reread, copied)});
     result.bytes += r.length;
     result.cache_bytes += copied;
     result.disk_bytes += disk_read;

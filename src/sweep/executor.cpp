@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdlib>
@@ -143,34 +144,41 @@ SweepOutcome run_sweep(const Plan& plan, const SweepOptions& options) {
   SweepOutcome outcome;
   outcome.results = results_path(options.out_dir, options.shard);
   ResultsFile results(outcome.results, plan.fingerprint());
-  std::vector<Run> pending;
-  for (std::size_t i = options.shard.index; i < plan.size(); i += options.shard.count) {
-    Run run = plan.run(i);
-    if (done.count(run.id) != 0 || results.done().count(run.id) != 0) ++outcome.skipped;
-    else pending.push_back(std::move(run));
-  }
+  // The shard's runs are made as workers take them, not held (a shard of a plan of 10^9 runs
+  // would not fit in memory); a first walk counts those still to do, for progress.
+  const std::size_t shard_runs = plan.size() > options.shard.index ? (plan.size() - options.shard.index - 1) / options.shard.count + 1 : 0;
+  const auto run_at = [&](std::size_t k) { return plan.run(options.shard.index + k * options.shard.count); };
+  const auto is_done = [&](const Run& run) { return done.count(run.id) != 0 || results.done().count(run.id) != 0; };
+  std::size_t to_do = 0;
+  for (std::size_t k = 0; k < shard_runs; ++k) to_do += is_done(run_at(k)) ? 0 : 1;
+  outcome.skipped = shard_runs - to_do;
   std::atomic<std::size_t> next{0};
   std::mutex lock;  // the results file, the outcome, progress
   std::exception_ptr broken;
   const auto worker = [&] {
-    for (std::size_t i = next++; i < pending.size(); i = next++) {
+    for (std::size_t k = next++; k < shard_runs; k = next++) {
+      const Run run = run_at(k);
+      {
+        const std::lock_guard guard(lock);  // results.done() grows as runs end
+        if (is_done(run)) continue;
+      }
       const RunRecord finished =
-          execute_run(plan, pending[i], {}, options.keep_outputs ? (fs::path(options.out_dir) / "runs" / pending[i].id).string() : std::string());
+          execute_run(plan, run, {}, options.keep_outputs ? (fs::path(options.out_dir) / "runs" / run.id).string() : std::string());
       const std::lock_guard guard(lock);
       if (broken) return;
       try {
         results.append(finished.line);
       } catch (...) {
         broken = std::current_exception();
-        next = pending.size();
+        next = shard_runs;
         return;
       }
       ++outcome.ran;
       if (finished.failed) ++outcome.failed;
-      if (options.progress) options.progress(outcome.ran, pending.size());
+      if (options.progress) options.progress(outcome.ran, to_do);
     }
   };
-  const unsigned jobs = std::max(1u, std::min<unsigned>(options.jobs, static_cast<unsigned>(std::max<std::size_t>(1, pending.size()))));
+  const unsigned jobs = std::max(1u, std::min<unsigned>(options.jobs, static_cast<unsigned>(std::clamp<std::size_t>(to_do, 1, 1024))));
   std::vector<std::thread> threads;
   for (unsigned j = 1; j < jobs; ++j) threads.emplace_back(worker);
   worker();

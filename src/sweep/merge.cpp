@@ -13,6 +13,8 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cstdint>
+#include <optional>
 #include <filesystem>
 #include <unordered_map>
 #include <vector>
@@ -23,42 +25,22 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Found {
-  nlohmann::json result;
-  std::string where;  // file:line
+// A result placed in the plan: its run's index and its row of results.csv.
+struct Placed {
+  std::size_t index = 0;
+  std::string row;
 };
 
-std::string some(const std::vector<std::string>& ids) {
+std::string some(const std::vector<std::string>& ids, std::size_t total) {
   std::string out;
   for (std::size_t i = 0; i < ids.size() && i < 10; ++i) out += (i ? ", " : "") + ids[i];
-  return ids.size() > 10 ? out + fmt::format(" and {} more", ids.size() - 10) : out;
+  return total > 10 ? out + fmt::format(" and {} more", total - 10) : out;
 }
 
 Plan read_plan(const MergeOptions& options) {
   const fs::path plan_path = fs::path(options.dir) / "sweep-plan.json";
   if (!fs::exists(plan_path)) throw ConfigError(fmt::format("{}: no sweep-plan.json: not a folder of `pcsim sweep run --out`", options.dir));
   return Plan::from_json(scenario::read_text_file(plan_path.string(), "sweep plan"), plan_path.string());
-}
-
-// Every shard's results, whatever the sharding (shards of several splits may be merged), each
-// line a result of this sweep's base. A last line cut short (a shard still running, or
-// killed mid-line) is not a result: its run is not done.
-std::unordered_map<std::string, Found> read_results(const MergeOptions& options, const Plan& plan) {
-  std::unordered_map<std::string, Found> found;
-  std::vector<std::string> duplicated;
-  for_each_result(options.dir, plan.fingerprint(), [&](const std::string& id, std::string_view line, const std::string& file, std::size_t number) {
-    const std::string where = fmt::format("{}:{}", file, number);
-    if (const auto it = found.find(id); it != found.end()) {
-      duplicated.push_back(fmt::format("{} ({} and {})", id, it->second.where, where));
-      return;
-    }
-    found.emplace(id, Found{nlohmann::json::parse(line), where});
-  });
-  if (!duplicated.empty()) {
-    throw ConfigError(fmt::format("{}: {} run(s) have more than one result (shards of two splits run at the same time?): {}", options.dir, duplicated.size(),
-                                  some(duplicated)));
-  }
-  return found;
 }
 
 void append_header(fmt::memory_buffer& csv, const Plan& plan) {
@@ -92,6 +74,62 @@ std::string append_row(fmt::memory_buffer& csv, const Run& run, const nlohmann::
   return status;
 }
 
+// The run a result is of: the index it was recorded under, if the plan's run there has its id
+// (the same plan), else found by its overrides (a plan grown since).
+std::optional<Run> run_of(const Plan& plan, const std::string& id, const nlohmann::json& result) {
+  const nlohmann::json& index = result["run"];
+  if (index.is_number_unsigned() && index.get<std::uint64_t>() < plan.size()) {
+    Run run = plan.run(static_cast<std::size_t>(index.get<std::uint64_t>()));
+    if (run.id == id) return run;
+  }
+  std::vector<std::pair<std::string, std::string>> overrides;
+  for (const auto& [key, value] : result["overrides"].items()) overrides.emplace_back(key, value.get<std::string>());
+  const std::optional<std::size_t> at = plan.index_of(overrides);
+  if (!at) return std::nullopt;
+  Run run = plan.run(*at);
+  if (run.id != id) return std::nullopt;
+  return run;
+}
+
+// Every shard's results, whatever the sharding (shards of several splits may be merged), each
+// line a result of this sweep's base, as its row, in the plan's order. Held as rows, not as
+// parsed lines; the plan itself is never walked, so a plan of 10^9 runs merges its results in
+// the time they take. A last line cut short (a shard still running, or killed mid-line) is
+// not a result: its run is not done.
+std::vector<Placed> read_results(const MergeOptions& options, const Plan& plan, MergeOutcome& outcome) {
+  std::vector<Placed> placed;
+  std::unordered_map<std::string, std::string> seen;  // id -> where
+  std::vector<std::string> duplicated, strangers;
+  std::size_t duplicates = 0, stranger_count = 0;
+  for_each_result(options.dir, plan.fingerprint(), [&](const std::string& id, std::string_view line, const std::string& file, std::size_t number) {
+    std::string where = fmt::format("{}:{}", file, number);
+    if (const auto it = seen.find(id); it != seen.end()) {
+      if (++duplicates <= 10) duplicated.push_back(fmt::format("{} ({} and {})", id, it->second, where));
+      return;
+    }
+    const nlohmann::json result = nlohmann::json::parse(line);
+    const std::optional<Run> run = run_of(plan, id, result);
+    if (!run) {
+      if (++stranger_count <= 10) strangers.push_back(fmt::format("{} ({})", id, where));
+      return;
+    }
+    seen.emplace(id, where);
+    fmt::memory_buffer row;
+    if (append_row(row, *run, result) != "ok") ++outcome.failed;
+    placed.push_back(Placed{run->index, std::string(row.data(), row.size())});
+  });
+  if (duplicates > 0) {
+    throw ConfigError(fmt::format("{}: {} run(s) have more than one result (shards of two splits run at the same time?): {}", options.dir, duplicates,
+                                  some(duplicated, duplicates)));
+  }
+  if (stranger_count > 0) {
+    throw ConfigError(fmt::format("{}: {} result(s) of runs that are not in sweep-plan.json: {}", options.dir, stranger_count,
+                                  some(strangers, stranger_count)));
+  }
+  std::sort(placed.begin(), placed.end(), [](const Placed& a, const Placed& b) { return a.index < b.index; });
+  return placed;
+}
+
 // A run without a result, as the user finds it: its id and its overrides.
 std::string missing_run(const Run& run) {
   std::string set;
@@ -100,15 +138,16 @@ std::string missing_run(const Run& run) {
   return fmt::format("{} ({})", run.id, set);
 }
 
-// Results whose runs are not the plan's.
-[[noreturn]] void fail_strangers(const MergeOptions& options, const Plan& plan, const std::unordered_map<std::string, Found>& found) {
-  std::vector<std::string> strangers;
-  std::unordered_map<std::string, bool> in_plan;
-  for (std::size_t i = 0; i < plan.size(); ++i) in_plan[plan.run(i).id] = true;
-  for (const auto& [id, f] : found)
-    if (!in_plan.count(id)) strangers.push_back(fmt::format("{} ({})", id, f.where));
-  std::sort(strangers.begin(), strangers.end());
-  throw ConfigError(fmt::format("{}: {} result(s) of runs that are not in sweep-plan.json: {}", options.dir, strangers.size(), some(strangers)));
+// The first ten runs without a result, in the plan's order: `placed` holds the others' indices.
+std::vector<std::string> first_missing(const Plan& plan, const std::vector<Placed>& placed) {
+  std::vector<std::string> missing;
+  auto next = placed.begin();
+  for (std::size_t i = 0; i < plan.size() && missing.size() < 10; ++i) {
+    while (next != placed.end() && next->index < i) ++next;
+    if (next != placed.end() && next->index == i) continue;
+    missing.push_back(missing_run(plan.run(i)));
+  }
+  return missing;
 }
 
 }  // namespace
@@ -124,30 +163,26 @@ MergeOutcome merge(const MergeOptions& options) {
   inputs.push_back((fs::path(options.dir) / "sweep-plan.json").string());
   report::check_not_an_input(outcome.csv, option, inputs);
   const Plan plan = read_plan(options);
-  const std::unordered_map<std::string, Found> found = read_results(options, plan);
-
-  fmt::memory_buffer csv;
-  append_header(csv, plan);
-  std::vector<std::string> missing;
-  std::size_t used = 0;
-  for (std::size_t i = 0; i < plan.size(); ++i) {
-    const Run run = plan.run(i);
-    const auto it = found.find(run.id);
-    if (it == found.end()) {
-      missing.push_back(missing_run(run));
-      continue;
-    }
-    ++used;
-    if (append_row(csv, run, it->second.result) != "ok") ++outcome.failed;
-    ++outcome.runs;
-  }
-  if (used != found.size()) fail_strangers(options, plan, found);
-  outcome.missing = missing.size();
-  if (!missing.empty() && !options.allow_missing) {
+  const std::vector<Placed> placed = read_results(options, plan, outcome);
+  outcome.runs = placed.size();
+  outcome.missing = plan.size() - placed.size();
+  if (outcome.missing > 0 && !options.allow_missing) {
     throw ConfigError(fmt::format("{}: {} of {} runs have no result yet: {} (run their shards again, or --allow-missing)", options.dir,
-                                  missing.size(), plan.size(), some(missing)));
+                                  outcome.missing, plan.size(), some(first_missing(plan, placed), outcome.missing)));
   }
-  report::write_output_file(outcome.csv, std::string_view(csv.data(), csv.size()), option);
+  // Streamed: the rows as they are, a buffer's worth at a time.
+  report::OutputFile csv(outcome.csv, option);
+  fmt::memory_buffer buffer;
+  append_header(buffer, plan);
+  for (const Placed& p : placed) {
+    buffer.append(p.row);
+    if (buffer.size() >= (1 << 20)) {
+      csv.write(std::string_view(buffer.data(), buffer.size()));
+      buffer.clear();
+    }
+  }
+  csv.write(std::string_view(buffer.data(), buffer.size()));
+  csv.commit();
   return outcome;
 }
 

@@ -1,5 +1,6 @@
 #include "sweep/plan.hpp"
 
+#include "scenario/json_text.hpp"
 #include "scenario/text_file.hpp"
 #include "scenario/toml_reader.hpp"
 #include "sweep/hash.hpp"
@@ -191,6 +192,34 @@ Run Plan::run(std::size_t index) const {
   return run;
 }
 
+std::optional<std::size_t> Plan::index_of(const std::vector<std::pair<std::string, std::string>>& overrides) const {
+  const auto value_of = [&](const std::string& key) -> std::string {
+    for (const auto& [k, v] : overrides)
+      if (k == key) return v;
+    return {};
+  };
+  std::size_t set = 0;
+  for (const auto& [key, value] : overrides) set += std::find(keys_.begin(), keys_.end(), key) != keys_.end() && !value.empty() ? 1 : 0;
+  if (set != overrides.size()) return std::nullopt;  // a key this plan does not sweep
+  if (!points_.empty()) {
+    for (std::size_t p = 0; p < points_.size(); ++p) {
+      bool same = true;
+      for (std::size_t k = 0; k < keys_.size() && same; ++k) same = points_[p][k].toml == value_of(keys_[k]);
+      if (same) return p;
+    }
+    return std::nullopt;
+  }
+  // The first axis varies slowest.
+  std::size_t index = 0;
+  for (std::size_t k = 0; k < keys_.size(); ++k) {
+    const std::string value = value_of(keys_[k]);
+    const auto at = std::find_if(axes_[k].begin(), axes_[k].end(), [&](const Override& o) { return o.toml == value; });
+    if (at == axes_[k].end()) return std::nullopt;
+    index = index * axes_[k].size() + static_cast<std::size_t>(at - axes_[k].begin());
+  }
+  return index;
+}
+
 Scenario Plan::load_base(const std::vector<std::pair<std::string, std::string>>& overrides, const ScenarioLimits& limits) const {
   if (!scenario_.empty()) return load_scenario(scenario_, overrides, profile_, limits);
   if (!workflow_text_.empty()) return parse_scenario(workflow_text_, file_, overrides, profile_, limits);
@@ -240,6 +269,7 @@ Plan Plan::from_json(const std::string& text, const std::string& origin) {
   Plan plan;
   try {
     const nlohmann::json doc = nlohmann::json::parse(text);
+    scenario::check_unique_keys(text, origin);
     plan.file_ = doc.at("sweep").get<std::string>();
     plan.scenario_ = doc.at("scenario").get<std::string>();
     plan.workflow_text_ = doc.at("workflow").get<std::string>();

@@ -24,6 +24,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -85,6 +86,10 @@ class Plan {
   const std::vector<std::string>& keys() const noexcept { return keys_; }
   std::size_t size() const noexcept { return size_; }
   Run run(std::size_t index) const;
+  /// The index of the run with these overrides (key, TOML value; a key a point leaves unset is
+  /// absent), if the plan has it: a result recorded under an earlier plan of a grown sweep is
+  /// found by its values. A value is looked for along its axis (or the points), not the grid.
+  std::optional<std::size_t> index_of(const std::vector<std::pair<std::string, std::string>>& overrides) const;
   /// The base scenario with the run's overrides, resolved and checked (ConfigError if not).
   Scenario scenario(const Run& run) const;
   /// What defines the sweep (base, with its files' hashes and fingerprint, and runs), as JSON:

@@ -10,6 +10,7 @@
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -100,6 +101,39 @@ values = [2, 1, 4]
   for (const std::string& id : before) CHECK(std::find(after.begin(), after.end(), id) != after.end());
   CHECK(before[0] == pagecache::sweep::run_id({{"pipelines.count", "1", "1"}, {"hosts.0.page_cache.dirty_ratio", "0.2", "0.2"}}));
   CHECK(before[0].size() == 16);
+}
+
+TEST_CASE("a run is found by its values in a grown grid or among points, and only there", "[sweep]") {
+  // The grown sweep of the test above: a result recorded under the first plan is placed by its values.
+  const Plan grown = plan_of("find_grid", kBase + R"(
+[[axes]]
+key = "hosts.0.page_cache.dirty_ratio"
+values = [0.1, 0.2, 0.4]
+[[axes]]
+key = "pipelines.count"
+values = [2, 1, 4]
+)");
+  for (std::size_t i = 0; i < grown.size(); ++i) {
+    std::vector<std::pair<std::string, std::string>> values;
+    for (const pagecache::sweep::Override& o : grown.run(i).overrides) values.emplace_back(o.key, o.toml);
+    CHECK(grown.index_of(values) == i);
+    std::reverse(values.begin(), values.end());  // as a result line lists them: by key, any order
+    CHECK(grown.index_of(values) == i);
+  }
+  CHECK(grown.index_of({{"pipelines.count", "1"}, {"hosts.0.page_cache.dirty_ratio", "0.2"}}) == 4);
+  CHECK_FALSE(grown.index_of({{"pipelines.count", "3"}, {"hosts.0.page_cache.dirty_ratio", "0.2"}}));  // not a value of its axis
+  CHECK_FALSE(grown.index_of({{"pipelines.count", "1"}}));                                             // a key missing
+  CHECK_FALSE(grown.index_of({{"pipelines.count", "1"}, {"hosts.0.page_cache.dirty_ratio", "0.2"}, {"title", "\"x\""}}));  // one too many
+  const Plan points = plan_of("find_points", kBase + R"(
+[[points]]
+"pipelines.count" = 2
+[[points]]
+"pipelines.count" = 4
+"hosts.0.memory" = "128 GB"
+)");
+  CHECK(points.index_of({{"pipelines.count", "2"}}) == 0);
+  CHECK(points.index_of({{"hosts.0.memory", "\"128 GB\""}, {"pipelines.count", "4"}}) == 1);
+  CHECK_FALSE(points.index_of({{"pipelines.count", "4"}}));  // the second point sets the memory too
 }
 
 TEST_CASE("ranges: integers, floats without residue, log ranges", "[sweep]") {

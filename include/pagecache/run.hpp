@@ -24,8 +24,10 @@ struct PhaseRow {
   std::uint32_t host = 0;  ///< the host the task ran on: its index in RunResult::hosts
   double start = 0.0;
   double end = 0.0;
-  std::int64_t bytes = 0;
-  std::int64_t cache_bytes = 0;
+  std::int64_t bytes = 0;        ///< what the task asked for: bytes = cache_bytes + disk_bytes
+  std::int64_t cache_bytes = 0;  ///< of those, found in the page cache from before (or written into it)
+  /// Of those, read from (or written through to) the device during the phase, readahead the
+  /// phase used included; what the device read beyond all it used is in neither.
   std::int64_t disk_bytes = 0;
 };
 

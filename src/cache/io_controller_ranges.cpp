@@ -88,7 +88,8 @@ Task<IoResult> IoController::read_ranges_of(FileId file, std::function<bool(Byte
   cache_->track_ranges(file);
   RangeReadahead readahead(*disk, advice);
   IoResult result{.start = start};
-  double pending = 0.0;  // request time not yet slept
+  std::int64_t fetched = 0;  // read by the device beyond the requests so far, not yet found by one
+  double pending = 0.0;      // request time not yet slept
   for (ByteRange r; next(r);) {
     check_within(info, r, "read");
     ++chunks_;
@@ -120,9 +121,18 @@ Task<IoResult> IoController::read_ranges_of(FileId file, std::function<bool(Byte
       co_await disk->read(disk_read, memory(node).fresh_copy_rate(cold_share, placed), disk_read);
     }
     if (copied > 0) co_await memory(node).read(copied, RemoteShare{.source = share(cache_->remote().reread - before.reread, copied)});
+    // The request's bytes, each once (timeline.csv adds them up): from the device as far as it
+    // read the request's pages; of the rest, found cached, what the device read earlier in this
+    // phase beyond earlier requests (a partial page's rest, a readahead window) is the device's
+    // too, taken in order; the others were in the cache before.
+    const std::int64_t from_request = std::min(r.length, missed);
+    fetched += disk_read - from_request;
+    const std::int64_t found = r.length - from_request;
+    const std::int64_t from_fetched = std::min(found, fetched);
+    fetched -= from_fetched;
     result.bytes += r.length;
-    result.cache_bytes += copied;
-    result.disk_bytes += disk_read;
+    result.cache_bytes += found - from_fetched;
+    result.disk_bytes += from_request + from_fetched;
   }
   if (pending > 0.0) co_await sim_->sleep(pending);
   cache_->touch_from(node);
@@ -158,9 +168,12 @@ Task<IoResult> IoController::write_ranges_of(FileId file, std::function<bool(Byt
     // if it is not cached: not modelled).
     const ByteRange pages = pages_of(r, info.size);
     const IoTally t = co_await write_chunk(file, pages.length, pages.offset, node);
+    // The request's bytes, each once: what of its pages went to the device (written through),
+    // the rest into the cache.
+    const std::int64_t to_disk = std::min(r.length, t.disk_bytes);
     result.bytes += r.length;
-    result.cache_bytes += t.cache_bytes;
-    result.disk_bytes += t.disk_bytes;
+    result.cache_bytes += r.length - to_disk;
+    result.disk_bytes += to_disk;
   }
   if (pending > 0.0) co_await sim_->sleep(pending);
   cache_->set_being_written(file, false);

@@ -22,10 +22,10 @@ constexpr double kDiskBw = 500e6;
 constexpr double kLatency = 100e-6;
 constexpr std::int64_t kMiB = 1 << 20;
 
-// A 1 GB host whose disk takes kLatency per request; file "hot" (8 MiB, cached at the start)
-// and "cold" (8 MiB) and "big" (64 MiB), then one task whose accesses are `accesses` (TOML of
-// [[apps.tasks.access]] tables).
-Scenario with_accesses(const std::string& profile, const std::string& accesses) {
+// A 1 GB host whose disk takes kLatency per request (and `disk_keys`); file "hot" (8 MiB,
+// cached at the start) and "cold" (8 MiB) and "big" (64 MiB), then one task whose accesses are
+// `accesses` (TOML of [[apps.tasks.access]] tables).
+Scenario with_accesses(const std::string& profile, const std::string& accesses, const std::string& disk_keys = "") {
   return parse_scenario(fmt::format(R"(profile = "{}"
 [[hosts]]
 name = "node"
@@ -37,6 +37,7 @@ name = "ssd"
 read_bw = "500 MB/s"
 write_bw = "400 MB/s"
 request_latency = "100 us"
+{}
 [[files]]
 name = "hot"
 size = "8 MiB"
@@ -53,7 +54,7 @@ name = "app"
 name = "t"
 {}
 )",
-                                    profile, accesses),
+                                    profile, disk_keys, accesses),
                         "<test>");
 }
 
@@ -172,8 +173,6 @@ TEST_CASE("a seed fixes a random access's requests: the same run twice gives the
 }
 
 }  // namespace
-}  // namespace pagecache
-
 namespace pagecache {
 namespace {
 
@@ -314,4 +313,53 @@ TEST_CASE("runtime stops an access's requests that long after it began, over its
 }
 
 }  // namespace
+}  // namespace pagecache
+
+TEST_CASE("each byte of a phase is counted once, from the cache or the device, whatever the device read beyond it", "[workload][access]") {
+  // A disk that reads ahead 128 KiB windows, read sequentially in 4 KiB requests; requests that
+  // do not start on a page, read and written; a page's part written.
+  const std::string accesses = R"([[apps.tasks.access]]
+file = "cold"
+request = "4 KiB"
+repeat = 2
+[[apps.tasks.access]]
+file = "big"
+pattern = "strided"
+offset = "100 kB"
+request = "50 kB"
+stride = "500 kB"
+[[apps.tasks.access]]
+file = "hot"
+mode = "write"
+pattern = "strided"
+request = "100 B"
+stride = "1 MiB"
+)";
+  for (const char* profile : {"linux", "paper"}) {
+    INFO(profile);
+    const RunResult r = run_scenario(with_accesses(profile, accesses, "read_ahead = \"128 KiB\""));
+    const std::vector<PhaseRow> e = epoch_rows(r);
+    REQUIRE(e.size() == 4);
+    for (const PhaseRow& row : e) {
+      INFO(r.task_name(row));
+      CHECK(row.cache_bytes + row.disk_bytes == row.bytes);
+    }
+    // The cold sequential read: every byte from the device, most of them read ahead of the
+    // request that found them; the second epoch finds them all in the cache.
+    CHECK(r.task_name(e[1]) == "t:cold[epoch 2]");
+    CHECK(e[0].bytes == 8 * kMiB);
+    CHECK(e[0].disk_bytes == 8 * kMiB);
+    CHECK(e[1].cache_bytes == 8 * kMiB);
+    // The strided reads: 134 requests of 50 kB, 13 or 14 pages each, all from the device (the
+    // rest of their pages is read, and used by none).
+    CHECK(e[2].bytes == 134 * 50'000);
+    CHECK(e[2].disk_bytes == e[2].bytes);
+    // Eight writes of 100 bytes into the cache, not eight pages.
+    CHECK(e[3].bytes == 800);
+    CHECK(e[3].cache_bytes == 800);
+    // summary.json's figures are the rows'.
+    CHECK(r.summary.cache_read_bytes + r.summary.disk_read_bytes == r.summary.read.bytes);
+  }
+}
+
 }  // namespace pagecache

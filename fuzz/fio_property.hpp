@@ -23,7 +23,7 @@ namespace pagecache::fuzz {
 inline scenario::FioLimits fio_fuzz_limits() {
   scenario::FioLimits limits;
   limits.max_jobs = 10'000;
-  limits.max_files_per_job = 100'000;
+  limits.max_files = 100'000;
   limits.max_entries = 1'000'000;
   limits.max_includes = 50;
   return limits;

@@ -1,8 +1,8 @@
 // pcsim: the command line. Thin: parse the arguments, load the scenario, run it, report.
 //
-// Exit codes: 0 success; 1 the simulation could not proceed (SimulationError) or an output
-// could not be written; 2 bad input (scenario, --set, options); 3 an internal invariant broke
-// or memory ran out.
+// Exit codes: 0 success; 1 the simulation could not proceed (SimulationError); 2 bad input
+// (scenario, --set, options, a path given that the file system refuses, an output the option
+// names that cannot be written); 3 an internal invariant broke or memory ran out.
 
 #include <pagecache/error.hpp>
 #include <pagecache/version.hpp>
@@ -10,6 +10,7 @@
 #include "report/interrupt_cleanup.hpp"
 #include "report/output_file.hpp"
 #include "scenario/closest.hpp"
+#include "text/path_problem.hpp"
 #include "validate/switches.hpp"
 #include "validate/validation.hpp"
 #include "calibrate_command.hpp"
@@ -239,10 +240,16 @@ int dispatch(CommandLine& c) {
 
 // The parsed command's exit code: its own, or the documented one of the error that stopped it.
 int run_parsed_command(CommandLine& c) {
+  // What helps when memory runs out depends on the command: a run's outputs, or nothing.
+  const bool simulating = c.run->parsed();
   try {
     return dispatch(c);
   } catch (const pagecache::ConfigError& e) {
     fmt::print(stderr, "pcsim: {}\n", e.what());
+    return 2;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // A path given that the file system refused, where no reader named its option: the path.
+    fmt::print(stderr, "pcsim: {}\n", pagecache::text::path_message({}, e.path1().string(), e.code().message()));
     return 2;
   } catch (const pagecache::SimulationError& e) {
     fmt::print(stderr, "pcsim: simulation failed: {}\n", e.what());
@@ -251,7 +258,7 @@ int run_parsed_command(CommandLine& c) {
     fmt::print(stderr, "pcsim: internal error (please report): {}\n", e.what());
     return 3;
   } catch (const std::bad_alloc&) {
-    fmt::print(stderr, "pcsim: out of memory (a smaller scenario, or --no-cache-contents, needs less)\n");
+    fmt::print(stderr, "pcsim: out of memory{}\n", simulating ? " (a smaller scenario, or --no-cache-contents, needs less)" : "");
     return 3;
   } catch (const std::length_error& e) {
     fmt::print(stderr, "pcsim: out of memory ({})\n", e.what());

@@ -32,5 +32,9 @@ double parse_duration(std::string_view text);
 std::string format_size(std::int64_t bytes);
 std::string format_bandwidth(double bytes_per_second);
 std::string format_duration(double seconds);
+/// A moment of simulated time in a message ("t = 12.500000 s"): six decimals up to
+/// kMaxSeconds, beyond it (a run that went astray) in scientific notation, never hundreds of
+/// digits.
+std::string format_instant(double seconds);
 
 }  // namespace pagecache::units

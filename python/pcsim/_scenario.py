@@ -41,7 +41,8 @@ def _overrides(set: Optional[Mapping[str, Any]]) -> list:
     return [(str(key), toml_value(value)) for key, value in set.items()]
 
 
-def _looks_like_toml(text: str) -> bool:
+def looks_like_toml(text: str) -> bool:
+    """What pcsim.run takes as TOML text rather than a path: a line break, an '=' or a leading '['."""
     return "\n" in text or "=" in text or text.lstrip().startswith("[")
 
 
@@ -67,7 +68,7 @@ def with_request(scenario: ScenarioLike, use: Callable[["_core.LoadRequest"], T]
         return use(request)
     if isinstance(scenario, Mapping):
         return _with_instance(scenario, request, use)
-    if isinstance(scenario, os.PathLike) or (isinstance(scenario, str) and not _looks_like_toml(scenario)):
+    if isinstance(scenario, os.PathLike) or (isinstance(scenario, str) and not looks_like_toml(scenario)):
         path = os.fspath(scenario)
         request.kind = "workflow" if path.endswith(".json") else "file"
         request.source = path

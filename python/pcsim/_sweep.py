@@ -13,6 +13,7 @@ from typing import Any, Iterable, Mapping, Optional, Sequence, Tuple, Union
 import pandas as pd
 
 from . import _core
+from ._scenario import looks_like_toml
 from ._errors import InputError
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -106,8 +107,9 @@ def sweep(base: Union[None, PathLike, Mapping[str, Any]] = None, axes: Optional[
     status, exit_code, the figures, error, wall_s, sim_wall_s), the same values but for the
     two wall times. Nothing is written.
 
-    base: the scenario (a TOML path; a WfFormat/WRENCH instance as a .json path or a dict, with
-    `platform`), or None for the embedded default. axes: {key: values} (or (key, values)
+    base: the scenario (a TOML path, not TOML text: each run reads the file again; a
+    WfFormat/WRENCH instance as a .json path or a dict, with `platform`), or None for the
+    embedded default. axes: {key: values} (or (key, values)
     pairs), swept as a grid, the first axis slowest; values a list, or a range
     {"from": 1, "to": 32, "step": 1} (or "factor" for a log range). points: instead of axes,
     a list of runs, each {key: value}. With neither, `base` is a sweep file, read as `pcsim
@@ -124,6 +126,10 @@ def sweep(base: Union[None, PathLike, Mapping[str, Any]] = None, axes: Optional[
         return _with_instance(base, axes, points, profile, platform, files_host, hosts, int(jobs), force)
     if base is not None and not isinstance(base, (str, os.PathLike)):
         raise InputError(f"base: a path or a WfCommons instance (dict), or None, not {type(base).__name__}")
+    if isinstance(base, str) and looks_like_toml(base) and not os.path.exists(base):
+        # Its runs are re-read from the file by each shard and named by its path in results.
+        raise InputError("base: this is TOML text, not a path: pcsim.sweep takes a scenario file's path (pcsim.run takes text); "
+                         "write the text to a file and pass its path")
     path = os.fspath(base) if base is not None else None
     if axes is None and points is None:
         if path is None:

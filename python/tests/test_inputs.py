@@ -89,3 +89,13 @@ def test_ctrl_c_stops_a_run(monkeypatch):
         timer.cancel()
     # Within seconds of the signal, though a sanitized debug build may still be loading then.
     assert sent and time.monotonic() - sent[0] < 5.0
+
+
+def test_a_path_holding_a_nul_is_said_to_hold_one():
+    # A C string ends at the NUL: the file named would be another; the message says why.
+    for path in ("\0", "a\0b", "scenarios/paper/exp2.toml\0.json"):
+        with pytest.raises(pcsim.InputError, match="holds a NUL character") as e:
+            pcsim.run(path)
+        assert str(e.value).strip() != "" and "\\u0000" in str(e.value)
+    with pytest.raises(pcsim.InputError, match="--platform .*holds a NUL character"):
+        pcsim.run(INSTANCES[0], platform="platforms/wfcommons-chameleon.xml\0")

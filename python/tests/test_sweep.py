@@ -11,7 +11,7 @@ import pandas as pd
 import pytest
 
 import pcsim
-from conftest import many_pipelines, pcsim_cli
+from conftest import many_pipelines, SOURCE, pcsim_cli
 
 WALL = ["wall_s", "sim_wall_s"]  # the only columns two sweeps of the same runs may differ in
 COUNTS = [2500, 2501, 2502, 2503, 2504, 2505]
@@ -147,3 +147,17 @@ def test_errors_name_the_axis_before_anything_runs(tmp_path):
         pcsim.sweep(bad)
     assert e.value.file == str(bad) and e.value.line == 5
     assert str(e.value) in pcsim_cli("sweep", "run", bad, "--out", tmp_path / "o", check=False).stderr
+
+
+def test_a_base_of_toml_text_is_refused_as_not_a_path(tmp_path):
+    text = (SOURCE / "scenarios/paper/exp2.toml").read_text()
+    with pytest.raises(pcsim.InputError) as e:
+        pcsim.sweep(text, {"pipelines.count": [1, 2]})
+    assert str(e.value).startswith("base: this is TOML text, not a path")
+    assert text not in str(e.value)  # not printed back as a path
+    # A path that holds '=' is still a path.
+    odd = tmp_path / "count=2"
+    odd.mkdir()
+    scenario = odd / "s.toml"
+    scenario.write_text(text.replace('"../../platforms/', '"%s/platforms/' % SOURCE))
+    assert len(pcsim.sweep(str(scenario), points=[{"pipelines.count": 1}])) == 1

@@ -5,6 +5,8 @@
 #include "engine/check.hpp"
 #include "storage/readahead.hpp"
 
+#include <pagecache/units.hpp>
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -70,7 +72,7 @@ Task<void> IoController::wait_for_progress() {
 
 void IoController::check_writer_can_wait(FileId file, std::int64_t bytes) const {
   if (nothing_can_be_freed(*cache_)) {
-    throw SimulationError(fmt::format("t = {:.6f} s: writing '{}': no memory can be freed for {} bytes", sim_->now(), (*files_)[file].name, bytes));
+    throw SimulationError(fmt::format("t = {} s: writing '{}': no memory can be freed for {} bytes", units::format_instant(sim_->now()), (*files_)[file].name, bytes));
   }
 }
 
@@ -81,10 +83,10 @@ Task<void> IoController::make_room(std::int64_t required, FileId spared, FileId 
     if (evict_to_fit(*cache_, required, spared)) co_return;
     if (nothing_can_be_freed(*cache_)) {
       if (subject == kNoFile) {
-        throw SimulationError(fmt::format("t = {:.6f} s: {} needs {} bytes of memory, only {} can be freed", sim_->now(), verb, required,
+        throw SimulationError(fmt::format("t = {} s: {} needs {} bytes of memory, only {} can be freed", units::format_instant(sim_->now()), verb, required,
                                           cache_->free()));
       }
-      throw SimulationError(fmt::format("t = {:.6f} s: {} '{}' needs {} bytes of memory, only {} can be freed", sim_->now(), verb,
+      throw SimulationError(fmt::format("t = {} s: {} '{}' needs {} bytes of memory, only {} can be freed", units::format_instant(sim_->now()), verb,
                                         (*files_)[subject].name, required, cache_->free()));
     }
     co_await wait_for_progress();
@@ -131,8 +133,8 @@ Task<void> IoController::make_group_room(GroupId group, std::int64_t bytes, File
       continue;
     }
     throw SimulationError(fmt::format(
-        "t = {:.6f} s: {} {}: memory group {} is at its limit (memory.max {} bytes, {} in use) and cannot free {} bytes (out of memory in the group)",
-        sim_->now(), verb, subject == kNoFile ? std::string() : "'" + (*files_)[subject].name + "'", group, cache_->group_max(group),
+        "t = {} s: {} {}: memory group {} is at its limit (memory.max {} bytes, {} in use) and cannot free {} bytes (out of memory in the group)",
+        units::format_instant(sim_->now()), verb, subject == kNoFile ? std::string() : "'" + (*files_)[subject].name + "'", group, cache_->group_max(group),
         cache_->group_usage(group), over));
   }
 }

@@ -196,4 +196,8 @@ std::string format_bandwidth(double bytes_per_second) {
 
 std::string format_duration(double seconds) { return fmt::format("{} s", seconds); }
 
+std::string format_instant(double seconds) {
+  return std::abs(seconds) <= kMaxSeconds ? fmt::format("{:.6f}", seconds) : fmt::format("{:.6g}", seconds);
+}
+
 }  // namespace pagecache::units

@@ -2,6 +2,7 @@
 
 #include "report/interrupt_cleanup.hpp"
 #include "report/unique_name.hpp"
+#include "text/path_problem.hpp"
 
 #include <pagecache/error.hpp>
 
@@ -118,8 +119,10 @@ Destination destination(const std::string& path, std::string_view option, bool p
   return writable_folder({Destination::Way::Replace, -1, real.get()}, path, option, probe);
 }
 
-[[noreturn]] void cannot_write(const std::string& path, int error) {
-  throw Error(fmt::format("cannot write {}: {}", path, std::generic_category().message(error)));
+// The file could not take the output (a full disk, /dev/full, a quota): the option's problem,
+// named as such (exit 2), not the simulation's.
+[[noreturn]] void cannot_write(const std::string& path, std::string_view option, int error) {
+  throw ConfigError(text::path_message(option, path, "cannot write", std::error_code(error, std::generic_category())));
 }
 
 }  // namespace
@@ -137,7 +140,7 @@ void check_not_an_input(const std::string& path, std::string_view option, const 
   }
 }
 
-OutputFile::OutputFile(const std::string& path, std::string_view option) : path_(path) {
+OutputFile::OutputFile(const std::string& path, std::string_view option) : path_(path), option_(option) {
   const Destination d = destination(path, option, false);
   switch (d.way) {
     case Destination::Way::OwnDescriptor:
@@ -146,7 +149,7 @@ OutputFile::OutputFile(const std::string& path, std::string_view option) : path_
       return;
     case Destination::Way::Through:
       fd_ = ::open(path.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC);
-      if (fd_ < 0) cannot_write(path, errno);
+      if (fd_ < 0) cannot_write(path, option, errno);
       return;
     case Destination::Way::Replace:
       break;
@@ -159,7 +162,7 @@ OutputFile::OutputFile(const std::string& path, std::string_view option) : path_
   temp_ = create_unique(folder, ".pcsim.tmp", [this](const fs::path& p) {
             fd_ = ::open(p.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
             if (fd_ < 0 && errno == EEXIST) return false;
-            if (fd_ < 0) cannot_write(path_, errno);
+            if (fd_ < 0) cannot_write(path_, option_, errno);
             return true;
           }).string();
   cleanup_ = std::make_unique<RemovedOnInterrupt>(temp_, RemovedOnInterrupt::Kind::File);
@@ -176,7 +179,7 @@ void OutputFile::write(std::string_view bytes) {
   while (!bytes.empty()) {
     const ssize_t n = ::write(fd_, bytes.data(), bytes.size());
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) cannot_write(path_, n < 0 ? errno : EIO);
+    if (n <= 0) cannot_write(path_, option_, n < 0 ? errno : EIO);
     bytes.remove_prefix(static_cast<std::size_t>(n));
   }
 }
@@ -185,15 +188,15 @@ void OutputFile::commit() {
   if (committed_) return;
   if (own_fd_) {
     const int fd = std::exchange(fd_, -1);
-    if (::close(fd) != 0) cannot_write(path_, errno);
+    if (::close(fd) != 0) cannot_write(path_, option_, errno);
   }
   if (!temp_.empty()) {
     // Checked again: the target may have become a folder (or a link) while pcsim worked.
     struct stat st{};
     if (::lstat(target_.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
-      refuse(path_, {}, S_ISLNK(st.st_mode) ? "became a link while pcsim wrote it; left as it is" : kind_of(st.st_mode));
+      refuse(path_, option_, S_ISLNK(st.st_mode) ? "became a link while pcsim wrote it; left as it is" : kind_of(st.st_mode));
     }
-    if (::rename(temp_.c_str(), target_.c_str()) != 0) cannot_write(path_, errno);
+    if (::rename(temp_.c_str(), target_.c_str()) != 0) cannot_write(path_, option_, errno);
     cleanup_.reset();
   }
   committed_ = true;

@@ -41,13 +41,15 @@ class OutputFile {
   OutputFile(const OutputFile&) = delete;
   OutputFile& operator=(const OutputFile&) = delete;
 
-  /// Throws Error if the bytes cannot be written.
+  /// Throws ConfigError, naming the option, if the bytes cannot be written (a full disk).
   void write(std::string_view bytes);
-  /// Puts the file in place (renames the temporary file over the target). Throws Error.
+  /// Puts the file in place (renames the temporary file over the target). Throws ConfigError
+  /// naming the option if it cannot.
   void commit();
 
  private:
   std::string path_;     // as the user wrote it, for messages
+  std::string option_;   // the option it came from, for messages ("" for none)
   std::string target_;   // the regular file to replace (a link's target), or empty: written through
   std::string temp_;     // the temporary file beside target_, while uncommitted
   int fd_ = -1;

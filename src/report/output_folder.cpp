@@ -35,8 +35,9 @@ bool changed_meanwhile(int error) {
   return error == ENOENT || error == EEXIST || error == ENOTEMPTY || error == ENOTDIR || error == EISDIR;
 }
 
-[[noreturn]] void fail(const std::string& what, int error) {
-  throw Error(fmt::format("{}: {}", what, std::generic_category().message(error)));
+// The folder --out names could not be made or put in place: the option's problem (exit 2).
+[[noreturn]] void fail(const std::string& dir, const std::string& what, int error) {
+  throw ConfigError(fmt::format("--out {}: {}: {}", dir, what, std::generic_category().message(error)));
 }
 
 // Staging folders are "<stem>-<pid>-<8 hex digits>"; earlier versions named them
@@ -129,12 +130,12 @@ OutputFolder::OutputFolder(const std::string& dir) : dir_(dir), target_(output_f
     } else if (errno != EEXIST) {
       const int error = errno;
       remove_made_folders();
-      fail(fmt::format("cannot make the folder {}", it->string()), error);
+      fail(dir_, fmt::format("cannot make the folder {}", it->string()), error);
     }
   }
   if (::stat(parent.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) {
     remove_made_folders();
-    throw Error(fmt::format("cannot make the folder {}: it is not a folder", parent.string()));
+    throw ConfigError(fmt::format("--out {}: cannot make the folder {}: it is not a folder", dir_, parent.string()));
   }
   remove_abandoned_staging(parent);
   // Made and registered with signals held, so that no interruption falls between the two.
@@ -155,7 +156,7 @@ OutputFolder::OutputFolder(const std::string& dir) : dir_(dir), target_(output_f
     ::unlink((staging_ / kMarkerName).c_str());
     ::rmdir(staging_.c_str());
     remove_made_folders();
-    throw Error(fmt::format("cannot write {}", (staging_ / kMarkerName).string()));
+    throw ConfigError(fmt::format("--out {}: cannot write {}", dir_, (staging_ / kMarkerName).string()));
   }
 }
 
@@ -190,7 +191,7 @@ std::vector<std::string> OutputFolder::commit(Swap swap) {
         done();
         return warnings;
       }
-      if (!changed_meanwhile(errno)) fail(fmt::format("cannot rename {} to {}", staging_.string(), target_.string()), errno);
+      if (!changed_meanwhile(errno)) fail(dir_, fmt::format("cannot rename {} to {}", staging_.string(), target_.string()), errno);
       continue;
     }
     if (const auto why = refusal(target_)) refuse(dir_, target_, *why);
@@ -202,7 +203,7 @@ std::vector<std::string> OutputFolder::commit(Swap swap) {
         return warnings;
       }
       if (changed_meanwhile(errno)) continue;
-      if (errno != EINVAL && errno != ENOSYS) fail(fmt::format("cannot replace {}", target_.string()), errno);
+      if (errno != EINVAL && errno != ENOSYS) fail(dir_, fmt::format("cannot replace {}", target_.string()), errno);
       swap = Swap::AsideThenIn;
     }
     const fs::path aside = create_unique_folder(target_.parent_path(), ".pcsim.old");
@@ -210,7 +211,7 @@ std::vector<std::string> OutputFolder::commit(Swap swap) {
       const int error = errno;
       ::rmdir(aside.c_str());
       if (changed_meanwhile(error)) continue;
-      fail(fmt::format("cannot move {} aside", target_.string()), error);
+      fail(dir_, fmt::format("cannot move {} aside", target_.string()), error);
     }
     const bool in = ::rename(staging_.c_str(), target_.c_str()) == 0;
     const int error = errno;
@@ -218,7 +219,7 @@ std::vector<std::string> OutputFolder::commit(Swap swap) {
     retire(aside);
     if (in) return warnings;
     // Another run's folder came in between: go round and replace that one.
-    if (!changed_meanwhile(error)) fail(fmt::format("cannot rename {} to {}", staging_.string(), target_.string()), error);
+    if (!changed_meanwhile(error)) fail(dir_, fmt::format("cannot rename {} to {}", staging_.string(), target_.string()), error);
   }
   throw Error(fmt::format("gave up replacing {} after {} attempts: other processes keep replacing it", target_.string(), kAttempts));
 }

@@ -1,6 +1,7 @@
 #include "report/output_rules.hpp"
 
 #include "report/unique_name.hpp"
+#include "text/path_problem.hpp"
 
 #include <pagecache/error.hpp>
 
@@ -8,6 +9,10 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <fcntl.h>
+#include <linux/fs.h>
+#include <sys/ioctl.h>
+#include <unistd.h>
 #include <sys/stat.h>
 #include <system_error>
 #include <vector>
@@ -52,11 +57,18 @@ bool is_output_name(const std::string& name) {
 
 fs::path output_folder_path(const std::string& dir) {
   if (dir.empty()) throw ConfigError("--out is empty: name the output folder (the default is pcsim-out)");
-  fs::path path = fs::absolute(dir);
+  if (const std::string nul = text::nul_problem(dir); !nul.empty()) throw ConfigError(text::path_message("--out", dir, nul));
+  // A folder above that cannot be resolved (a symbolic link loop, a name too long, no
+  // permission) is the option's problem, named as such.
+  std::error_code ec;
+  fs::path path = fs::absolute(dir, ec);
+  if (ec) throw ConfigError(text::path_message("--out", dir, "cannot be resolved", ec));
   while (!path.has_filename() && path != path.root_path()) path = path.parent_path();  // "out/" names out
   const fs::path name = path.filename();
-  if (name.empty() || name == "." || name == "..") return fs::weakly_canonical(path);
-  return fs::weakly_canonical(path.parent_path()) / name;
+  const bool whole = name.empty() || name == "." || name == "..";
+  fs::path resolved = fs::weakly_canonical(whole ? path : path.parent_path(), ec);
+  if (ec) throw ConfigError(text::path_message("--out", dir, "cannot be resolved", ec));
+  return whole ? resolved : resolved / name;
 }
 
 std::optional<std::string> refusal(const fs::path& path, const std::string& scenario_file) {
@@ -98,9 +110,30 @@ void refuse(const std::string& dir, const fs::path& path, const std::string& rea
                                 dir, path.string(), reason, kMarkerName));
 }
 
+std::optional<std::string> cannot_replace(const fs::path& path) {
+  const auto flagged = [](const fs::path& p, int open_flags) -> bool {
+    const int fd = ::open(p.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC | open_flags);
+    if (fd < 0) return false;
+    int flags = 0;
+    const bool got = ::ioctl(fd, FS_IOC_GETFLAGS, &flags) == 0;  // ENOTTY where a file system has no such flags
+    ::close(fd);
+    return got && (flags & (FS_IMMUTABLE_FL | FS_APPEND_FL)) != 0;
+  };
+  struct stat st{};
+  if (::lstat(path.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) return std::nullopt;
+  if (flagged(path, O_DIRECTORY)) return std::string("it is immutable or append-only (chattr +i or +a; lsattr -d shows it)");
+  for (const char* name : kOutputNames) {
+    if (flagged(path / name, 0)) return fmt::format("its {} is immutable or append-only (chattr +i or +a; lsattr shows it)", name);
+  }
+  return std::nullopt;
+}
+
 void check_output_folder(const std::string& dir, const std::string& scenario_file) {
   const fs::path path = output_folder_path(dir);
   if (const auto why = refusal(path, scenario_file)) refuse(dir, path, *why);
+  if (const auto why = cannot_replace(path)) {
+    throw ConfigError(fmt::format("--out {}: pcsim cannot replace {}: {}; nothing was removed", dir, path.string(), *why));
+  }
   // The staging folder goes beside the target, in folders made as needed: the nearest folder
   // that exists must take a new one.
   fs::path existing = path.parent_path();

@@ -31,6 +31,10 @@ std::filesystem::path output_folder_path(const std::string& dir);
 /// the entry named is the first in byte order.
 std::optional<std::string> refusal(const std::filesystem::path& path, const std::string& scenario_file = {});
 
+/// Why pcsim could not replace the folder `path` that refusal() allows, though it may: it, or
+/// one of pcsim's files in it, is immutable or append-only. Nothing if it can, or is absent.
+std::optional<std::string> cannot_replace(const std::filesystem::path& path);
+
 /// Throws ConfigError for `--out dir`, naming the folder and the reason.
 [[noreturn]] void refuse(const std::string& dir, const std::filesystem::path& path, const std::string& reason);
 

@@ -19,7 +19,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <initializer_list>
 #include <iterator>
 #include <map>
@@ -51,10 +50,9 @@ std::string readable(std::int64_t bytes) {
 }
 
 void write_file(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  out.close();
-  if (!out) throw Error(fmt::format("cannot write {}", path.string()));
+  report::OutputFile out(path.string());
+  out.write(text);
+  out.commit();
 }
 
 // MB/s with one decimal, or three significant digits below 1 MB/s: a slow phase (100 MB over
@@ -204,16 +202,21 @@ std::vector<std::string> report::write_outputs(const std::string& dir, const Sce
   }
   OutputFolder folder(dir);
   const fs::path& staging = folder.staging();
-  write_timeline_csv(staging / "timeline.csv", result);
-  write_memory_csv(staging / "memory.csv", result);
-  if (result.cache_not_recorded.empty()) write_cache_csv(staging / "cache.csv", result);
-  write_file(staging / "summary.json", summary_json(scenario, result));
-  write_file(staging / "timing.json", timing_json(result));
-  if (!scenario.fio.jobs.empty()) write_file(staging / "fio.json", fio_json(scenario, result));
-  if (options.report) {
-    write_file(staging / "report.html", report::report_html(scenario, result, options.activity != nullptr ? *options.activity : ReportActivity{}));
+  try {
+    write_timeline_csv(staging / "timeline.csv", result);
+    write_memory_csv(staging / "memory.csv", result);
+    if (result.cache_not_recorded.empty()) write_cache_csv(staging / "cache.csv", result);
+    write_file(staging / "summary.json", summary_json(scenario, result));
+    write_file(staging / "timing.json", timing_json(result));
+    if (!scenario.fio.jobs.empty()) write_file(staging / "fio.json", fio_json(scenario, result));
+    if (options.report) {
+      write_file(staging / "report.html", report::report_html(scenario, result, options.activity != nullptr ? *options.activity : ReportActivity{}));
+    }
+    for (const NamedOutput& f : options.more) write_file(staging / f.name, f.text);
+  } catch (const ConfigError& e) {
+    // A file of the staging folder could not be written (a full disk): --out's folder.
+    throw ConfigError(fmt::format("--out {}: {}", dir, e.what()));
   }
-  for (const NamedOutput& f : options.more) write_file(staging / f.name, f.text);
   return folder.commit();
 }
 

@@ -89,10 +89,15 @@ struct FioJobFile {
 };
 
 /// What a job file may make at most; past a limit the reader refuses it (hostile input ends
-/// quickly and in bounded memory).
+/// quickly and in bounded memory). A scenario's [fio] reads with the run's own limits on tasks
+/// and files (loader_fio.cpp), checked on the declared counts before a name is made.
 struct FioLimits {
   std::int64_t max_jobs = 100'000;           ///< jobs in all, clones included
-  std::int64_t max_files_per_job = 10'000'000;  ///< nrfiles or filename= entries of one job
+  /// Files the jobs name in all: nrfiles x numjobs generated, filename= entries once per
+  /// section (ScenarioLimits::max_files when read for a run).
+  std::int64_t max_files = 2'000'000;
+  /// Said after a limit's figure: how to lift it (" without --force"), or nothing.
+  std::string hint;
   /// File names, `after` entries and own options over all jobs (clones copy theirs).
   std::int64_t max_entries = 20'000'000;
   int max_include_depth = 16;
@@ -108,6 +113,6 @@ FioJobFile read_fio_job_file(std::string_view text, const std::string& path, con
                              const FioLimits& limits = {});
 
 /// Reads the file at `path` (read_text_file's limits) with the process environment.
-FioJobFile read_fio_job_file(const std::string& path);
+FioJobFile read_fio_job_file(const std::string& path, const FioLimits& limits = {});
 
 }  // namespace pagecache::scenario

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
 #include <string_view>
 
 namespace pagecache::scenario::fio {
@@ -23,8 +24,6 @@ struct Supported {
 
 constexpr std::int64_t kMaxBlock = std::int64_t{2} << 30;
 constexpr std::int64_t kMaxUint32 = 0xffffffffLL;
-
-std::string label(const RawOption& o) { return fmt::format("option '{}={}'", o.key, o.value); }
 
 std::string required_text(const RawOption& o) {
   if (o.bare || o.value.empty()) fail(o, fmt::format("option '{}' needs a value", o.key));
@@ -157,11 +156,17 @@ void set_filename(Draft& d, const RawOption& o, Warnings&) {
   for (const std::string& name : names) {
     if (name == "-") fail(o, fmt::format("{}: standard input or output is not modelled by pcsim", label(o)));
     check_path(o, prefix + name);
-    if (static_cast<std::int64_t>(d.explicit_files.size()) >= d.limits->max_files_per_job) {
-      fail(o, fmt::format("{}: more than {} files in a job", label(o), d.limits->max_files_per_job));
+    if (static_cast<std::int64_t>(d.explicit_files.size()) >= d.limits->max_files) {
+      fail(o, fmt::format("{}: more than the {} files a run may have{}", label(o), d.limits->max_files, d.limits->hint));
     }
     d.explicit_files.push_back(prefix + name);
   }
+}
+
+// Checked against the run's limit on files before any name is made.
+void set_nrfiles(Draft& d, const RawOption& o, Warnings&) {
+  d.nrfiles = parse_count(o, d.kb_base, 1, std::numeric_limits<std::int64_t>::max());
+  if (d.nrfiles > d.limits->max_files) fail(o, fmt::format("{}: more than the {} files a run may have{}", label(o), d.limits->max_files, d.limits->hint));
 }
 
 void set_filename_format(Draft& d, const RawOption& o, Warnings&) {
@@ -186,7 +191,8 @@ void set_ioengine(Draft& d, const RawOption& o, Warnings&) {
       return;
     }
   }
-  fail(o, fmt::format("ioengine={} is not modelled: pcsim models one synchronous request at a time (sync, psync, vsync, pvsync, pvsync2)", engine));
+  fail(o, fmt::format("{} is not modelled: pcsim models one synchronous request at a time (sync, psync, vsync, pvsync, pvsync2)",
+                      o.included ? "this ioengine" : "ioengine=" + engine));
 }
 
 void set_fadvise(Draft& d, const RawOption& o, Warnings&) {
@@ -231,7 +237,7 @@ const std::vector<Supported>& supported() {
          if (o.value.find_first_of(":-,") != std::string::npos) fail(o, fmt::format("{}: a range of file sizes is not modelled yet; give one size", label(o)));
          d.job.filesize = single_size(d, o);
        }},
-      {"nrfiles", "nr_files", [](Draft& d, const RawOption& o, Warnings&) { d.nrfiles = parse_count(o, d.kb_base, 1, d.limits->max_files_per_job); }},
+      {"nrfiles", "nr_files", set_nrfiles},
       {"file_service_type", "", set_file_service},
       {"filename", "", set_filename},
       {"filename_format", "", set_filename_format},
@@ -304,6 +310,7 @@ const char* refusal_reason(const std::string& key) {
 
 // Unknown names: fio's own message would be "Bad option"; pcsim names the closest it knows.
 [[noreturn]] void refuse_unknown(const RawOption& o) {
+  if (!option_shaped(o.key)) fail(o, "not an option line of a fio job file (an option's name is letters, digits and '_')");
   if (fio_option_names().count(o.key) != 0) {
     fail(o, fmt::format("option '{}' is not modelled by pcsim{}", o.key, refusal_reason(o.key)));
   }

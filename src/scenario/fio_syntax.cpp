@@ -66,7 +66,7 @@ struct Reader {
   void read(std::string_view text, const std::string& file, int depth);
   void line(std::string_view raw, const std::string& file, int number, int depth);
   void include(const std::string& name, const std::string& file, int number, int depth);
-  void option(const std::string& text, const std::string& file, int number);
+  void option(const std::string& text, const std::string& file, int number, int depth);
 };
 
 // A line as fio keeps it: leading blanks dropped, cut at the first ';' or '#', trailing blanks
@@ -119,7 +119,7 @@ void Reader::line(std::string_view raw, const std::string& file, int number, int
     include(text.substr(8), file, number, depth);
     return;
   }
-  option(substitute(text, env, file, number), file, number);
+  option(substitute(text, env, file, number), file, number, depth);
 }
 
 void Reader::include(const std::string& name, const std::string& file, int number, int depth) {
@@ -145,12 +145,21 @@ void Reader::include(const std::string& name, const std::string& file, int numbe
   open_files.pop_back();
 }
 
-void Reader::option(const std::string& text, const std::string& file, int number) {
+void Reader::option(const std::string& text, const std::string& file, int number, int depth) {
   const std::size_t equals = text.find('=');
-  RawOption option{.key = text.substr(0, equals), .value = {}, .bare = equals == std::string::npos, .file = file, .line = number};
+  RawOption option{.key = text.substr(0, equals), .value = {}, .bare = equals == std::string::npos, .file = file, .line = number, .included = depth > 0};
   if (!option.bare) option.value = text.substr(equals + 1);
-  if (sections.empty()) fail_at(file, number, option.key, fmt::format("option '{}' outside a job section", text));
-  if (option.key.empty()) fail_at(file, number, {}, fmt::format("'{}' has no option name before '='", text));
+  // Messages quote a line only as far as it is an option's name (quoted() below): a job file's
+  // line may be anyone's text.
+  std::string trimmed = option.key;
+  while (!trimmed.empty() && is_blank(trimmed.back())) trimmed.pop_back();
+  if (!option_shaped(trimmed)) {
+    fail_at(file, number, {},
+            sections.empty() ? "neither a [section] header nor an option line of a fio job file"
+            : option.key.empty() ? "no option name before '='"
+                                 : "not an option line of a fio job file (an option's name is letters, digits and '_')");
+  }
+  if (sections.empty()) fail_at(file, number, option.key, fmt::format("option '{}' outside a job section", trimmed));
   // Deliberate difference: fio trims the key but keeps the value's leading blanks, so 'bs = 4k'
   // is 4 bytes and 'rw = read' an error; pcsim refuses both.
   if (!option.bare && (is_blank(option.key.back()) || (!option.value.empty() && is_blank(option.value.front())))) {
@@ -158,6 +167,7 @@ void Reader::option(const std::string& text, const std::string& file, int number
     while (!key.empty() && is_blank(key.back())) key.pop_back();
     const std::size_t first = option.value.find_first_not_of(" \t\v\f\r");
     const std::string value = first == std::string::npos ? std::string() : option.value.substr(first);
+    if (option.included) fail_at(file, number, key, fmt::format("write option '{}' without spaces around '=' (fio reads the spaces as part of the value)", key));
     fail_at(file, number, key, fmt::format("write '{}={}' without spaces around '=' (fio reads the spaces as part of the value)", key, value));
   }
   sections.back().options.push_back(std::move(option));
@@ -166,6 +176,10 @@ void Reader::option(const std::string& text, const std::string& file, int number
 }  // namespace
 
 std::string where(const std::string& file, int line) { return fmt::format("{}:{}: ", file, line); }
+
+bool option_shaped(std::string_view key) {
+  return !key.empty() && std::all_of(key.begin(), key.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_'; });
+}
 
 void fail(const RawOption& option, const std::string& message) { fail_at(option.file, option.line, option.key, message); }
 

@@ -18,7 +18,14 @@ struct RawOption {
   bool bare = false;  ///< written without '='
   std::string file;   ///< where it was written (an included file's own path)
   int line = 0;
+  /// From an included file: messages name the option, never its value (the file may be
+  /// anyone's, /etc/passwd included, and a message is no way to show it).
+  bool included = false;
 };
+
+/// A name an option may have: letters, digits and '_'. A key of anything else is not an
+/// option, and messages do not quote it (it is a line of some other file, not a misspelling).
+bool option_shaped(std::string_view key);
 
 /// A [section] and its option lines (an include's lines appended where it stood).
 struct RawSection {

@@ -19,7 +19,20 @@ std::string lower(std::string_view text) {
   return out;
 }
 
-std::string label(const RawOption& option) { return fmt::format("option '{}={}'", option.key, option.value); }
+
+}  // namespace
+
+std::string label(const RawOption& option) {
+  if (!option_shaped(option.key)) return "an option line";
+  if (option.included) return fmt::format("option '{}'", option.key);
+  return fmt::format("option '{}={}'", option.key, option.value);
+}
+
+std::string shown_value(const RawOption& option, std::string_view text) {
+  return option.included ? std::string("its value") : fmt::format("'{}'", text);
+}
+
+namespace {
 
 struct Number {
   std::int64_t value = 0;
@@ -44,11 +57,11 @@ Number read_digits(const RawOption& option, std::string_view text, bool allow_ne
     if (value > (kMax - digit) / base) fail(option, fmt::format("{}: the number is too large", label(option)));
     value = value * base + digit;
   }
-  if (i == first) fail(option, fmt::format("{}: '{}' is not a number", label(option), text));
+  if (i == first) fail(option, fmt::format("{}: {} is not a number", label(option), shown_value(option, text)));
   // Deliberate difference: fio reads no fractions and takes 1.5k as 1 byte, 1.5ms as 1 s.
   if (i < text.size() && text[i] == '.') {
-    fail(option, fmt::format("{}: fio reads no fractions (it would take '{}' as {}); write a whole number, in a smaller unit if need be",
-                             label(option), text, text.substr(0, i)));
+    fail(option, fmt::format("{}: fio reads no fractions (it would take {} as {}); write a whole number, in a smaller unit if need be",
+                             label(option), shown_value(option, text), option.included ? "its whole part" : std::string(text.substr(0, i))));
   }
   return Number{.value = negative ? -value : value, .suffix = lower(text.substr(i))};
 }
@@ -79,9 +92,9 @@ std::int64_t parse_size(const RawOption& option, std::string_view text, int kb_b
   const std::int64_t multiplier = size_multiplier(number.suffix, kb_base);
   // Deliberate difference: fio takes an unknown suffix as bytes (4x is 4).
   if (multiplier == 0) {
-    fail(option, fmt::format("{}: unknown size suffix '{}' (fio accepts b, k, kb, kib, m, mb, mib, g, t, p in any case; "
+    fail(option, fmt::format("{}: unknown size suffix {} (fio accepts b, k, kb, kib, m, mb, mib, g, t, p in any case; "
                              "kib, mib ... are 1000-based under kb_base=1024)",
-                             label(option), number.suffix));
+                             label(option), shown_value(option, number.suffix)));
   }
   if (std::abs(number.value) > kMax / multiplier) fail(option, fmt::format("{}: the size is too large", label(option)));
   return number.value * multiplier;
@@ -121,9 +134,9 @@ double parse_time(const RawOption& option, double default_seconds) {
   }
   // Deliberate difference: fio takes an unknown suffix as microseconds (runtime=10sec is 10 us).
   if (unit == 0.0) {
-    fail(option, fmt::format("{}: unknown time suffix '{}' (fio accepts us, usec, ms, msec, s, m, h, d; "
-                             "it would read '{}' as {} microseconds)",
-                             label(option), number.suffix, option.value, number.value));
+    fail(option, fmt::format("{}: unknown time suffix {} (fio accepts us, usec, ms, msec, s, m, h, d; "
+                             "it would read {} as {} microseconds)",
+                             label(option), shown_value(option, number.suffix), shown_value(option, option.value), number.value));
   }
   // Whole microseconds, as fio keeps times; the bound keeps the product exact enough and finite.
   if (static_cast<double>(number.value) * unit > 1e12) fail(option, fmt::format("{}: the time is too long", label(option)));

@@ -13,6 +13,13 @@
 
 namespace pagecache::scenario::fio {
 
+/// How messages name an option: "option 'KEY=VALUE'", or "option 'KEY'" for one of an included
+/// file (its values are never quoted), or "an option line" for a key that is no option's name.
+std::string label(const RawOption& option);
+
+/// A value's text as messages show it: quoted, or "its value" for an included file's.
+std::string shown_value(const RawOption& option, std::string_view text);
+
 /// A size that may be a percentage (size, offset, offset_increment, io_size).
 struct SizeOrPercent {
   std::int64_t bytes = 0;

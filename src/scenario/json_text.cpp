@@ -8,6 +8,9 @@
 
 #include <algorithm>
 #include <optional>
+#include <string>
+#include <unordered_set>
+#include <vector>
 
 namespace pagecache::scenario {
 
@@ -107,6 +110,41 @@ std::string line_column(std::string_view text, std::size_t offset) {
   return fmt::format("{}:{}", line, column);
 }
 
+void check_unique_keys(std::string_view text, const std::string& file) {
+  // The keys of each object open at this point (an array has none): valid JSON, so a string
+  // right after '{' or after a ',' within an object is a key.
+  struct Open {
+    bool object;
+    bool expect_key;
+    std::unordered_set<std::string> keys;
+  };
+  std::vector<Open> open;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '{' || c == '[') {
+      open.push_back(Open{c == '{', c == '{', {}});
+    } else if ((c == '}' || c == ']') && !open.empty()) {
+      open.pop_back();
+    } else if (c == ',' && !open.empty()) {
+      open.back().expect_key = open.back().object;
+    } else if (c == '"') {
+      const std::size_t start = i;
+      bool escaped = false;
+      for (++i; i < text.size() && (escaped || text[i] != '"'); ++i) escaped = !escaped && text[i] == '\\';
+      if (open.empty() || !open.back().expect_key) continue;
+      open.back().expect_key = false;
+      const std::string_view raw = text.substr(start, i + 1 - start);
+      // Escapes decoded, so that two spellings of one key are one key.
+      std::string key = raw.find('\\') == std::string_view::npos ? std::string(raw.substr(1, raw.size() - 2)) : json::parse(raw).get<std::string>();
+      if (!open.back().keys.insert(key).second) {
+        throw ConfigError(fmt::format("{}:{}: key {} appears twice in one object (JSON readers differ on which one wins; pcsim takes neither)",
+                                      file, line_column(text, start), reason("\"" + key + "\"")),
+                          InputPlace{.file = file, .line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(start), '\n')), .key = key});
+      }
+    }
+  }
+}
+
 json parse_json_text(const std::string& text, const std::string& file) {
   if (const auto deep = too_deep(text)) {
     throw ConfigError(fmt::format("{}:{}: JSON nested deeper than {} levels of arrays and objects (a workflow needs fewer than 10)",
@@ -114,7 +152,9 @@ json parse_json_text(const std::string& text, const std::string& file) {
   }
   std::string what;
   try {
-    return json::parse(text);
+    json document = json::parse(text);
+    check_unique_keys(text, file);
+    return document;
   } catch (const json::exception& e) {
     what = e.what();
   }

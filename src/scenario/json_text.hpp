@@ -23,6 +23,13 @@ std::string line_column(std::string_view text, std::size_t offset);
 /// The document `text` holds. Throws ConfigError "FILE:LINE:COL: malformed JSON: WHAT" for
 /// text that is not JSON (including numbers beyond a double, such as 1e400), and
 /// "FILE:LINE:COL: JSON nested deeper than ..." at the first bracket past kMaxJsonDepth.
+/// Also "FILE:LINE:COL: key K appears twice in one object" (check_unique_keys).
 nlohmann::json parse_json_text(const std::string& text, const std::string& file);
+
+/// Throws ConfigError "FILE:LINE:COL: key K appears twice in one object ..." at the second of
+/// two equal keys (compared as decoded: "\u006e" is "n") of one object of `text`, valid JSON:
+/// parsers differ on which one wins, so pcsim's readers take neither. Every reader of JSON
+/// input calls it.
+void check_unique_keys(std::string_view text, const std::string& file);
 
 }  // namespace pagecache::scenario

@@ -53,16 +53,16 @@ Scenario resolve(const toml::table& root, const std::string& file, const std::st
   read_settings(r, profile_override, s);
 
   scenario::PlatformFile platform;  // outlives the origins that point into it
-  scenario::read_platform_file(r, file, platform_overrides, s, origins, platform);
+  scenario::read_platform_file(r, file, platform_overrides, limits, s, origins, platform);
   scenario::read_host_defaults(r, file, platform.from_xml, s, origins);
   std::set<std::size_t> amendable = platform.from_xml;  // hosts of an XML platform, which [[hosts]] tables amend
-  scenario::read_platform(r, s, file, origins, amendable);
+  scenario::read_platform(r, s, file, limits, origins, amendable);
   if (s.hosts.empty()) r.fail_table("no host: add a [[hosts]] table, or a platform file");
   scenario::read_start(r, file, s);
 
   scenario::read_files(r, file, s, origins);
   scenario::read_file_sets(r, file, limits, s, origins);
-  scenario::read_fio(r, file, s, origins);
+  scenario::read_fio(r, file, limits, s, origins);
   // A workflow file before [pipelines], whose files' origins are all that table's (Origins::file).
   scenario::read_json_workflow(r, file, limits, s, origins);
   scenario::read_pipelines(r, file, limits, s, origins);
@@ -110,6 +110,8 @@ Scenario scenario::resolve_document(toml::table root, const std::string& source_
 }
 
 Scenario load_platform(const std::string& path, const std::string& profile_override) {
+  // The file itself first: the document made around it is pcsim's, with no place to name.
+  scenario::check_text_file({}, path, "platform file");
   toml::table root;
   root.insert("platform", std::filesystem::path(path).filename().string());
   return resolve(root, path, profile_override, ScenarioLimits{}, true);

@@ -82,7 +82,8 @@ std::vector<std::pair<std::int64_t, std::int64_t>> read_ranges(TomlReader& a, co
     if (pair == nullptr || pair->size() != 2) a.fail("ranges", fmt::format("{}: expected [offset, length]", where));
     const std::int64_t offset = size_value(a, *pair->get(0), where);
     const std::int64_t length = size_value(a, *pair->get(1), where);
-    if (length <= 0 || offset > file.size - length) {
+    if (length <= 0) a.fail("ranges", fmt::format("{}: the length is {}: a range is at least one byte", where, length));
+    if (offset > file.size - length) {
       a.fail("ranges", fmt::format("{}: {} bytes at {} are not within file '{}' ({} bytes)", where, length, offset, file.name, file.size));
     }
     ranges.emplace_back(offset, length);

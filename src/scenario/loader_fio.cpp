@@ -7,6 +7,7 @@
 // naming the job's section and the option.
 
 #include "scenario/fio_job_file.hpp"
+#include "scenario/limits.hpp"
 #include "scenario/loader_sections.hpp"
 
 #include <fmt/format.h>
@@ -188,30 +189,57 @@ FileUse add_files(TomlReader& fr, const FioJobFile& jobs, const FioPlace& place,
 // write requests, fsyncs it (create_fsync) and drops it from the page cache (filesetup.c,
 // extend_file). A task per file laid out; on a virtual machine they leave memory freed just
 // before the jobs start (docs/model.md §6.16).
-std::vector<TaskSpec> layout_tasks(const FioJobFile& jobs, const FileUse& use) {
-  std::vector<TaskSpec> tasks;
-  std::map<std::string, std::int64_t> size;  // each file's size as set up so far
+struct Layout {
+  const FioJob* job;
+  const std::string* file;
+  std::int64_t length;  // the file's size once laid out
+};
+
+std::vector<Layout> layouts_of(const FioJobFile& jobs, const FileUse& use) {
+  std::vector<Layout> layouts;
+  std::map<std::string_view, std::int64_t> size;  // each file's size as set up so far
   for (std::size_t j = 0; j < jobs.jobs.size(); ++j) {
     const FioJob& job = jobs.jobs[j];
     const std::int64_t needed = use.regions[j].start + use.regions[j].length;
     for (const std::string& name : job.files) {
-      if (size[name] >= needed) continue;  // large enough: left as it is
-      size[name] = needed;
+      std::int64_t& has = size[name];
+      if (has >= needed) continue;  // large enough: left as it is
+      has = needed;
       if (writes(job.rw) && !job.overwrite) continue;
-      TaskSpec& task = tasks.emplace_back();
-      task.name = "layout";
-      task.chunk_size = 100'000'000;
-      task.fsync = true;
-      AccessSpec& a = task.accesses.emplace_back();
-      a.file = name;
-      a.mode = AccessMode::Write;
-      a.request = job.bs_write;
-      a.length = needed;
-      a.count = (a.length + a.request - 1) / a.request;
-      a.drop_after = true;
+      layouts.push_back(Layout{&job, &name, needed});
     }
   }
+  return layouts;
+}
+
+std::vector<TaskSpec> layout_tasks(const std::vector<Layout>& layouts) {
+  std::vector<TaskSpec> tasks;
+  tasks.reserve(layouts.size());
+  for (const Layout& layout : layouts) {
+    TaskSpec& task = tasks.emplace_back();
+    task.name = "layout";
+    task.chunk_size = 100'000'000;
+    task.fsync = true;
+    AccessSpec& a = task.accesses.emplace_back();
+    a.file = *layout.file;
+    a.mode = AccessMode::Write;
+    a.request = layout.job->bs_write;
+    a.length = layout.length;
+    a.count = (a.length + a.request - 1) / a.request;
+    a.drop_after = true;
+  }
   return tasks;
+}
+
+// The run's limit on tasks (a task per job, one per file laid out), before any is made.
+void check_task_count(const FioJobFile& jobs, const std::vector<Layout>& layouts, const ScenarioLimits& limits) {
+  const double tasks = static_cast<double>(jobs.jobs.size()) + static_cast<double>(layouts.size());
+  if (tasks <= static_cast<double>(limits.max_tasks)) return;
+  const FioJob& job = layouts.empty() ? jobs.jobs.back() : *layouts.back().job;
+  refuse(jobs, job, layouts.empty() ? "numjobs" : "nrfiles",
+         fmt::format("the jobs and fio's layout of their files (a task per file laid out) would be {:.0f} tasks, more than the {} a run may "
+                     "have{}",
+                     tasks, limits.max_tasks, limits_hint(limits)));
 }
 
 // The layouts as an application of their own, which the jobs start after ("" if nothing is
@@ -269,7 +297,7 @@ void add_jobs(const FioJobFile& jobs, const FioPlace& place, const std::vector<R
 
 }  // namespace
 
-void read_fio(TomlReader& r, const std::string& file, Scenario& s, Origins& origins) {
+void read_fio(TomlReader& r, const std::string& file, const ScenarioLimits& limits, Scenario& s, Origins& origins) {
   const toml::table* table = r.optional_table("fio");
   if (table == nullptr) return;
   TomlReader fr(*table, "fio", file);
@@ -281,7 +309,11 @@ void read_fio(TomlReader& r, const std::string& file, Scenario& s, Origins& orig
   fr.finish();
   FioJobFile jobs;
   try {
-    jobs = read_fio_job_file(path);
+    FioLimits fio_limits;
+    fio_limits.max_jobs = std::min(fio_limits.max_jobs, limits.max_tasks);
+    fio_limits.max_files = limits.max_files;
+    fio_limits.hint = limits_hint(limits);
+    jobs = read_fio_job_file(path, fio_limits);
   } catch (const ConfigError& e) {
     if (e.place().file.empty()) fr.fail("file", e.what());
     throw;
@@ -293,9 +325,11 @@ void read_fio(TomlReader& r, const std::string& file, Scenario& s, Origins& orig
   s.fio.file = path;
   s.fio.global_options = jobs.global_options;
   const FileUse use = add_files(fr, jobs, place, s, origins);
+  const std::vector<Layout> planned = layouts_of(jobs, use);
+  check_task_count(jobs, planned, limits);
   const std::vector<std::string> names = app_names(jobs);
   // In a memory cgroup (one job) the layouts are the job's first tasks: its group is fio's.
-  std::vector<TaskSpec> layouts = layout_tasks(jobs, use);
+  std::vector<TaskSpec> layouts = layout_tasks(planned);
   const bool in_group = place.limits.max > 0;
   const std::string layout = in_group ? std::string() : add_layout_app(std::move(layouts), jobs, place, names, s, origins);
   add_jobs(jobs, place, use.regions, names, layout, in_group ? std::move(layouts) : std::vector<TaskSpec>{}, s, origins);

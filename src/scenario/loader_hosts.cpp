@@ -2,6 +2,7 @@
 // page cache and [[hosts.disks]], or a group of hosts alike), [host_defaults] for the hosts of a
 // SimGrid platform, and [start.memory_in_use].
 
+#include "scenario/limits.hpp"
 #include "scenario/loader_sections.hpp"
 
 #include <pagecache/cache_policies.hpp>
@@ -96,15 +97,39 @@ void read_free_page_reporting(TomlReader& r, HostConfig& h) {
 }
 
 // [hosts.numa] (docs/model.md §6.20): absent, one node. A table amending a host keeps what it
-// does not give.
-void read_numa(const toml::table* table, const TomlReader& parent, NumaSpec& numa, const std::string& file) {
+// does not give. Each ratio scales some of the host's memory rates (`bw`, read before): the
+// rates it makes must be rates pcsim takes, at least units::kMinBandwidth.
+void read_numa(const toml::table* table, const TomlReader& parent, NumaSpec& numa, const MemoryBandwidth& bw, const std::string& file) {
   if (table == nullptr) return;
   TomlReader r(*table, parent.child_path("numa"), file);
   numa.nodes = static_cast<int>(r.optional_integer("nodes", 1, 2).value_or(numa.nodes));
-  for (auto [key, ratio] : {std::pair{"remote_copy_ratio", &numa.remote.copy}, std::pair{"remote_first_touch_ratio", &numa.remote.first_touch},
-                            std::pair{"remote_aggregate_ratio", &numa.remote.aggregate}}) {
+  // The slowest local rate each ratio scales (0: none given), and what it is.
+  const auto slowest = [](std::initializer_list<double> rates) {
+    double low = 0.0;
+    for (const double rate : rates)
+      if (rate > 0.0 && (low == 0.0 || rate < low)) low = rate;
+    return low;
+  };
+  const struct {
+    const char* key;
+    double* ratio;
+    double local;
+    const char* what;
+  } ratios[] = {
+      {"remote_copy_ratio", &numa.remote.copy, slowest({bw.read, bw.write}), "a thread's copy"},
+      {"remote_first_touch_ratio", &numa.remote.first_touch, slowest({bw.first_touch}), "a thread's first touch"},
+      {"remote_aggregate_ratio", &numa.remote.aggregate, slowest({bw.aggregate_read, bw.aggregate_write}) / numa.nodes, "a node's threads together"},
+  };
+  for (const auto& [key, ratio, local, what] : ratios) {
     *ratio = r.optional_number(key).value_or(*ratio);
-    if (!(*ratio > 0.0 && *ratio <= 10.0)) r.fail(key, fmt::format("must be > 0 and at most 10 (a remote rate over the local one), got {}", *ratio));
+    if (!(*ratio > 0.0 && *ratio <= 10.0)) {
+      r.fail(key, fmt::format("must be > 0 and at most 10 (a remote rate over the local one), got {:.6g}", *ratio));
+    }
+    if (local > 0.0 && *ratio * local < units::kMinBandwidth) {
+      r.fail(key, fmt::format("{:.6g} makes {} with the other node's memory {:.3g} B/s, below the 1 B/s pcsim takes (the local rate is "
+                              "{:.6g} B/s)",
+                              *ratio, what, *ratio * local, local));
+    }
   }
   r.finish();
 }
@@ -213,7 +238,7 @@ HostConfig read_host(const toml::table& table, std::string path, std::size_t ind
   const toml::table* page_cache = r.optional_table("page_cache");
   h.cache = read_page_cache(page_cache, r, h.cache, file);
   if (page_cache != nullptr || fresh) cache_origin = page_cache != nullptr ? Origin{page_cache, r.child_path("page_cache"), &file} : host_origin;
-  read_numa(r.optional_table("numa"), r, h.numa, file);
+  read_numa(r.optional_table("numa"), r, h.numa, h.memory_bandwidth, file);
   read_disks(r, file, fresh, h, disk_origins);
   if (count != nullptr) {
     *count = r.optional_integer("count", 1, kMaxGroupHosts).value_or(0);
@@ -268,7 +293,7 @@ void apply_host_defaults(const toml::table& table, const std::string& file, cons
 
 }  // namespace
 
-void read_hosts(TomlReader& r, Scenario& s, const std::string& file, Origins& origins, std::set<std::size_t>& amendable) {
+void read_hosts(TomlReader& r, Scenario& s, const std::string& file, const ScenarioLimits& limits, Origins& origins, std::set<std::size_t>& amendable) {
   const auto hosts = r.tables("hosts");
   std::unordered_set<std::string> named;  // hosts so far, for names given twice
   for (const HostConfig& h : s.hosts) named.insert(h.name);
@@ -301,6 +326,12 @@ void read_hosts(TomlReader& r, Scenario& s, const std::string& file, Origins& or
     // A group: its members are hosts like any other, named after it; the group's name stands
     // for them all where a link or the pipelines name it.
     const std::string group = host.name;
+    // The run's limit on hosts, on the declared count, before a member is made.
+    if (static_cast<double>(s.hosts.size()) + static_cast<double>(count) > static_cast<double>(limits.max_hosts)) {
+      TomlReader(*hosts[i], r.child_path("hosts", i), file)
+          .fail("count", fmt::format("{} hosts, more than the {} a run may have{}", s.hosts.size() + static_cast<std::size_t>(count), limits.max_hosts,
+                                     limits_hint(limits)));
+    }
     for (std::int64_t k = 1; k <= count; ++k) {
       if (taken(fmt::format("{}-{}", group, k))) {
         TomlReader(*hosts[i], r.child_path("hosts", i), file).fail("name", fmt::format("host '{}-{}' of this group is named twice", group, k));

@@ -34,7 +34,7 @@ std::size_t array_index(const std::string& part, std::size_t size, const std::st
 
 // --set KEY=VALUE: VALUE is read as a TOML value (16, 0.4, true, "50 GB"); anything that is not
 // valid TOML is taken as a string, so --set pipelines.file_size=50GB works too.
-toml::node_view<toml::node> ensure_path(toml::table& root, const std::string& key, const std::string& source) {
+toml::node_view<toml::node> ensure_path(toml::table& root, const std::string& key, const std::string& source, const std::string& option) {
   std::vector<std::string> parts;
   std::stringstream ss(key);
   for (std::string part; std::getline(ss, part, '.');) parts.push_back(part);
@@ -45,7 +45,8 @@ toml::node_view<toml::node> ensure_path(toml::table& root, const std::string& ke
   for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
     const std::string& part = parts[i];
     if (auto* table = node->as_table()) {
-      if (!table->contains(part)) table->insert(part, toml::table{});
+      // A table made on the way to the key has the option as its source, as the value has.
+      if (!table->contains(part)) table->insert(part, std::move(*toml::parse("v = {}", option).get_as<toml::table>("v")));
       node = table->get(part);
     } else if (auto* array = node->as_array()) {
       node = array->get(array_index(part, array->size(), key, source));
@@ -59,10 +60,10 @@ toml::node_view<toml::node> ensure_path(toml::table& root, const std::string& ke
 }  // namespace
 
 void apply_override(toml::table& root, const std::string& key, const std::string& value, const std::string& source) {
-  auto parent = ensure_path(root, key, source);
-  const std::string last = key.substr(key.rfind('.') == std::string::npos ? 0 : key.rfind('.') + 1);
   // Parsed with the option as its source, so that a problem with the value names the option.
   const std::string option = fmt::format("--set {}={}", key, value);
+  auto parent = ensure_path(root, key, source, option);
+  const std::string last = key.substr(key.rfind('.') == std::string::npos ? 0 : key.rfind('.') + 1);
   toml::table parsed;
   try {
     parsed = toml::parse("v = " + value, option);

@@ -58,7 +58,8 @@ void read_xml_platform(const std::string& text, const Overrides& platform_overri
   }
 }
 
-void read_toml_platform(const std::string& text, const Overrides& platform_overrides, Scenario& s, Origins& origins, PlatformFile& platform) {
+void read_toml_platform(const std::string& text, const Overrides& platform_overrides, const ScenarioLimits& limits, Scenario& s, Origins& origins,
+                        PlatformFile& platform) {
   try {
     platform.root = toml::parse(text, platform.file);
   } catch (const toml::parse_error& e) {
@@ -69,13 +70,13 @@ void read_toml_platform(const std::string& text, const Overrides& platform_overr
   TomlReader p(platform.root, "", platform.file);
   p.string("title", "");
   std::set<std::size_t> amendable;  // none: a TOML platform's hosts are the file's own
-  read_platform(p, s, platform.file, origins, amendable);
+  read_platform(p, s, platform.file, limits, origins, amendable);
   p.finish();
 }
 
 }  // namespace
 
-void read_platform_file(TomlReader& r, const std::string& file, const Overrides& platform_overrides, Scenario& s, Origins& origins,
+void read_platform_file(TomlReader& r, const std::string& file, const Overrides& platform_overrides, const ScenarioLimits& limits, Scenario& s, Origins& origins,
                         PlatformFile& platform) {
   const toml::node* node = r.raw("platform");
   if (node == nullptr) return;
@@ -89,12 +90,12 @@ void read_platform_file(TomlReader& r, const std::string& file, const Overrides&
   if (is_xml_file(platform.file, text)) {
     read_xml_platform(text, platform_overrides, s, origins, platform);
   } else {
-    read_toml_platform(text, platform_overrides, s, origins, platform);
+    read_toml_platform(text, platform_overrides, limits, s, origins, platform);
   }
 }
 
-void read_platform(TomlReader& r, Scenario& s, const std::string& file, Origins& origins, std::set<std::size_t>& amendable) {
-  read_hosts(r, s, file, origins, amendable);
+void read_platform(TomlReader& r, Scenario& s, const std::string& file, const ScenarioLimits& limits, Origins& origins, std::set<std::size_t>& amendable) {
+  read_hosts(r, s, file, limits, origins, amendable);
   read_network(r, s, file, origins);
 }
 

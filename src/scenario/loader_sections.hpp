@@ -64,11 +64,11 @@ struct PlatformFile {
 
 /// platform = "file.toml" or "file.xml" (SimGrid), or one per profile: its hosts, links and
 /// routes (those of a TOML file with `platform_overrides` applied) added to `s`.
-void read_platform_file(TomlReader& r, const std::string& file, const Overrides& platform_overrides, Scenario& s, Origins& origins,
+void read_platform_file(TomlReader& r, const std::string& file, const Overrides& platform_overrides, const ScenarioLimits& limits, Scenario& s, Origins& origins,
                         PlatformFile& platform);
 /// The platform part of a scenario or of a platform file: [[hosts]], [[links]] and [[routes]].
 /// `amendable`: the hosts a [[hosts]] table of their name amends (once each, then erased).
-void read_platform(TomlReader& r, Scenario& s, const std::string& file, Origins& origins, std::set<std::size_t>& amendable);
+void read_platform(TomlReader& r, Scenario& s, const std::string& file, const ScenarioLimits& limits, Origins& origins, std::set<std::size_t>& amendable);
 /// `pcsim show` of a platform alone: the routes of its SimGrid file, up to a bound.
 void add_shown_routes(const PlatformFile& platform, Scenario& s);
 /// A run on a SimGrid platform keeps the hosts, routes and links it uses; see the definition.
@@ -77,7 +77,7 @@ void keep_what_the_run_uses(const SgPlatform& platform, const std::set<std::size
 // The hosts (loader_hosts.cpp) and the network (loader_network.cpp).
 
 /// The [[hosts]] tables of `r`, new hosts and host groups or amendments of `amendable` ones.
-void read_hosts(TomlReader& r, Scenario& s, const std::string& file, Origins& origins, std::set<std::size_t>& amendable);
+void read_hosts(TomlReader& r, Scenario& s, const std::string& file, const ScenarioLimits& limits, Origins& origins, std::set<std::size_t>& amendable);
 /// A speed at `key` of `r`, in flop/s: a number, or a string in SimGrid's units ("1.2Gf");
 /// it must be > 0.
 std::optional<double> read_speed(TomlReader& r, const std::string& key);
@@ -131,7 +131,7 @@ void read_pipelines(TomlReader& r, const std::string& file, const ScenarioLimits
 /// The [[apps]] tables.
 void read_apps(TomlReader& r, const std::string& file, Scenario& s, Origins& origins);
 /// [fio]: a fio job file's jobs as applications and their files (loader_fio.cpp); alone.
-void read_fio(TomlReader& r, const std::string& file, Scenario& s, Origins& origins);
+void read_fio(TomlReader& r, const std::string& file, const ScenarioLimits& limits, Scenario& s, Origins& origins);
 /// workflow = "x.json", or [workflow] with file = "x.json": a WfFormat instance and its files.
 void read_json_workflow(TomlReader& r, const std::string& file, const ScenarioLimits& limits, Scenario& s, Origins& origins);
 /// A [workflow] table with its [[workflow.tasks]], when no workflow file was read.

@@ -1,7 +1,7 @@
 #pragma once
 // Resolving a scenario document already read (loader.cpp), for those that make one rather
-// than read it from a file: load_workflow (workflow_options.cpp), whose values are pcsim's
-// options.
+// than read it from a file: load_workflow (workflow_options.cpp) and a fio job file's run
+// (run_inputs.cpp), whose values are pcsim's options.
 
 #include <pagecache/scenario.hpp>
 #include <pagecache/scenario_file.hpp>
@@ -20,5 +20,9 @@ namespace pagecache::scenario {
 Scenario resolve_document(toml::table root, const std::string& source_name,
                           const std::vector<std::pair<std::string, std::string>>& overrides, const std::string& profile_override,
                           const ScenarioLimits& limits);
+
+/// Inserts `value` (its one element, unless `as_array`) into `into` as `key`, parsed with
+/// `option` ("--platform p.xml") as its source, so that a problem with it names the option.
+void insert_option(toml::table& into, const std::string& key, const std::string& option, toml::array value, bool as_array);
 
 }  // namespace pagecache::scenario

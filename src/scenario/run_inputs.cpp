@@ -5,12 +5,16 @@
 #include <pagecache/scenario_file.hpp>
 
 #include "scenario/resolve.hpp"
+#include "scenario/text_file.hpp"
+#include "text/path_problem.hpp"
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
 #include <filesystem>
 #include <sstream>
+#include <string_view>
+#include <utility>
 
 namespace pagecache {
 
@@ -51,7 +55,11 @@ Scenario load_fio(const std::string& path, const RunInputs& in) {
   if (!in.workflow.files_host.empty() || !in.workflow.hosts.empty()) {
     throw ConfigError("--files-host and --hosts place a workflow file's (JSON) files and tasks; a fio job file's run on one host (--set fio.host=NAME)");
   }
-  toml::table root{{"platform", absolute(in.workflow.platform)}, {"fio", toml::table{{"file", absolute(path)}}}};
+  // The files named on the command line, before a document is made around them.
+  scenario::check_text_file({}, path, "fio job file");
+  scenario::check_text_file("--platform", in.workflow.platform, "platform file");
+  toml::table root{{"fio", toml::table{{"file", absolute(path)}}}};
+  scenario::insert_option(root, "platform", "--platform " + in.workflow.platform, toml::array{absolute(in.workflow.platform)}, false);
   Scenario s = scenario::resolve_document(std::move(root), path, in.overrides, in.profile, in.limits);
   s.source = path;
   return s;
@@ -60,6 +68,10 @@ Scenario load_fio(const std::string& path, const RunInputs& in) {
 }  // namespace
 
 Scenario load_run_scenario(const std::string& path, const RunInputs& in) {
+  // A NUL cuts a path short for the system, and a message with one short for a C string reader.
+  for (const auto& [argument, given] : {std::pair<std::string_view, const std::string&>{"", path}, {"--platform", in.workflow.platform}}) {
+    if (const std::string nul = text::nul_problem(given); !nul.empty()) throw ConfigError(text::path_message(argument, given, nul));
+  }
   if (ends_with(path, ".json")) return load_workflow(path, in.workflow, in.overrides, in.profile, in.limits);
   if (ends_with(path, ".fio")) return load_fio(path, in);
   const auto overrides = scenario_overrides(in);

@@ -14,8 +14,9 @@ std::string location(const toml::source_region& where, const std::string& file) 
     }
     return fmt::format("{}:{}:{}", *where.path, where.begin.line, where.begin.column);
   }
-  // A table that --set made on its way to a key has no place in any file.
-  if (where.begin.line == 0) return file + " (--set)";
+  // A document pcsim made around a file the command line named (a fio job file's run, a
+  // platform shown alone): the file. (A table --set makes has the option as its source.)
+  if (where.begin.line == 0) return file;
   return fmt::format("{}:{}:{}", file, where.begin.line, where.begin.column);
 }
 

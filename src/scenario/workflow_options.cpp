@@ -7,6 +7,7 @@
 #include <pagecache/scenario_file.hpp>
 
 #include "scenario/resolve.hpp"
+#include "scenario/text_file.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -31,17 +32,17 @@ toml::table option_value(const std::string& option, toml::array value) {
   }
 }
 
+std::string absolute(const std::string& path) { return std::filesystem::absolute(path).lexically_normal().string(); }
+
+}  // namespace
+
 // Moved, a node keeps its source (copied, it would not).
-void insert_option(toml::table& into, const std::string& key, const std::string& option, toml::array value, bool as_array) {
+void scenario::insert_option(toml::table& into, const std::string& key, const std::string& option, toml::array value, bool as_array) {
   toml::table parsed = option_value(option, std::move(value));
   toml::array& values = *parsed.get_as<toml::array>("v");
   if (as_array) into.insert(key, std::move(values));
   else into.insert(key, std::move(*values.get(0)));
 }
-
-std::string absolute(const std::string& path) { return std::filesystem::absolute(path).lexically_normal().string(); }
-
-}  // namespace
 
 Scenario load_workflow(const std::string& workflow, const WorkflowOptions& options,
                        const std::vector<std::pair<std::string, std::string>>& overrides, const std::string& profile_override,
@@ -49,18 +50,21 @@ Scenario load_workflow(const std::string& workflow, const WorkflowOptions& optio
   if (options.platform.empty()) {
     throw ConfigError(fmt::format("{}: a workflow file runs on a platform: add --platform PLATFORM.xml (SimGrid) or .toml", workflow));
   }
+  // The files named on the command line, before a document is made around them.
+  scenario::check_text_file({}, workflow, "workflow file");
+  scenario::check_text_file("--platform", options.platform, "platform file");
   // Absolute: the document has no folder for them to be relative to.
   toml::table table{{"file", absolute(workflow)}};
   if (!options.files_host.empty()) {
-    insert_option(table, "files_host", "--files-host " + options.files_host, toml::array{options.files_host}, false);
+    scenario::insert_option(table, "files_host", "--files-host " + options.files_host, toml::array{options.files_host}, false);
   }
   if (!options.hosts.empty()) {
     toml::array hosts;
     for (const std::string& h : options.hosts) hosts.push_back(h);
-    insert_option(table, "hosts", fmt::format("--hosts {}", fmt::join(options.hosts, ",")), std::move(hosts), true);
+    scenario::insert_option(table, "hosts", fmt::format("--hosts {}", fmt::join(options.hosts, ",")), std::move(hosts), true);
   }
   toml::table root;
-  insert_option(root, "platform", "--platform " + options.platform, toml::array{absolute(options.platform)}, false);
+  scenario::insert_option(root, "platform", "--platform " + options.platform, toml::array{absolute(options.platform)}, false);
   root.insert("workflow", std::move(table));
   Scenario s = scenario::resolve_document(std::move(root), workflow, overrides, profile_override, limits);
   s.source = workflow;

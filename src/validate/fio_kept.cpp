@@ -1,5 +1,6 @@
 #include "validate/fio_kept.hpp"
 
+#include "scenario/json_text.hpp"
 #include "scenario/text_file.hpp"
 #include "validate/csv.hpp"
 
@@ -46,6 +47,7 @@ std::string plain_name(const CsvTable::Row& row, const char* column) {
 std::vector<FioMeasuredJob> parse_fio_report(std::string_view text, const std::string& file) {
   const json report = json::parse(text, nullptr, false);
   if (report.is_discarded() || !report.is_object()) throw ConfigError(fmt::format("{}: not a JSON object (fio --output-format=json's report)", file));
+  scenario::check_unique_keys(text, file);
   const auto jobs = report.find("jobs");
   if (jobs == report.end() || !jobs->is_array() || jobs->empty()) throw ConfigError(fmt::format("{}: no \"jobs\" array with a job", file));
   std::vector<FioMeasuredJob> out;

@@ -2,6 +2,8 @@
 
 #include <pagecache/error.hpp>
 
+#include <pagecache/units.hpp>
+
 #include <fmt/format.h>
 
 namespace pagecache::workload {
@@ -16,8 +18,8 @@ void DeletedFiles::note_access(std::uint32_t file, bool reading, std::string_vie
   const Deletion& d = it->second;
   const auto of = [](bool application, std::string_view name) { return fmt::format("{} '{}'", application ? "application" : "workflow", name); };
   const PlacedFile& placed = platform_.files()[file];
-  throw SimulationError(fmt::format("task '{}' of {} reads file '{}', which task '{}' of {} deleted at t = {:.6f} s", task, of(in_application, owner),
-                                    placed.host->file_name(placed.ref), d.task, of(d.in_application, d.owner), d.time));
+  throw SimulationError(fmt::format("task '{}' of {} reads file '{}', which task '{}' of {} deleted at t = {} s", task, of(in_application, owner),
+                                    placed.host->file_name(placed.ref), d.task, of(d.in_application, d.owner), units::format_instant(d.time)));
 }
 
 void DeletedFiles::note_deleted(std::uint32_t file, std::string_view owner, std::string_view task, bool in_application, double time) {

@@ -5,6 +5,8 @@
 
 #include <pagecache/error.hpp>
 
+#include <pagecache/units.hpp>
+
 #include <fmt/format.h>
 
 #include <functional>
@@ -103,7 +105,7 @@ RunResult Runner::run() {
   memory_.start(trace_->sink(), running_);
   simulate();
   if (running_ != 0) {
-    throw SimulationError(fmt::format("t = {:.6f} s: {} task(s) never finished (waiting for each other?)", sim_.now(), running_));
+    throw SimulationError(fmt::format("t = {} s: {} task(s) never finished (waiting for each other?)", units::format_instant(sim_.now()), running_));
   }
   memory_.record_all();
   trace_->sink().on_end(sim_.now());
@@ -173,7 +175,7 @@ void Runner::simulate() {
   } catch (const SimulationError& e) {
     const std::string what = e.what();
     if (what.rfind("t = ", 0) == 0) throw;
-    throw SimulationError(fmt::format("t = {:.6f} s: {}", sim_.now(), what));
+    throw SimulationError(fmt::format("t = {} s: {}", units::format_instant(sim_.now()), what));
   }
 }
 

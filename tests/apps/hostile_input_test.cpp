@@ -3,7 +3,7 @@
 // within 5 s and 200 MB, with exit status 2 and a message naming the file, line and key (or
 // the --set option), or, where the value is deliberate, run quickly to the end.
 
-#include "support/child_process.hpp"
+#include "support/bounded_cli.hpp"
 #include "support/files.hpp"
 #include "support/pcsim_cli.hpp"
 
@@ -18,7 +18,9 @@
 #include <vector>
 
 namespace fs = std::filesystem;
+using pagecache::testing::bounded_pcsim;
 using pagecache::testing::ChildResult;
+using pagecache::testing::refused;
 using pagecache::testing::run_child;
 using pagecache::testing::scratch;
 
@@ -32,15 +34,7 @@ cpu_time = "1 s"
 )";
 
 // pcsim with `args`, checked to have ended within 5 s and 200 MB.
-ChildResult pcsim(std::vector<std::string> args, const std::string& cwd = {}) {
-  args.insert(args.begin(), PCSIM_BINARY);
-  ChildResult r = run_child(args, 10.0, cwd);
-  INFO(r.output);
-  CHECK_FALSE(r.timed_out);
-  CHECK(r.seconds < 5.0);
-  CHECK(r.max_rss_kb < 200 * 1024);
-  return r;
-}
+ChildResult pcsim(std::vector<std::string> args, const std::string& cwd = {}) { return bounded_pcsim(std::move(args), 5.0, cwd); }
 
 // The base scenario with `line` replaced by `with` (or appended when `line` is empty), run.
 ChildResult run_edited(const std::string& name, const std::string& line, const std::string& with, std::vector<std::string> extra = {}) {
@@ -56,13 +50,6 @@ ChildResult run_edited(const std::string& name, const std::string& line, const s
   std::vector<std::string> args{"run", (dir / "s.toml").string(), "--out", (dir / "out").string(), "--quiet"};
   args.insert(args.end(), extra.begin(), extra.end());
   return pcsim(args);
-}
-
-// Exit status 2, every fragment in the message, no output folder.
-void refused(const ChildResult& r, std::initializer_list<std::string> fragments) {
-  INFO(r.output);
-  CHECK(r.status == 2);
-  for (const std::string& f : fragments) CHECK_THAT(r.output, Catch::Contains(f));
 }
 
 }  // namespace

@@ -270,7 +270,7 @@ TEST_CASE("fio lines fio would misread are refused: spaces around '=', bad heade
   // Deliberate difference: fio keeps the value's leading blank, so 'bs = 4k' is 4 bytes there.
   CHECK_THAT(fio_error("[j]\nbs = 4k\n"), Catch::Contains("t.fio:2: write 'bs=4k' without spaces around '='"));
   CHECK_THAT(fio_error("[j]\nrw= read\n"), Catch::Contains("write 'rw=read' without spaces"));
-  CHECK_THAT(fio_error("size=4k\n[j]\n"), Catch::Contains("t.fio:1: option 'size=4k' outside a job section"));
+  CHECK_THAT(fio_error("size=4k\n[j]\n"), Catch::Contains("t.fio:1: option 'size' outside a job section"));
   CHECK_THAT(fio_error("[global]\nsize=4k\n"), Catch::Contains("no jobs defined"));
   CHECK_THAT(fio_error(""), Catch::Contains("no jobs defined"));
   CHECK_THAT(fio_error("[job\n"), Catch::Contains("must be '[name]'"));  // fio would name it "jo"

@@ -122,6 +122,34 @@ TEST_CASE("fio include reads a file relative to the including one, nested, into 
   CHECK(f.global_options == std::vector<std::pair<std::string, std::string>>{{"bs", "8k"}});
 }
 
+TEST_CASE("a line of an included file is named by its place and option name, its text never quoted", "[fio]") {
+  // The included file is anyone's: /etc/passwd, a file of secrets.
+  const auto dir = pagecache::testing::scratch("fio-include-foreign");
+  const auto error = [&](const std::string& included) -> std::string {
+    std::ofstream(dir / "foreign") << included;
+    std::ofstream(dir / "main.fio") << "[j]\nsize=1m\ninclude " << (dir / "foreign").string() << "\n";
+    try {
+      read_fio_job_file((dir / "main.fio").string());
+    } catch (const ConfigError& e) {
+      return e.what();
+    }
+    return "(no error)";
+  };
+  const std::string passwd = error("root:x:0:0:root:/root:/bin/bash\n");
+  CHECK_THAT(passwd, Catch::Contains("foreign:1: not an option line of a fio job file") && !Catch::Contains("root"));
+  const std::string spaced = error("PASSWORD = hunter2\n");
+  CHECK_THAT(spaced, Catch::Contains("foreign:1: write option 'PASSWORD' without spaces around '='") && !Catch::Contains("hunter2"));
+  const std::string unknown = error("token=hunter2\n");
+  CHECK_THAT(unknown, Catch::Contains("foreign:1: unknown option 'token'") && !Catch::Contains("hunter2"));
+  const std::string bad_value = error("size=hunter2\n");
+  CHECK_THAT(bad_value, Catch::Contains("foreign:1: option 'size'") && !Catch::Contains("hunter2"));
+  // The job file itself is the user's own: its values are quoted, as they help.
+  CHECK_THAT(fio_error("[j]\nsize=lots\n"), Catch::Contains("option 'size=lots'"));
+  // A line that is no option, in the job file too, is not quoted: it may be another file's.
+  CHECK_THAT(fio_error("root:x:0:0:root:/root:/bin/bash\n[j]\n"), Catch::Contains("t.fio:1: neither a [section] header nor an option line") &&
+                                                                    !Catch::Contains("root"));
+}
+
 TEST_CASE("fio include refuses cycles, sections in included files, and missing files", "[fio]") {
   const auto dir = pagecache::testing::scratch("fio-include-bad");
   std::ofstream(dir / "a.fio") << "[j]\ninclude b.fio\n";
@@ -155,7 +183,7 @@ TEST_CASE("fio hostile job files are refused fast, naming the limit", "[fio]") {
   const auto start = std::chrono::steady_clock::now();
   CHECK_THAT(fio_error("[j]\nnumjobs=1000000000\n"), Catch::Contains("from 1 to 100000"));
   CHECK_THAT(fio_error("[a]\nnumjobs=60000\n[b]\nnumjobs=60000\n"), Catch::Contains("more than 100000 jobs in all"));
-  CHECK_THAT(fio_error("[j]\nnrfiles=100000000\n"), Catch::Contains("from 1 to 10000000"));
+  CHECK_THAT(fio_error("[j]\nnrfiles=100000000\n"), Catch::Contains("more than the 2000000 files a run may have"));
   CHECK_THAT(fio_error("[j]\nnumjobs=50000\nnrfiles=1000\n"), Catch::Contains("more than 20000000 file names"));
   // stonewalls after many clones: each later job lists every earlier one.
   CHECK_THAT(fio_error("[a]\nnumjobs=50000\n[b]\nstonewall\nnumjobs=50000\n"), Catch::Contains("orderings"));

@@ -387,4 +387,36 @@ numjobs=2
   }
 }
 
+
+TEST_CASE("A fio job file's files and tasks are held to the run's limits on the declared counts", "[fio][scenario][limits]") {
+  const JobFolder folder("limits");
+  const auto error = [&](const std::string& jobs, const ScenarioLimits& limits) -> std::string {
+    RunInputs in;
+    in.workflow.platform = (folder.dir / "platform.toml").string();
+    in.limits = limits;
+    try {
+      load_run_scenario(folder.write("jobs.fio", jobs), in);
+    } catch (const ConfigError& e) {
+      return e.what();
+    }
+    return "(no error)";
+  };
+  ScenarioLimits limits;
+  limits.max_files = 20;
+  limits.max_tasks = 10;
+  // Files: nrfiles alone, then over clones (numjobs), then filename= entries.
+  CHECK_THAT(error("[j]\nrw=write\nsize=1m\nnrfiles=21\nfile_service_type=sequential\n", limits),
+             Catch::Contains("jobs.fio:4: option 'nrfiles=21': more than the 20 files a run may have without --force"));
+  CHECK_THAT(error("[j]\nrw=write\nsize=1m\nnrfiles=5\nnumjobs=5\nfile_service_type=sequential\n", limits),
+             Catch::Contains("jobs.fio:1: job 'j': the jobs would name 25 files, more than the 20 a run may have without --force"));
+  CHECK_THAT(error("[j]\nrw=write\nsize=1m\nfilename=a:b:c\n[k]\nrw=write\nsize=1m\nnumjobs=9\nnrfiles=2\nfile_service_type=sequential\n", limits),
+             Catch::Contains("job 'k': the jobs would name 21 files"));
+  // Tasks: a job each, and fio's layout of each file a reading job reads: 12 files to lay out.
+  CHECK_THAT(error("[j]\nrw=read\nsize=12m\nnrfiles=12\nfile_service_type=sequential\n", limits),
+             Catch::Contains("job 'j': nrfiles: the jobs and fio's layout of their files (a task per file laid out) would be 13 tasks, more than the 10"));
+  CHECK_THAT(error("[j]\nrw=read\nsize=1m\nnumjobs=11\n", limits), Catch::Contains("numjobs=11"));
+  // Within the limits: four files laid out and a job, five tasks (and 23 timeline rows of 30).
+  CHECK(error("[j]\nrw=read\nsize=4m\nnrfiles=4\nfile_service_type=sequential\n", limits) == "(no error)");
+}
+
 }  // namespace pagecache

@@ -76,3 +76,11 @@ TEST_CASE("a unit in the wrong case or a common misspelling is named with the ri
   CHECK_THROWS_WITH(units::parse_duration("3 seconds"), Catch::Contains("(did you mean 's'?)"));
   CHECK_THROWS_WITH(units::parse_duration("3 parsecs"), Catch::Contains("(use ns, us, ms, s, min, h)"));
 }
+
+TEST_CASE("a moment of simulated time in a message has six decimals, or a short exponent when it went astray", "[units]") {
+  using pagecache::units::format_instant;
+  CHECK(format_instant(12.5) == "12.500000");
+  CHECK(format_instant(1e9) == "1000000000.000000");
+  CHECK(format_instant(1.1675832127351664e300) == "1.16758e+300");
+  CHECK(format_instant(2e10) == "2e+10");
+}

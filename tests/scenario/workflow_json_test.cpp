@@ -3,6 +3,7 @@
 // and on broken and hostile inputs checked for the message: the file, the JSON path, the key,
 // or the line and column.
 
+#include "scenario/json_text.hpp"
 #include "scenario/workflow_json.hpp"
 
 #include "support/files.hpp"
@@ -412,6 +413,27 @@ TEST_CASE("malformed JSON is refused with the line and column of the fault", "[s
   CHECK(message.size() < 300);
 }
 
+TEST_CASE("a key twice in one object is refused at the second, whatever its spelling; in two objects it is two keys", "[scenario][workflow]") {
+  // As the issue found them: the workflow's name, a file's size (the last would have won).
+  std::string names = small_wfformat().dump(2);
+  names.replace(names.find("\"name\": \"small\""), 15, "\"name\": \"w\", \"name\": \"v\"");
+  CHECK_THAT(error_of(names), Catch::Matches("w\\.json:[0-9]+:[0-9]+: key \"name\" appears twice in one object .*"));
+  std::string sizes = small_wfformat().dump();
+  sizes.replace(sizes.find("\"sizeInBytes\":100"), 17, "\"sizeInBytes\":1000000,\"sizeInBytes\":5");
+  CHECK_THAT(error_of(sizes), Catch::Contains("key \"sizeInBytes\" appears twice in one object"));
+  // Line and column of the second.
+  CHECK_THAT(error_of("{\"a\": 1,\n  \"a\": 2}"), Catch::StartsWith("w.json:2:3: key \"a\" appears twice"));
+  // One key spelt with an escape, deep inside arrays, after a string holding braces and quotes.
+  CHECK_THAT(error_of(R"({"x": [[{"s": "{\"k\": [", "k": 1, "\u006b": 2}]]})"), Catch::StartsWith("w.json:1:36: key \"k\" appears twice"));
+  // Keys of sibling and nested objects, and strings equal to a key as values, are no repeats.
+  const json plain = small_wfformat();
+  json doc = plain;
+  doc["workflow"]["execution"]["tasks"][0]["name"] = "name";
+  doc["note"] = {{"name", {{"name", 1}}}};
+  CHECK_NOTHROW(read(doc.dump()));
+  CHECK_NOTHROW(check_unique_keys(R"([{"a": 1}, {"a": 2}, {"b": {"a": 3}, "a": 4}])", "x.json"));
+}
+
 TEST_CASE("deep nesting is refused at the first bracket too deep, before any document is built", "[scenario][workflow]") {
   CHECK(error_of(std::string(1'000'000, '[')) ==
         "w.json:1:129: JSON nested deeper than 128 levels of arrays and objects (a workflow needs fewer than 10)");
@@ -730,8 +752,9 @@ TEST_CASE("a workflow run from pcsim's options names the option at fault, or the
         "--files-host nowhere: key 'workflow.files_host': no host named 'nowhere'");
   CHECK(error_of_run(fine, options(platform, {}, {"compute-3", "nowhere"})) ==
         "--hosts compute-3,nowhere: key 'workflow.hosts': no host named 'nowhere'");
-  CHECK_THAT(error_of_run(fine, options((dir / "none.xml").string())),
-             Catch::StartsWith(fmt::format("--platform {}: key 'platform': ", (dir / "none.xml").string())) && Catch::Contains("cannot open"));
+  // A --platform that cannot be read is refused before a document is made around it.
+  CHECK(error_of_run(fine, options((dir / "none.xml").string())) ==
+        fmt::format("--platform {}: cannot open the platform file: No such file or directory", (dir / "none.xml").string()));
 
   // The instance's own faults: two tasks writing one file, a task needing more cores than its
   // machine has, a task on a machine its file's host has no route to.

@@ -149,7 +149,7 @@ void Reader::option(const std::string& text, const std::string& file, int number
   const std::size_t equals = text.find('=');
   RawOption option{.key = text.substr(0, equals), .value = {}, .bare = equals == std::string::npos, .file = file, .line = number, .included = depth > 0};
   if (!option.bare) option.value = text.substr(equals + 1);
-  // Messages quote a line only as far as it is an option's name (quoted() below): a job file's
+  // Messages quote a line only as far as it is an option's name: a job file's
   // line may be anyone's text.
   std::string trimmed = option.key;
   while (!trimmed.empty() && is_blank(trimmed.back())) trimmed.pop_back();

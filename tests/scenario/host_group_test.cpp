@@ -126,9 +126,10 @@ TEST_CASE("host groups refuse what they cannot mean", "[scenario][host_group]") 
   };
   fails(cluster("count = 0", R"(["node", "storage"])", "host = \"node\"\nfiles_host = \"storage\""), "count");
   fails(cluster("count = 1000000000", R"(["node", "storage"])", "host = \"node\"\nfiles_host = \"storage\""), "count");
-  // Within the loader's bound, but more hosts than a run may have (each costs it about 24 kB).
+  // Within the loader's bound, but more hosts than a run may have (each costs it about 24 kB):
+  // refused at the group's count, the hosts so far and its own, before a member is made.
   fails(cluster("count = 30000", R"(["node", "storage"])", "host = \"node\"\nfiles_host = \"storage\""),
-        "key 'hosts[0].count': 30001 hosts, more than the 20000 a run may have without --force");
+        "key 'hosts[0].count': 30000 hosts, more than the 20000 a run may have without --force");
   fails(cluster("count = 2", R"(["node", "storage"])", "host = \"node\""), "'node' is a host group: the pipelines' files are on one host");
   fails(cluster("count = 2", R"(["node", "storage"])", "host = \"node-3\"\nfiles_host = \"storage\""), "no host named 'node-3'");
   fails(cluster("count = 2", R"(["node", "nowhere"])", "host = \"node\"\nfiles_host = \"storage\""), "no host named 'nowhere'");

@@ -26,6 +26,8 @@ namespace fs = std::filesystem;
 using pagecache::testing::bounded_pcsim;
 using pagecache::testing::ChildResult;
 using pagecache::testing::kPlatform;
+using pagecache::testing::kSimulationMemoryKb;
+using pagecache::testing::kSimulationSlowdown;
 using pagecache::testing::kSlowdown;
 using pagecache::testing::kWorkload;
 using pagecache::testing::refused;
@@ -150,7 +152,10 @@ TEST_CASE("4: an --out through a symbolic link loop is refused naming --out", "[
 
 TEST_CASE("5: an output that cannot take the bytes (/dev/full) is exit 2 naming its option", "[cli][door][out]") {
   const fs::path dir = scratch("door_full");
-  const ChildResult json = pcsim({"validate", "--profile", "paper", "--json", "/dev/full", "--report", (dir / "v.html").string()});
+  // validate simulates the paper's runs first (the device cannot be tried without writing).
+  const ChildResult json =
+      bounded_pcsim({"validate", "--profile", "paper", "--json", "/dev/full", "--report", (dir / "v.html").string()}, 1.0 * kSimulationSlowdown, {},
+                    kSimulationMemoryKb);
   refused(json, {"--json /dev/full: cannot write: No space left on device"});
   CHECK_FALSE(fs::exists(dir / "v.html"));  // written after the JSON: not at all
   // A sweep's merge, onto /dev/full.

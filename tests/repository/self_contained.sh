@@ -10,15 +10,8 @@ set -euo pipefail
 # Built from pieces, so that this script does not find itself.
 beside='\.\./'"shared"
 
-# The repository's files: what git tracks or would track, else every file outside build folders.
-files_of() {
-  local root=$1
-  if git -C "$root" rev-parse --show-toplevel >/dev/null 2>&1 && [ "$(git -C "$root" rev-parse --show-toplevel)" = "$(cd "$root" && pwd -P)" ]; then
-    (cd "$root" && git ls-files -co --exclude-standard)
-  else
-    (cd "$root" && find . -path './build*' -prune -o -path './.git' -prune -o -type f -print | sed 's#^\./##')
-  fi
-}
+# shellcheck source=files_of.sh
+source "$(dirname "$0")/files_of.sh"
 
 check() {
   local root=$1 version=$2 bad=0 f

@@ -32,7 +32,7 @@ struct Builder {
   std::int64_t group_jobs = 0;  // jobs in the current group (init.c prev_group_jobs)
   std::size_t barrier = 0;      // jobs before the latest stonewall wait for it
   std::int64_t entries = 0;     // files, after entries and own options over all jobs
-  std::int64_t files = 0;       // file names made so far (clones' generated ones each)
+  std::int64_t files_named = 0;  // file names made so far (clones' generated ones each)
 
   [[noreturn]] void fail(const RawSection& s, const std::string& key, const std::string& message) const {
     throw ConfigError(fio::where(path, s.line) + message, InputPlace{.file = path, .line = s.line, .key = key});
@@ -140,12 +140,12 @@ void Builder::add(Draft d, const RawSection& s) {
   entries += static_cast<std::int64_t>(cost);
   // The run's limit on files, on the declared counts: generated names are each clone's own.
   const double named = given ? static_cast<double>(files) : static_cast<double>(d.numjobs) * static_cast<double>(files);
-  if (static_cast<double>(this->files) + named > static_cast<double>(limits.max_files)) {
+  if (static_cast<double>(files_named) + named > static_cast<double>(limits.max_files)) {
     fail(s, given ? "filename" : d.nrfiles == 1 ? "numjobs" : "nrfiles",
          fmt::format("job '{}': the jobs would name {:.0f} files, more than the {} a run may have{}", s.name,
-                     static_cast<double>(this->files) + named, limits.max_files, limits.hint));
+                     static_cast<double>(files_named) + named, limits.max_files, limits.hint));
   }
-  this->files += static_cast<std::int64_t>(named);
+  files_named += static_cast<std::int64_t>(named);
   d.job.numjobs = static_cast<int>(d.numjobs);
   d.job.after = std::move(after);
   d.job.files_given = given;

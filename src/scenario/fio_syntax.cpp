@@ -149,8 +149,8 @@ void Reader::option(const std::string& text, const std::string& file, int number
   const std::size_t equals = text.find('=');
   RawOption option{.key = text.substr(0, equals), .value = {}, .bare = equals == std::string::npos, .file = file, .line = number, .included = depth > 0};
   if (!option.bare) option.value = text.substr(equals + 1);
-  // Messages quote a line only as far as it is an option's name: a job file's
-  // line may be anyone's text.
+  // Messages quote a line only as far as it is an option's name: a job file's line may be
+  // anyone's text.
   std::string trimmed = option.key;
   while (!trimmed.empty() && is_blank(trimmed.back())) trimmed.pop_back();
   if (!option_shaped(trimmed)) {
@@ -163,8 +163,7 @@ void Reader::option(const std::string& text, const std::string& file, int number
   // Deliberate difference: fio trims the key but keeps the value's leading blanks, so 'bs = 4k'
   // is 4 bytes and 'rw = read' an error; pcsim refuses both.
   if (!option.bare && (is_blank(option.key.back()) || (!option.value.empty() && is_blank(option.value.front())))) {
-    std::string key = option.key;
-    while (!key.empty() && is_blank(key.back())) key.pop_back();
+    const std::string& key = trimmed;
     const std::size_t first = option.value.find_first_not_of(" \t\v\f\r");
     const std::string value = first == std::string::npos ? std::string() : option.value.substr(first);
     if (option.included) fail_at(file, number, key, fmt::format("write option '{}' without spaces around '=' (fio reads the spaces as part of the value)", key));

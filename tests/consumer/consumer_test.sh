@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Someone else's program built against pagecache as the field builds against libraries: with
 # find_package(pagecache) from the build tree and from an install prefix, and with pkg-config;
-# the library static (the project's own build) or shared (a build of the project with
-# BUILD_SHARED_LIBS=ON, made here). Each program runs a shipped scenario through the public API
+# the library static (the project's own build) or shared (the build's shared twin, the same
+# objects linked as libpagecache.so). Each program runs a shipped scenario through the public API
 # (pagecache/outputs.hpp) and must write every output `pcsim run` writes, byte for byte (all
 # but timing.json, the simulator's own wall time). The shared flavour also runs the installed
 # pcsim from another folder: it finds its library and its data relative to itself.
@@ -51,20 +51,16 @@ linked_shared() {  # linked_shared PROGRAM: whether it loads libpagecache.so
 }
 
 case "$flavour" in
-  static) build=$binary ;;
-  shared)
-    build=$work/project
-    cmake -S "$source" -B "$build" -DCMAKE_BUILD_TYPE="$build_type" -DBUILD_SHARED_LIBS=ON -DPAGECACHE_BUILD_TESTS=OFF \
-      -DPAGECACHE_BUILD_BENCHMARKS=OFF >"$work/project.log" 2>&1 || { cat "$work/project.log"; fail "configuring the shared build"; }
-    cmake --build "$build" --target pcsim -j2 >>"$work/project.log" 2>&1 || { tail -50 "$work/project.log"; fail "building the shared build"; }
-    ;;
+  static) config=$binary install=() ;;
+  # The same objects linked as libpagecache.so by the build under test (cmake/Install.cmake).
+  shared) config=$binary/shared-twin install=(--component shared-twin) ;;
   *) echo "usage: consumer_test.sh static|shared SOURCE_DIR BINARY_DIR WORK_DIR BUILD_TYPE"; exit 2 ;;
 esac
 
 # 1. The build tree, not installed.
-consumer build-tree -Dpagecache_DIR="$build"
+consumer build-tree -Dpagecache_DIR="$config"
 # 2. An install prefix.
-cmake --install "$build" --prefix "$work/prefix" >"$work/install.log" 2>&1 || { cat "$work/install.log"; fail "cmake --install"; }
+cmake --install "$binary" "${install[@]}" --prefix "$work/prefix" >"$work/install.log" 2>&1 || { cat "$work/install.log"; fail "cmake --install"; }
 consumer prefix -DCMAKE_PREFIX_PATH="$work/prefix"
 # 3. pkg-config, from the same prefix (the linker finds a shared library by an rpath here).
 libdir=$(dirname "$(find "$work/prefix" -name pagecache.pc)")/..

@@ -5,7 +5,8 @@
 #
 #   pagecache_layer(NAME storage BELOW engine)
 #
-# creates ${PAGECACHE_LAYER_ROOT}/storage/{engine,storage} -> src/{engine,storage}.
+# creates ${PAGECACHE_LAYER_ROOT}/storage/{engine,storage} -> src/{engine,storage}. A layer may be
+# a folder of a room (formats/fio): its link keeps the path, its target replaces '/' by '_'.
 set(PAGECACHE_LAYER_ROOT ${CMAKE_BINARY_DIR}/layers)
 
 function(pagecache_layer_include_root name out_var)
@@ -18,6 +19,8 @@ function(pagecache_layer)
   file(MAKE_DIRECTORY ${root})
   foreach(visible IN LISTS L_BELOW L_NAME)
     if(NOT EXISTS ${root}/${visible})
+      get_filename_component(parent ${root}/${visible} DIRECTORY)
+      file(MAKE_DIRECTORY ${parent})
       file(CREATE_LINK ${PROJECT_SOURCE_DIR}/src/${visible} ${root}/${visible} SYMBOLIC)
     endif()
   endforeach()

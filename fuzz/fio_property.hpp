@@ -3,9 +3,9 @@
 // tests/scenario/fio_examples_test.cpp on the seeds and fio's examples: any bytes either read
 // as a job file or are refused with ConfigError; any other exception, a crash, a hang or
 // unbounded memory is a bug. What reads keeps the reader's promises
-// (src/scenario/fio_job_file.hpp), checked here without the reader's code.
+// (src/formats/fio/job_file.hpp), checked here without the reader's code.
 
-#include "scenario/fio_job_file.hpp"
+#include "formats/fio/job_file.hpp"
 
 #include <pagecache/error.hpp>
 

@@ -8,7 +8,7 @@
 
 #include <pagecache/error.hpp>
 
-#include "scenario/simgrid_platform.hpp"
+#include "formats/simgrid/routing/platform.hpp"
 
 #include <cctype>
 #include <cmath>

@@ -7,7 +7,7 @@
 // ids unique, parents acyclic (Kahn's algorithm, not the reader's depth-first search), every
 // number in its range.
 
-#include "scenario/workflow_json.hpp"
+#include "formats/wfformat/workflow_json.hpp"
 
 #include <pagecache/error.hpp>
 #include <pagecache/units.hpp>

@@ -9,7 +9,7 @@
 
 #include "report/interrupt_cleanup.hpp"
 #include "report/output_file.hpp"
-#include "scenario/closest.hpp"
+#include "formats/common/closest.hpp"
 #include "text/path_problem.hpp"
 #include "validate/switches.hpp"
 #include "validate/validation.hpp"

@@ -1,5 +1,5 @@
 #include "scenario/limits.hpp"
-#include "scenario/estimate.hpp"
+#include "estimate/estimate.hpp"
 
 #include <pagecache/units.hpp>
 

@@ -10,7 +10,7 @@
 #include "scenario/loader_sections.hpp"
 #include "scenario/origins.hpp"
 #include "scenario/resolve.hpp"
-#include "scenario/text_file.hpp"
+#include "formats/common/text_file.hpp"
 #include "scenario/toml_reader.hpp"
 
 #include <fmt/format.h>

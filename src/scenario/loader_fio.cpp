@@ -1,4 +1,4 @@
-// A scenario's [fio] table: the jobs of a fio job file (fio_job_file.hpp) as applications of
+// A scenario's [fio] table: the jobs of a fio job file (formats/fio/job_file.hpp) as applications of
 // the scenario's host. Each job (each numjobs clone) is an application of one task whose access
 // is the job's I/O, in the order fio starts them (stonewall, wait_for: AppSpec::after); each
 // file a job names is a file of the host's disk, as large as the jobs' regions need, on the disk
@@ -6,7 +6,7 @@
 // jobs read or overwrite, as fio does. What fio does that pcsim does not model yet is refused,
 // naming the job's section and the option.
 
-#include "scenario/fio_job_file.hpp"
+#include "formats/fio/job_file.hpp"
 #include "scenario/limits.hpp"
 #include "scenario/loader_sections.hpp"
 

@@ -8,7 +8,7 @@
 #include <pagecache/cache_policies.hpp>
 #include <pagecache/error.hpp>
 
-#include "scenario/simgrid_units.hpp"
+#include "formats/simgrid/xml/units.hpp"
 #include "storage/readahead.hpp"
 
 #include <fmt/format.h>

@@ -7,7 +7,7 @@
 #include <pagecache/error.hpp>
 
 #include "scenario/simgrid_import.hpp"
-#include "scenario/text_file.hpp"
+#include "formats/common/text_file.hpp"
 
 #include <fmt/format.h>
 

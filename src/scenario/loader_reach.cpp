@@ -7,7 +7,7 @@
 #include <pagecache/error.hpp>
 #include <pagecache/fair_share.hpp>
 
-#include "scenario/route_index.hpp"
+#include "estimate/route_index.hpp"
 
 #include <fmt/format.h>
 

@@ -11,7 +11,7 @@
 #include <pagecache/scenario_file.hpp>
 
 #include "scenario/origins.hpp"
-#include "scenario/simgrid_platform.hpp"
+#include "formats/simgrid/routing/platform.hpp"
 #include "scenario/toml_reader.hpp"
 
 #include <cstddef>

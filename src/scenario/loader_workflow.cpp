@@ -7,9 +7,9 @@
 
 #include <pagecache/error.hpp>
 
-#include "scenario/text_file.hpp"
+#include "formats/common/text_file.hpp"
 #include "scenario/workflow_import.hpp"
-#include "scenario/workflow_json.hpp"
+#include "formats/wfformat/workflow_json.hpp"
 
 #include <fmt/format.h>
 

@@ -5,7 +5,7 @@
 #include <pagecache/scenario_file.hpp>
 
 #include "scenario/resolve.hpp"
-#include "scenario/text_file.hpp"
+#include "formats/common/text_file.hpp"
 #include "text/path_problem.hpp"
 
 #include <fmt/format.h>

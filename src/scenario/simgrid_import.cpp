@@ -3,7 +3,7 @@
 #include <pagecache/error.hpp>
 #include <pagecache/units.hpp>
 
-#include "scenario/simgrid_units.hpp"
+#include "formats/simgrid/xml/units.hpp"
 #include "scenario/toml_reader.hpp"
 #include "text/printable.hpp"
 

@@ -7,7 +7,7 @@
 #include <pagecache/scenario.hpp>
 
 #include "scenario/origins.hpp"
-#include "scenario/simgrid_platform.hpp"
+#include "formats/simgrid/routing/platform.hpp"
 
 #include <set>
 #include <string>

@@ -7,7 +7,8 @@
 #include <pagecache/error.hpp>
 #include <pagecache/units.hpp>
 
-#include "scenario/closest.hpp"
+#include "formats/common/closest.hpp"
+#include "formats/common/names.hpp"
 
 #include <toml++/toml.h>
 
@@ -29,9 +30,6 @@ std::string location(const toml::source_region& where, const std::string& file);
 /// The same as a ConfigError's InputPlace, with the key's full path: no file or line for a
 /// value given by an option.
 InputPlace input_place(const toml::source_region& where, const std::string& file, std::string key);
-/// Empty if `name` can name a host, disk, file, application or task; else why not (control
-/// characters, invalid UTF-8, a leading = + - @ that a spreadsheet would run as a formula).
-std::string name_problem(std::string_view name);
 
 class TomlReader {
  public:

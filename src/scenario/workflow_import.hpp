@@ -11,7 +11,7 @@
 #include <pagecache/scenario.hpp>
 
 #include "scenario/origins.hpp"
-#include "scenario/workflow_json.hpp"
+#include "formats/wfformat/workflow_json.hpp"
 
 #include <cstdint>
 #include <functional>

@@ -7,7 +7,7 @@
 #include <pagecache/scenario_file.hpp>
 
 #include "scenario/resolve.hpp"
-#include "scenario/text_file.hpp"
+#include "formats/common/text_file.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>

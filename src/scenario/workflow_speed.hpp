@@ -10,7 +10,7 @@
 #include <pagecache/scenario.hpp>
 
 #include "scenario/origins.hpp"
-#include "scenario/workflow_json.hpp"
+#include "formats/wfformat/workflow_json.hpp"
 
 #include <functional>
 #include <optional>

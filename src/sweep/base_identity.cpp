@@ -1,6 +1,6 @@
 #include "sweep/base_identity.hpp"
 
-#include "scenario/text_file.hpp"
+#include "formats/common/text_file.hpp"
 #include "scenario/toml_reader.hpp"
 #include "sweep/hash.hpp"
 

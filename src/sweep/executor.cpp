@@ -2,7 +2,7 @@
 
 #include "report/outputs.hpp"
 #include "report/output_file.hpp"
-#include "scenario/text_file.hpp"
+#include "formats/common/text_file.hpp"
 #include "sweep/result_line.hpp"
 #include "sweep/results_file.hpp"
 #include "sweep/results_folder.hpp"

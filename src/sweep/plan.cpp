@@ -1,7 +1,7 @@
 #include "sweep/plan.hpp"
 
-#include "scenario/json_text.hpp"
-#include "scenario/text_file.hpp"
+#include "formats/common/json_text.hpp"
+#include "formats/common/text_file.hpp"
 #include "scenario/toml_reader.hpp"
 #include "sweep/hash.hpp"
 #include "sweep/plan_values.hpp"

@@ -5,7 +5,7 @@
 // scenario: every fault is a ConfigError naming the file, the line and the column.
 // Header-only: the command-line tests read pcsim's outputs with it and link only pagecache.
 
-#include "scenario/text_file.hpp"
+#include "formats/common/text_file.hpp"
 #include "text/printable.hpp"
 
 #include <pagecache/error.hpp>

@@ -1,7 +1,7 @@
 #include "validate/fio_kept.hpp"
 
-#include "scenario/json_text.hpp"
-#include "scenario/text_file.hpp"
+#include "formats/common/json_text.hpp"
+#include "formats/common/text_file.hpp"
 #include "validate/csv.hpp"
 
 #include <pagecache/error.hpp>

@@ -1,9 +1,9 @@
 // The estimate the limits check holds against ScenarioLimits before a run (src/scenario/
-// estimate.hpp), against what the run then does: its events within a factor of 3 of the
+// estimate/estimate.hpp), against what the run then does: its events within a factor of 3 of the
 // run's on every shipped scenario under both profiles and on shapes that each stress a source
 // of events; and what it refuses, naming the key.
 
-#include "scenario/estimate.hpp"
+#include "estimate/estimate.hpp"
 
 #include <pagecache/error.hpp>
 #include <pagecache/run.hpp>

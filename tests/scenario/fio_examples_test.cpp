@@ -4,7 +4,7 @@
 // order fio applies them (sections in order; within one, kb_base first and filename last). The
 // table is worked out from the files and fio's rules, not from running the reader.
 
-#include "scenario/fio_job_file.hpp"
+#include "formats/fio/job_file.hpp"
 
 #include "fio_property.hpp"
 

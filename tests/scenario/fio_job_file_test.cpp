@@ -1,4 +1,4 @@
-// The fio job file reader (src/scenario/fio_job_file.hpp): syntax, values and options, one
+// The fio job file reader (src/formats/fio/job_file.hpp): syntax, values and options, one
 // test per rule. Each expected value follows from fio 3.33's rules (parse.c, init.c, options.c)
 // as stated in the comment, not from running the reader. Ordering, files, include and limits
 // are in fio_job_order_test.cpp.

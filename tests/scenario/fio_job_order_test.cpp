@@ -1,4 +1,4 @@
-// The fio job file reader (src/scenario/fio_job_file.hpp): clones, files, groups and start
+// The fio job file reader (src/formats/fio/job_file.hpp): clones, files, groups and start
 // order, include, and hostile limits. Each expected value follows from fio 3.33's rules (init.c
 // add_job, get_new_job, wait_for_ok; options.c get_next_str, set_name_idx; backend.c
 // run_threads) as stated in the comment, not from running the reader.

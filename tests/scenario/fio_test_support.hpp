@@ -2,7 +2,7 @@
 // Reading fio job file text in tests: with a fixed environment, and the ConfigError's message or
 // place when the reader refuses it.
 
-#include "scenario/fio_job_file.hpp"
+#include "formats/fio/job_file.hpp"
 
 #include <pagecache/error.hpp>
 

@@ -2,9 +2,9 @@
 // ship them, clusters expanded as SimGrid expands them, and every refusal naming the file,
 // line, element and attribute.
 
-#include "scenario/simgrid_platform.hpp"
-#include "scenario/simgrid_radical.hpp"
-#include "scenario/simgrid_units.hpp"
+#include "formats/simgrid/routing/platform.hpp"
+#include "formats/simgrid/xml/radical.hpp"
+#include "formats/simgrid/xml/units.hpp"
 
 #include "platform_property.hpp"
 

@@ -3,7 +3,7 @@
 // DijkstraZone, StarZone, EmptyZone), on small platforms written here and on SimGrid's own
 // example platforms (inputs/simgrid/).
 
-#include "scenario/simgrid_platform.hpp"
+#include "formats/simgrid/routing/platform.hpp"
 
 #include "import_property.hpp"
 #include "support/files.hpp"

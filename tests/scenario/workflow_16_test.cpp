@@ -3,7 +3,7 @@
 // against the workflow: a disagreement is a warning naming both numbers, a malformed figure an
 // error naming the file, path and key. 1.5 files read as before, metrics or not.
 
-#include "scenario/workflow_json.hpp"
+#include "formats/wfformat/workflow_json.hpp"
 
 #include "support/files.hpp"
 

@@ -1,10 +1,10 @@
-// The workflow reader (src/scenario/workflow_json.hpp) on the real inputs (WfCommons' WfFormat
+// The workflow reader (src/formats/wfformat/workflow_json.hpp) on the real inputs (WfCommons' WfFormat
 // 1.5 instances, the WRENCH page-cache workflows) checked against the JSON read independently,
 // and on broken and hostile inputs checked for the message: the file, the JSON path, the key,
 // or the line and column.
 
-#include "scenario/json_text.hpp"
-#include "scenario/workflow_json.hpp"
+#include "formats/common/json_text.hpp"
+#include "formats/wfformat/workflow_json.hpp"
 
 #include "support/files.hpp"
 

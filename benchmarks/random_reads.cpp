@@ -4,6 +4,8 @@
 //   random_reads [REQUESTS]
 #include <pagecache/host.hpp>
 
+#include "splitmix64.hpp"
+
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
@@ -31,12 +33,7 @@ int main(int argc, char** argv) {
         [&](ByteRange& r) {
           if (issued == requests) return false;
           ++issued;
-          state += 0x9E3779B97F4A7C15ull;  // splitmix64
-          std::uint64_t z = state;
-          z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-          z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-          z ^= z >> 31;
-          r = {.offset = static_cast<std::int64_t>(z % pages) * kPage, .length = kPage};
+          r = {.offset = static_cast<std::int64_t>(bench::splitmix64(state) % pages) * kPage, .length = kPage};
           return true;
         },
         kPage);

@@ -87,8 +87,6 @@ class Disk {
   /// One stream's rates.
   double read_bandwidth() const noexcept { return read_bw_; }
   double write_bandwidth() const noexcept { return write_bw_; }
-  double aggregate_read_bandwidth() const noexcept { return aggregate_read_bw_; }
-  double aggregate_write_bandwidth() const noexcept { return aggregate_write_bw_; }
   std::int64_t capacity() const noexcept { return capacity_; }
   double request_latency() const noexcept { return request_latency_; }
   std::int64_t read_ahead() const noexcept { return read_ahead_; }

@@ -215,7 +215,12 @@ void PageCache::link_clean(BlockId id) {
   FileCleanOrder& clean = file_clean_list(entry, block.list);
   link_in_order(blocks_, file_list(entry, block.list), clean, id, [](const Block& b) { return b.state == BlockState::Clean; });
   // A higher key waits until the file comes to the top of reclaimable_ (see there).
-  if (clean.front() == id && entry.writers == 0) reclaimable(block.list).lower(block.file, block.order);
+  if (clean.front() == id && entry.writers == 0) mark_reclaimable(block.list, block.file, block.order);
+}
+
+void PageCache::mark_reclaimable(ListKind kind, FileId file, std::uint64_t key) {
+  reclaimable(kind).lower(0, file, key);
+  if (const GroupId group = group_of(file); group != kRootGroup) reclaimable(kind, true).lower(group, file, key);
 }
 
 void PageCache::unlink_clean(BlockId id) {

@@ -20,7 +20,7 @@
 #include "cache/block.hpp"
 #include "cache/block_list.hpp"
 #include "cache/block_pool.hpp"
-#include "cache/file_heap.hpp"
+#include "cache/file_heaps.hpp"
 #include "cache/file_ranges.hpp"
 #include "cache/lru_list.hpp"
 #include "cache/numa_nodes.hpp"
@@ -107,7 +107,6 @@ class PageCache {
   /// is not that much free memory (the caller makes room first).
   void allocate_anonymous(std::int64_t bytes, GroupId group = kRootGroup);
   void release_anonymous(std::int64_t bytes, GroupId group = kRootGroup);
-
   // --- Memory groups (cgroup v2 memory.max; mm/memcontrol.c) ------------------------------
   /// A group whose memory (the anonymous memory allocated for it and the page cache charged
   /// to it) may not exceed `max` bytes. Returns its id: 1, 2, ...
@@ -310,7 +309,12 @@ class PageCache {
   FileCleanOrder& file_clean_list(FileEntry& entry, ListKind kind) noexcept {
     return kind == ListKind::Inactive ? entry.clean_inactive : entry.clean_active;
   }
-  FileHeap& reclaimable(ListKind kind) noexcept { return reclaimable_[static_cast<std::size_t>(kind)]; }
+  /// reclaimable_ (heap 0: the host's), or with `by_group` group_reclaimable_ (heap: GroupId).
+  FileHeaps& reclaimable(ListKind kind, bool by_group = false) noexcept {
+    return (by_group ? group_reclaimable_ : reclaimable_)[static_cast<std::size_t>(kind)];
+  }
+  /// `file`'s first clean block in `kind` has order `key`: its key lowered there, in both.
+  void mark_reclaimable(ListKind kind, FileId file, std::uint64_t key);
 
   BlockId new_block(FileId file, std::int64_t size, BlockState state, double now, NodeId node);
   /// Adds `bytes` to the clean block at the MRU end of `kind` if it is the file's with the
@@ -357,9 +361,6 @@ class PageCache {
   /// The first `bytes` (> 0) of `block`, to evict or age, as a block of their own (split_front
   /// unless that is all of it); for a file held by range, up to the next page boundary.
   BlockId front_part(BlockId block, std::int64_t bytes);
-  /// The first `bytes` (> 0) of `block` to evict, as a block (split_front unless that is all
-  /// of it); a ranged file's, rounded up to whole pages of the file.
-  BlockId front_to_evict(BlockId block, std::int64_t bytes);
   /// On in debug builds, off otherwise; the environment variable PAGECACHE_CHECK_INVARIANTS
   /// (0 or 1) overrides it, e.g. to run large simulations quickly in a debug build.
   static bool checking_by_default();
@@ -378,9 +379,9 @@ class PageCache {
   void on_clean_unlinked(BlockId block) { if (index_clean_) unlink_clean(block); }
   void link_clean(BlockId block);
   void unlink_clean(BlockId block);
-  /// With the clean index: the least recently used clean block of `kind` whose
-  /// file is neither `excluded` nor being written, or kNoBlock. If `excluded` comes to the top
-  /// of reclaimable_ it is taken out and `set_aside` set: the caller puts it back.
+  /// With the clean index: the least recently used clean block of `kind` in the target group
+  /// whose file is neither `excluded` nor being written, or kNoBlock. If `excluded` comes to
+  /// the top of its heap it is taken out and `set_aside` set: the caller puts it back.
   BlockId next_unwritten_clean(ListKind kind, FileId excluded, bool& set_aside);
 
   CacheSettings settings_;
@@ -407,8 +408,7 @@ class PageCache {
   FileRanges ranges_;
   std::int64_t page_size_ = kPageSize;
   // Memory groups: each group's limit and charges; every file's group (only when there are
-  // groups: a run without them pays nothing). The walks of a reclaim or flush skip the data
-  // of other groups than target_ (kAnyGroup: none skipped).
+  // groups: a run without them pays nothing). Walks skip groups but target_ (kAnyGroup: none).
   struct Group {
     std::int64_t max = 0;
     std::int64_t high = 0;  // 0: none
@@ -433,8 +433,8 @@ class PageCache {
   /// Adds `bytes` to the dirty or writeback bytes of the file's group.
   void charge_dirty(FileId file, std::int64_t bytes) noexcept { if (!groups_.empty()) groups_[group_of(file)].dirty += bytes; }
   // Per LRU list, with the clean index: the files an eviction sparing the files being written
-  // takes from, by their first clean block (page_cache_reclaim.cpp, next_unwritten_clean).
-  std::array<FileHeap, 2> reclaimable_;  // by ListKind
+  // takes from, by first clean block (next_unwritten_clean); and each group's (root's unused).
+  std::array<FileHeaps, 2> reclaimable_, group_reclaimable_;  // by ListKind
   std::uint64_t next_token_ = 1;
   std::int64_t evicted_total_ = 0;
   std::int64_t peak_dirty_ = 0;

@@ -35,9 +35,11 @@ void PageCache::check_invariants() const {
   if (!groups_.empty()) check_groups();
   check_nodes();
   PC_ASSERT(target_ == kAnyGroup);
-  for (const FileHeap& files : reclaimable_) {
-    files.check();
-    PC_ASSERT(index_clean_ || files.empty());
+  for (const auto* heaps : {&reclaimable_, &group_reclaimable_}) {
+    for (const FileHeaps& files : *heaps) {
+      files.check();
+      for (std::size_t h = 0; h < files.heaps(); ++h) PC_ASSERT(index_clean_ || files.empty(h));
+    }
   }
   check_dirty_by_age(most);
   if (expiry_scan_.after != kNoBlock) check_expiry_scan();
@@ -65,10 +67,16 @@ std::size_t PageCache::check_file(std::size_t f, std::size_t most) const {
     }
     PC_ASSERT_MSG(clean_it == clean_end, fmt::format("file {}: a block on its clean list in error", f));
     if (!clean.empty() && entry.writers == 0) {
-      const FileHeap& files = reclaimable_[static_cast<std::size_t>(kind)];
       const auto file = static_cast<FileId>(f);
-      PC_ASSERT_MSG(files.contains(file) && files.key(file) <= blocks_[clean.front()].order,
+      const FileHeaps& files = reclaimable_[static_cast<std::size_t>(kind)];
+      PC_ASSERT_MSG(files.contains(file) && files.key(0, file) <= blocks_[clean.front()].order,
                     fmt::format("file {} missing from the reclaimable files, or its key too high", f));
+      // And in its group's heap, for the group's own reclaim.
+      if (const GroupId group = group_of(file); group != kRootGroup) {
+        const FileHeaps& own = group_reclaimable_[static_cast<std::size_t>(kind)];
+        PC_ASSERT_MSG(own.contains(file) && own.key(group, file) <= blocks_[clean.front()].order,
+                      fmt::format("file {} missing from its group's reclaimable files, or its key too high", f));
+      }
     }
     // The file's list follows the LRU list's order.
     const auto lru = list(kind).blocks();

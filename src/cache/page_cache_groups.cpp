@@ -20,6 +20,7 @@ GroupId PageCache::add_group(std::int64_t max, std::int64_t high) {
   }
   if (groups_.size() == kAnyGroup) throw ConfigError("too many memory groups");
   groups_.push_back(Group{.max = max, .high = high});
+  for (FileHeaps& files : group_reclaimable_) files.resize(groups_.size());
   return static_cast<GroupId>(groups_.size() - 1);
 }
 
@@ -34,6 +35,13 @@ void PageCache::charge_file(FileId file, GroupId group) {
   groups_[kRootGroup].dirty -= unclean;
   groups_[group].dirty += unclean;
   file_group_[file] = group;
+  // Its clean data, reclaimable in the group from now on.
+  if (!index_clean_ || file >= files_.size() || files_[file].writers > 0) return;
+  const FileEntry& entry = files_[file];
+  for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
+    const FileCleanOrder& clean = kind == ListKind::Inactive ? entry.clean_inactive : entry.clean_active;
+    if (!clean.empty()) reclaimable(kind, true).lower(group, file, blocks_[clean.front()].order);
+  }
 }
 
 std::int64_t PageCache::group_usage(GroupId group) const noexcept {

@@ -50,9 +50,9 @@ std::int64_t PageCache::evict_clean(ListKind kind, std::int64_t budget, FileId e
     destroy(victim);
     policy_->evicted(*this, file, kind, size);
   };
-  if (spare_written && target_ == kAnyGroup && nodes_.empty()) {
+  if (spare_written && nodes_.empty()) {
     // The same victims in the same order as the walk below, without walking past the clean
-    // blocks of the files being written.
+    // blocks of the files being written (or of other groups).
     bool set_aside = false;
     while (evicted < budget) {
       const BlockId victim = next_unwritten_clean(kind, excluded, set_aside);
@@ -60,7 +60,10 @@ std::int64_t PageCache::evict_clean(ListKind kind, std::int64_t budget, FileId e
       take(victim);
     }
     // Only other files' blocks were taken: the excluded file's first clean block is the same.
-    if (set_aside) reclaimable(kind).lower(excluded, blocks_[file_clean_list(files_[excluded], kind).front()].order);
+    if (set_aside) {
+      const bool by_group = target_ != kAnyGroup;
+      reclaimable(kind, by_group).lower(by_group ? target_ : 0, excluded, blocks_[file_clean_list(files_[excluded], kind).front()].order);
+    }
     return evicted;
   }
   const LruList& list = list_of(kind);
@@ -143,18 +146,22 @@ BlockId PageCache::next_unwritten_clean(ListKind kind, FileId excluded, bool& se
   const BlockId front = list_of(kind).front(BlockState::Clean);
   if (front == kNoBlock) return kNoBlock;
   const FileId front_file = blocks_[front].file;
-  if (front_file != excluded && files_[front_file].writers == 0) return front;
-  FileHeap& files = reclaimable(kind);
-  while (!files.empty()) {
-    const FileHeap::Entry top = files.top();
+  if (front_file != excluded && files_[front_file].writers == 0 && in_target(blocks_[front])) return front;
+  // A group's reclaim: its own heap (a file stays in its group).
+  const bool by_group = target_ != kAnyGroup;
+  const std::size_t heap = by_group ? target_ : 0;
+  FileHeaps& files = reclaimable(kind, by_group);
+  if (heap >= files.heaps()) return kNoBlock;
+  while (!files.empty(heap)) {
+    const FileHeaps::Entry top = files.top(heap);
     FileEntry& entry = files_[top.file];
     FileCleanOrder& clean = file_clean_list(entry, kind);
     if (clean.empty() || entry.writers > 0) {
-      files.pop();
+      files.pop(heap);
     } else if (blocks_[clean.front()].order != top.key) {
-      files.raise_top(blocks_[clean.front()].order);
+      files.raise_top(heap, blocks_[clean.front()].order);
     } else if (top.file == excluded) {
-      files.pop();
+      files.pop(heap);
       set_aside = true;
     } else {
       return clean.front();
@@ -174,7 +181,7 @@ void PageCache::set_being_written(FileId file, bool writing) {
   if (!writing) {
     for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
       const FileCleanOrder& clean = file_clean_list(entry, kind);
-      if (!clean.empty()) reclaimable(kind).lower(file, blocks_[clean.front()].order);
+      if (!clean.empty()) mark_reclaimable(kind, file, blocks_[clean.front()].order);
     }
   }
   if (checking_) check_after_operation();

@@ -85,16 +85,8 @@ if(PAGECACHE_BUILD_TESTS AND TARGET pcsim AND NOT BUILD_SHARED_LIBS AND NOT PAGE
   find_package(tomlplusplus REQUIRED)
   find_package(pugixml REQUIRED)
   find_package(Threads REQUIRED)
-  add_library(pagecache_shared_twin SHARED ${PAGECACHE_LIBRARY_OBJECTS})
-  target_include_directories(pagecache_shared_twin PUBLIC
-    $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
-    $<BUILD_INTERFACE:${PROJECT_BINARY_DIR}/include>
-    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
-  target_compile_features(pagecache_shared_twin PUBLIC cxx_std_20)
-  target_link_libraries(pagecache_shared_twin PRIVATE fmt::fmt tomlplusplus::tomlplusplus pugixml::pugixml)
-  set_target_properties(pagecache_shared_twin PROPERTIES OUTPUT_NAME pagecache EXPORT_NAME pagecache
-    VERSION ${PROJECT_VERSION} SOVERSION ${PROJECT_VERSION_MAJOR}.${PROJECT_VERSION_MINOR}
-    LIBRARY_OUTPUT_DIRECTORY ${twin}/lib)
+  pagecache_library(pagecache_shared_twin SHARED)
+  set_target_properties(pagecache_shared_twin PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${twin}/lib)
 
   add_executable(pcsim_shared_twin $<TARGET_OBJECTS:pcsim_objects> $<TARGET_OBJECTS:pagecache_calibrate>
                  $<TARGET_OBJECTS:pagecache_sweep> $<TARGET_OBJECTS:pagecache_validate>)

@@ -54,7 +54,7 @@ void BM_LruSplit(benchmark::State& state) {
   std::int64_t splits = 0;
   for (auto _ : state) {
     const auto f = static_cast<FileId>(file(rng));
-    if (cache.cached(f, pagecache::cache::ListKind::Inactive) >= kBlock / 4) {
+    if (cache.file(f).in(pagecache::cache::ListKind::Inactive) >= kBlock / 4) {
       cache.reaccess(f, kBlock / 4, now += 1e-6);
       ++splits;
     } else {

@@ -8,11 +8,11 @@ std::int64_t evict_for_chunk(PageCache& cache, const ReadRequest& request, ReadP
   ReadPlan plan = plan_read(cache, request);
   const bool writeback_first = plan.room.flush > 0;
   if (!writeback_first) {
-    const std::int64_t file_cached = request.offset == ReadRequest::kWholeFile ? 0 : cache.cached(request.file);
+    const std::int64_t file_cached = request.offset == ReadRequest::kWholeFile ? 0 : cache.file(request.file).cached();
     cache.evict(plan.room.evict, plan.spared);
     // The eviction may have taken the file's own data. A range's holes are looked up in the
     // file's offset index, a few cache misses: only again if it did.
-    if (request.offset == ReadRequest::kWholeFile || cache.cached(request.file) != file_cached) plan = plan_read(cache, request);
+    if (request.offset == ReadRequest::kWholeFile || cache.file(request.file).cached() != file_cached) plan = plan_read(cache, request);
     else plan = replan_room(cache, plan, request);
   }
   if (needs != nullptr) *needs = plan;

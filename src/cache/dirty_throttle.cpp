@@ -44,14 +44,14 @@ DirtyThrottle::Step DirtyThrottle::Writer::next(std::int64_t remaining) {
   DirtyThrottle& t = *throttle_;
   PageCache& cache = *t.cache_;
   // Copies in flight count: their pages are being dirtied.
-  const Domain host = t.domain(t.limit_, dirty_limits(cache), cache.dirty_and_writeback() + cache.reserved());
+  const Domain host = t.domain(t.limit_, dirty_limits(cache), dirty_and_writeback(cache) + cache.memory().reserved);
   bool free = host.runs_free(remaining);
   double pos_ratio = host.pos_ratio();
   // In a memory group the writer runs free only if both domains let it, and is paced by the
   // stricter of the two (balance_dirty_pages with a memcg domain, the kernel's cgroup writeback).
   if (group_ != kRootGroup) {
     if (t.group_limits_.size() <= group_) t.group_limits_.resize(static_cast<std::size_t>(group_) + 1);
-    const Domain group = t.domain(t.group_limits_[group_], group_dirty_limits(cache, group_), cache.group_dirty_and_writeback(group_));
+    const Domain group = t.domain(t.group_limits_[group_], group_dirty_limits(cache, group_), cache.groups().dirty_and_writeback(group_));
     pos_ratio = std::min(pos_ratio, group.pos_ratio());
     free = free && group.runs_free(remaining);
   }

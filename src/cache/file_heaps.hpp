@@ -60,6 +60,12 @@ class FileHeaps {
     heaps_[heap].pop();
   }
 
+  /// Calls `visit(entry)` for each entry of `heap`, in no particular order.
+  template <class Visit>
+  void for_each(std::size_t heap, Visit&& visit) const {
+    for (const Entry& e : heaps_[heap]) visit(e);
+  }
+
   /// Throws InvariantError if a heap's order or the positions are broken.
   void check() const {
     std::size_t listed = 0;

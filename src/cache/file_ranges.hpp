@@ -25,6 +25,20 @@ namespace pagecache::cache {
 
 class FileRanges {
  public:
+  /// Reclaim and aging take files held by range in whole pages of `page_size` bytes (> 0; a
+  /// reference model whose bytes stand for pages uses 1).
+  explicit FileRanges(std::int64_t page_size = kPageSize) : page_size_(page_size) {}
+  std::int64_t page_size() const noexcept { return page_size_; }
+
+  /// From now on `file`'s blocks are indexed here (its first access by parts). Whether it is.
+  void track(FileId file) {
+    if (file >= tracked_.size()) tracked_.resize(static_cast<std::size_t>(file) + 1, 0);
+    tracked_[file] = 1;
+  }
+  bool tracked(FileId file) const noexcept { return file < tracked_.size() && tracked_[file] != 0; }
+  /// Cached bytes of [offset, offset + bytes) of a tracked file: its blocks' overlap with it.
+  std::int64_t cached_in(FileId file, std::int64_t offset, std::int64_t bytes) const noexcept;
+
   /// Indexes `block` of `file`, [offset, offset + size). The block is not indexed already, and
   /// no block of the file has that offset.
   void insert(FileId file, BlockId block, std::int64_t offset, std::int64_t size);
@@ -84,8 +98,8 @@ class FileRanges {
     }
   }
   /// Throws InvariantError unless the file's tree is ordered, balanced and linked, its
-  /// entries' offsets are the side array's, and it holds at most `most` entries (more is a
-  /// cycle); returns how many it holds.
+  /// entries' offsets are the side array's, their spans disjoint, and it holds at most `most`
+  /// entries (more is a cycle), none if the file is not tracked; returns how many it holds.
   std::size_t check(FileId file, std::size_t most) const;
 
  private:
@@ -162,6 +176,9 @@ class FileRanges {
   };
   std::vector<Span> spans_;  // by BlockId
   std::vector<Tree> trees_;            // by FileId
+  // By FileId, whether it is held by range: beside the trees, as a reader of whole files asks.
+  std::vector<std::uint8_t> tracked_;
+  std::int64_t page_size_;
 };
 
 }  // namespace pagecache::cache

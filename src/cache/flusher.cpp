@@ -14,12 +14,12 @@ void Flusher::start() {
 }
 
 bool Flusher::background_due() const {
-  if (!cache_->policy().background_writeback() || cache_->dirty() == 0) return false;
-  return cache_->dirty_and_writeback() > dirty_limits(*cache_).background;
+  if (!cache_->policy().background_writeback() || cache_->memory().dirty == 0) return false;
+  return dirty_and_writeback(*cache_) > dirty_limits(*cache_).background;
 }
 
 bool Flusher::group_background_due(GroupId group) const {
-  return cache_->group_dirty_and_writeback(group) > group_dirty_limits(*cache_, group).background;
+  return cache_->groups().dirty_and_writeback(group) > group_dirty_limits(*cache_, group).background;
 }
 
 void Flusher::notify_dirty(GroupId group) {
@@ -38,10 +38,10 @@ void Flusher::notify_dirty(GroupId group) {
 Task<std::int64_t> Flusher::write_group(GroupId group) {
   std::vector<PageCache::Flushed> taken;
   const std::int64_t total =
-      cache_->flush(cache_->group_dirty_and_writeback(group) - group_dirty_limits(*cache_, group).background, kNoFile, taken, group);
+      cache_->flush(cache_->groups().dirty_and_writeback(group) - group_dirty_limits(*cache_, group).background, kNoFile, taken, group);
   for (const PageCache::Flushed& part : taken) {
     flushed_ += part.bytes;
-    cache_->tracer().flush(FlushCause::Background, part.bytes);
+    cache_->listeners().tracer.flush(FlushCause::Background, part.bytes);
     co_await (*files_)[part.file].disk->write(part.bytes);
     cache_->end_writeback(part);
   }
@@ -52,7 +52,7 @@ Task<void> Flusher::write_block(double cutoff) {
   const PageCache::Flushed taken = cache_->flush_expired_block(cutoff);
   if (taken.bytes == 0) co_return;
   flushed_ += taken.bytes;
-  cache_->tracer().flush(std::isinf(cutoff) ? FlushCause::Background : FlushCause::Expiry, taken.bytes);
+  cache_->listeners().tracer.flush(std::isinf(cutoff) ? FlushCause::Background : FlushCause::Expiry, taken.bytes);
   co_await (*files_)[taken.file].disk->write(taken.bytes);
   cache_->end_writeback(taken);
 }
@@ -82,7 +82,7 @@ Task<void> Flusher::periodic() {
     if (sim_->now() >= tick) {
       // Periodic writeback of the data dirty for longer than dirty_expire at the tick.
       const double cutoff = tick - expire;
-      while (cache_->dirty() > 0) {
+      while (cache_->memory().dirty > 0) {
         const std::int64_t before = flushed_;
         co_await write_block(cutoff);
         if (flushed_ == before) break;
@@ -90,14 +90,14 @@ Task<void> Flusher::periodic() {
       // Each group's writeback work also wakes at the interval and looks at its background
       // threshold (wb_workfn, wb_check_background_flush), which may have fallen under its
       // dirty data as memory was taken: once per tick, not per write.
-      for (std::size_t g = 1; g < cache_->group_count(); ++g) notify_dirty(static_cast<GroupId>(g));
+      for (std::size_t g = 1; g < cache_->groups().size(); ++g) notify_dirty(static_cast<GroupId>(g));
       // A tick that took longer than the interval is followed by the next one at once.
       tick = std::max(tick + interval, sim_->now());
       continue;
     }
     // Idle until the next tick, or, with no dirty data at all, until some appears; background
     // writeback becoming due wakes it early.
-    parked_ = cache_->dirty() == 0;
+    parked_ = cache_->memory().dirty == 0;
     wake_.emplace(*sim_);
     if (parked_) co_await wake_->wait();
     else co_await wake_->wait_for(tick - sim_->now());

@@ -52,10 +52,9 @@ struct Host::Impl {
         cpu(fs, spec.name + ":cpu", spec.cores),
         nodes(modelled_nodes(spec)),
         memory(fs, memory_name(spec, nodes, 0), node_bandwidth(spec, nodes)),
-        cache(spec.memory, spec.cache),
+        cache(spec.memory, spec.cache, {.nodes = nodes}),
         flusher(s, cache, files),
         io(s, cache, memory, files, flusher) {
-    cache.set_nodes(nodes);
     if (nodes > 1) {
       other_node.emplace(fs, memory_name(spec, nodes, 1), node_bandwidth(spec, nodes));
       memory.set_numa(spec.numa.remote, spec.name);
@@ -84,11 +83,11 @@ struct Host::Impl {
   std::deque<Route> one_link_routes;  // of add_remote_file over a link: stable addresses
 
   cache::GroupId group(GroupRef g) const {
-    if (g.index != 0 && g.index >= cache.group_count()) throw ConfigError(fmt::format("host '{}': unknown memory group #{}", spec.name, g.index));
+    if (g.index != 0 && g.index >= cache.groups().size()) throw ConfigError(fmt::format("host '{}': unknown memory group #{}", spec.name, g.index));
     return g.index;
   }
   cache::NodeId node(NodeRef n) const {
-    if (n.index >= cache.node_count()) throw ConfigError(fmt::format("host '{}': unknown NUMA node #{}", spec.name, n.index));
+    if (n.index >= cache.nodes().count()) throw ConfigError(fmt::format("host '{}': unknown NUMA node #{}", spec.name, n.index));
     return n.index;
   }
   cache::FileId id(FileRef file) const {
@@ -192,7 +191,7 @@ void Host::release_memory(std::int64_t bytes, Thread thread) {
 }
 
 Thread Host::start_thread(GroupRef group) {
-  const auto nodes = static_cast<std::size_t>(impl_->cache.node_count());
+  const auto nodes = static_cast<std::size_t>(impl_->cache.nodes().count());
   std::size_t node = 0;
   for (std::size_t n = 1; n < nodes; ++n) {
     if (impl_->running[n] < impl_->running[node]) node = n;
@@ -203,31 +202,31 @@ Thread Host::start_thread(GroupRef group) {
 
 void Host::end_thread(Thread thread) { --impl_->running[impl_->node(thread.node)]; }
 
-int Host::nodes() const noexcept { return static_cast<int>(impl_->cache.node_count()); }
+int Host::nodes() const noexcept { return static_cast<int>(impl_->cache.nodes().count()); }
 
 GroupRef Host::add_memory_group(std::int64_t max, std::int64_t high) { return GroupRef{impl_->cache.add_group(max, high)}; }
 
-std::int64_t Host::group_usage(GroupRef group) const { return impl_->cache.group_usage(impl_->group(group)); }
+std::int64_t Host::group_usage(GroupRef group) const { return cache::group_usage(impl_->cache, impl_->group(group)); }
 
 MemoryState Host::memory() const noexcept { return impl_->cache.memory(); }
-std::int64_t Host::cached(FileRef file) const noexcept { return impl_->cache.cached(file.index); }
-std::int64_t Host::dirty(FileRef file) const noexcept { return impl_->cache.dirty(file.index); }
+std::int64_t Host::cached(FileRef file) const noexcept { return impl_->cache.file(file.index).cached(); }
+std::int64_t Host::dirty(FileRef file) const noexcept { return impl_->cache.file(file.index).dirty; }
 std::int64_t Host::forced_flush_bytes() const noexcept { return impl_->io.flushed_bytes(); }
 std::int64_t Host::periodic_flush_bytes() const noexcept { return impl_->flusher.flushed_bytes(); }
-std::int64_t Host::evicted_bytes() const noexcept { return impl_->cache.evicted_bytes(); }
+std::int64_t Host::evicted_bytes() const noexcept { return impl_->cache.totals().evicted; }
 std::uint64_t Host::chunk_operations() const noexcept { return impl_->io.chunk_operations(); }
-std::int64_t Host::peak_dirty_bytes() const noexcept { return impl_->cache.peak_dirty(); }
+std::int64_t Host::peak_dirty_bytes() const noexcept { return impl_->cache.totals().peak_dirty; }
 
 void Host::set_trace(TraceSink* sink, std::uint32_t index) {
-  impl_->cache.set_tracer({.sink = sink, .sim = &impl_->sim, .host = index});
+  impl_->cache.listeners().tracer = {.sink = sink, .sim = &impl_->sim, .host = index};
 }
 
 void Host::set_memory_observer(std::function<void(double, const MemoryState&)> observer) {
   if (!observer) {
-    impl_->cache.set_observer({});
+    impl_->cache.listeners().change = {};
     return;
   }
-  impl_->cache.set_observer([impl = impl_.get(), observer = std::move(observer)] { observer(impl->sim.now(), impl->cache.memory()); });
+  impl_->cache.listeners().change = [impl = impl_.get(), observer = std::move(observer)] { observer(impl->sim.now(), impl->cache.memory()); };
 }
 
 void Host::set_checking(bool on) { impl_->cache.set_checking(on); }

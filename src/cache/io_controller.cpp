@@ -20,7 +20,7 @@ Task<std::int64_t> IoController::write_back(std::int64_t amount, FileId excluded
   std::vector<PageCache::Flushed>& taken = scratch.parts;
   const std::int64_t total = cache_->flush(amount, excluded, taken, group);
   flushed_ += total;
-  cache_->tracer().flush(cause, total);
+  cache_->listeners().tracer.flush(cause, total);
   // The data may belong to files on different devices: one write per device, in the order
   // the data was taken.
   auto& writes = scratch.writes;
@@ -39,9 +39,9 @@ Task<std::int64_t> IoController::write_back(std::int64_t amount, FileId excluded
 IoController::IoController(Simulator& sim, PageCache& cache, const Memory& memory, FileTable& files, Flusher& flusher)
     : sim_(&sim), cache_(&cache), memories_{&memory}, files_(&files), flusher_(&flusher), throttle_(sim, cache, flusher) {
   machine_at_rest();
-  cache_->set_progress_hook([this] {
+  cache_->listeners().progress = [this] {
     if (progress_ && !progress_->triggered()) progress_->trigger();
-  });
+  };
 }
 
 bool IoController::throttles_writers() const noexcept { return cache_->policy().throttles_writers(); }
@@ -49,8 +49,8 @@ bool IoController::throttles_writers() const noexcept { return cache_->policy().
 void IoController::machine_at_rest() { throttle_.at_rest(); }
 
 void IoController::report_free_pages(double delay, std::int64_t warm) {
-  reporting_.emplace(cache_->free(), cache_->anonymous(), warm, delay, cache_->policy().large_folios());
-  cache_->set_free_memory_hook([this](std::int64_t free, std::int64_t anonymous) { reporting_->observe(free, anonymous, sim_->now()); });
+  reporting_.emplace(cache_->free(), cache_->memory().anonymous, warm, delay, cache_->policy().large_folios());
+  cache_->listeners().free_memory = [this](std::int64_t free, std::int64_t anonymous) { reporting_->observe(free, anonymous, sim_->now()); };
 }
 
 void IoController::cache_at_start(FileId file, std::int64_t bytes) {
@@ -59,10 +59,10 @@ void IoController::cache_at_start(FileId file, std::int64_t bytes) {
     return;
   }
   // Cached before the run: its memory was neither freed nor taken by the run.
-  cache_->set_free_memory_hook({});
+  cache_->listeners().free_memory = {};
   cache_->add_clean(file, bytes, sim_->now());
-  reporting_->rebase(cache_->free(), cache_->anonymous());
-  cache_->set_free_memory_hook([this](std::int64_t free, std::int64_t anonymous) { reporting_->observe(free, anonymous, sim_->now()); });
+  reporting_->rebase(cache_->free(), cache_->memory().anonymous);
+  cache_->listeners().free_memory = [this](std::int64_t free, std::int64_t anonymous) { reporting_->observe(free, anonymous, sim_->now()); };
 }
 
 Task<void> IoController::wait_for_progress() {
@@ -104,7 +104,7 @@ Task<void> IoController::take_buffer(std::int64_t bytes, GroupId group, FileId s
   do {
     co_await make_group_room(group, bytes, subject, verb);
     co_await make_room(bytes, kNoFile, subject, verb);
-  } while (cache_->group_headroom(group) < bytes);
+  } while (cache_->groups().headroom(group) < bytes);
   cache_->touch_from(node);
   cache_->allocate_anonymous(bytes, group);
 }
@@ -113,14 +113,14 @@ Task<void> IoController::make_group_room(GroupId group, std::int64_t bytes, File
   // Above memory.high the group reclaims its own clean data, and writes back its dirty data
   // once, but is never refused (mm/memcontrol.c, reclaim_high; the penalty sleep is not
   // modelled).
-  if (const std::int64_t over_high = cache_->group_over_high(group, bytes); over_high > 0) {
+  if (const std::int64_t over_high = cache_->groups().over_high(group, bytes); over_high > 0) {
     const std::int64_t evicted = cache_->evict(over_high, kNoFile, group);
     if (evicted < over_high && co_await write_back(over_high - evicted, kNoFile, FlushCause::Reclaim, group) > 0) {
-      cache_->evict(cache_->group_over_high(group, bytes), kNoFile, group);
+      cache_->evict(cache_->groups().over_high(group, bytes), kNoFile, group);
     }
   }
   for (;;) {
-    std::int64_t over = bytes - cache_->group_headroom(group);
+    std::int64_t over = bytes - cache_->groups().headroom(group);
     if (over <= 0) co_return;
     const std::int64_t evicted = cache_->evict(over, kNoFile, group);
     over -= evicted;
@@ -134,8 +134,8 @@ Task<void> IoController::make_group_room(GroupId group, std::int64_t bytes, File
     }
     throw SimulationError(fmt::format(
         "t = {} s: {} {}: memory group {} is at its limit (memory.max {} bytes, {} in use) and cannot free {} bytes (out of memory in the group)",
-        units::format_instant(sim_->now()), verb, subject == kNoFile ? std::string() : "'" + (*files_)[subject].name + "'", group, cache_->group_max(group),
-        cache_->group_usage(group), over));
+        units::format_instant(sim_->now()), verb, subject == kNoFile ? std::string() : "'" + (*files_)[subject].name + "'", group, cache_->groups().max(group),
+        group_usage(*cache_, group), over));
   }
 }
 
@@ -145,7 +145,7 @@ Task<std::int64_t> IoController::room_for_chunk(FileId file, std::int64_t file_s
   const bool in_group = group != kRootGroup;
   if (in_group) cache_->charge_file(file, group);
   // The group is charged with the buffer, and with the new cache data if the file is its own.
-  const bool owned = in_group && cache_->group_of(file) == group;
+  const bool owned = in_group && cache_->groups().of(file) == group;
   for (;;) {
     std::int64_t from_disk = -1;
     if (in_group) {
@@ -160,7 +160,7 @@ Task<std::int64_t> IoController::room_for_chunk(FileId file, std::int64_t file_s
       if (from_disk < 0) co_await make_room(needs.required, needs.spared, file, verb);
     }
     // While the host's room was made, others of the group may have taken its room again.
-    if (!in_group || cache_->group_headroom(group) >= buffer + (owned ? from_disk : 0)) co_return from_disk;
+    if (!in_group || cache_->groups().headroom(group) >= buffer + (owned ? from_disk : 0)) co_return from_disk;
   }
 }
 
@@ -178,7 +178,7 @@ Task<IoResult> IoController::read_file(FileId file, std::int64_t chunk_size, boo
 IoController::ChunkCopies IoController::start_read_chunk(const ReadRequest& request, std::int64_t disk_read, ReadCursor& cursor, GroupId group,
                                                          NodeId node, storage::Readahead* readahead, const Disk& disk) {
   const std::int64_t cold = cold_taken();
-  const RemoteTally before = cache_->remote();
+  const RemoteTally before = cache_->nodes().remote();
   cache_->touch_from(node);
   cursor = start_chunk(*cache_, request, disk_read, cursor, group, sim_->now());
   ChunkCopies copies;
@@ -189,7 +189,7 @@ IoController::ChunkCopies IoController::start_read_chunk(const ReadRequest& requ
   // Where the new cache pages, the cached data read and the buffer are, from the reader's node.
   RemoteShare from_disk;
   if (numa_) {
-    const RemoteTally& now = cache_->remote();
+    const RemoteTally& now = cache_->nodes().remote();
     const double buffer = share(now.anonymous - before.anonymous, request.bytes);
     from_disk = RemoteShare{.source = share(now.cache - before.cache, disk_read), .destination = buffer};
     copies.remote = RemoteShare{.source = share(now.reread - before.reread, request.bytes - disk_read), .destination = buffer};
@@ -204,7 +204,7 @@ IoController::ChunkCopies IoController::start_read_chunk(const ReadRequest& requ
 }
 
 RemoteShare IoController::remote_since(std::int64_t RemoteTally::*what, std::int64_t before, std::int64_t bytes) const noexcept {
-  return RemoteShare{.source = 0.0, .destination = share(cache_->remote().*what - before, bytes)};
+  return RemoteShare{.source = 0.0, .destination = share(cache_->nodes().remote().*what - before, bytes)};
 }
 
 Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_size, bool direct, GroupId group, NodeId node) {
@@ -225,7 +225,7 @@ Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_siz
     if (direct) {
       // O_DIRECT: only the application's buffer takes memory; the data comes from the disk.
       const std::int64_t cold = cold_taken();
-      const std::int64_t placed = cache_->remote().anonymous;
+      const std::int64_t placed = cache_->nodes().remote().anonymous;
       co_await take_buffer(chunk, group, file, "reading", node);
       const double rate = memory(node).fresh_copy_rate(share(cold_taken() - cold, chunk), remote_since(&RemoteTally::anonymous, placed, chunk));
       co_await disk->read(chunk, rate, chunk);  // requests of the chunk
@@ -240,7 +240,7 @@ Task<IoResult> IoController::read_whole_file(FileId file, std::int64_t chunk_siz
     // cache it adds to the copy.
     // A file another task reads by range is held by range: this chunk is its part of it. (The
     // request is made at each use: one kept across the wait would enlarge every reader's frame.)
-    const std::int64_t at = cache_->ranged(file) ? offset : ReadRequest::kWholeFile;
+    const std::int64_t at = cache_->ranges().tracked(file) ? offset : ReadRequest::kWholeFile;
     std::int64_t disk_read =
         group == kRootGroup ? evict_for_chunk(*cache_, {.file = file, .file_size = size, .bytes = chunk, .anonymous = chunk, .offset = at}) : -1;
     if (disk_read < 0) disk_read = co_await room_for_chunk(file, size, chunk, chunk, at, group, "reading");
@@ -276,7 +276,7 @@ Task<void> IoController::fsync(FileId file) {
   std::vector<PageCache::Flushed> taken;
   const std::int64_t bytes = cache_->flush_file(file, taken);
   flushed_ += bytes;
-  cache_->tracer().flush(FlushCause::Fsync, bytes);
+  cache_->listeners().tracer.flush(FlushCause::Fsync, bytes);
   if (bytes > 0) co_await info.disk->write(bytes);
   for (const auto& part : taken) cache_->end_writeback(part);
   while (cache_->writeback(file) > 0) co_await wait_for_progress();  // the flusher's, or a writer's

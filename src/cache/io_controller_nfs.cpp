@@ -45,11 +45,11 @@ Task<IoTally> IoController::read_chunk_remote(FileId file, std::int64_t chunk, R
   std::int64_t remote_read = group == kRootGroup ? evict_for_chunk(*cache_, request) : -1;
   if (remote_read < 0) remote_read = co_await room_for_chunk(file, info.size, chunk, chunk, ReadRequest::kWholeFile, group, "reading");
   const std::int64_t cache_read = chunk - remote_read;
-  const std::int64_t reread = cache_->remote().reread;
+  const std::int64_t reread = cache_->nodes().remote().reread;
   cache_->touch_from(node);
   cursor = start_chunk(*cache_, request, remote_read, cursor, group, sim_->now());
   // The part re-read is priced from where it is cached; the server's part by the network.
-  const RemoteShare from_cache{.source = share(cache_->remote().reread - reread, cache_read)};
+  const RemoteShare from_cache{.source = share(cache_->nodes().remote().reread - reread, cache_read)};
   if (remote_read > 0) co_await serve_remote(file, remote_read, &server_cursor, node);
   if (cache_read > 0) co_await memory(node).read_into_fresh(cache_read, 0.0, from_cache);
   // From this host's point of view, data from the server is not from its own cache.

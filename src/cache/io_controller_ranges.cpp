@@ -105,7 +105,7 @@ Task<IoResult> IoController::read_ranges_of(FileId file, std::function<bool(Byte
     std::int64_t disk_read = group == kRootGroup ? evict_for_chunk(*cache_, request) : -1;
     if (disk_read < 0) disk_read = co_await room_for_chunk(file, size, request.bytes, 0, request.offset, group, "reading");
     const std::int64_t cold = cold_taken();
-    const RemoteTally before = cache_->remote();
+    const RemoteTally before = cache_->nodes().remote();
     // The request's pages are read (the cached ones touched); the rest of the window only fills.
     cache_->touch_from(node);
     cache_->charge_file(file, group);
@@ -117,10 +117,10 @@ Task<IoResult> IoController::read_ranges_of(FileId file, std::function<bool(Byte
     const std::int64_t copied = std::max<std::int64_t>(r.length - missed, 0);
     if (disk_read > 0) {
       const double cold_share = static_cast<double>(cold_taken() - cold) / static_cast<double>(disk_read);
-      const RemoteShare placed{.source = share(cache_->remote().cache - before.cache, disk_read), .destination = 0.0};
+      const RemoteShare placed{.source = share(cache_->nodes().remote().cache - before.cache, disk_read), .destination = 0.0};
       co_await disk->read(disk_read, memory(node).fresh_copy_rate(cold_share, placed), disk_read);
     }
-    if (copied > 0) co_await memory(node).read(copied, RemoteShare{.source = share(cache_->remote().reread - before.reread, copied)});
+    if (copied > 0) co_await memory(node).read(copied, RemoteShare{.source = share(cache_->nodes().remote().reread - before.reread, copied)});
     // The request's bytes, each once (timeline.csv adds them up): from the device as far as it
     // read the request's pages; of the rest, found cached, what the device read earlier in this
     // phase beyond earlier requests (a partial page's rest, a readahead window) is the device's

@@ -30,22 +30,22 @@ Task<IoTally> IoController::write_chunk_remote(FileId file, std::int64_t chunk) 
 Task<std::int64_t> IoController::write_to_cache(FileId file, std::int64_t bytes, std::int64_t reclaimed, std::int64_t at, NodeId node) {
   // The pages are taken now and hold the data once the copy is done: the dirty block's entry
   // time is the end of the copy. The file's group is charged for them.
-  if (const GroupId group = cache_->group_of(file); group != kRootGroup) {
-    const std::int64_t evicted = cache_->evicted_bytes();
+  if (const GroupId group = cache_->groups().of(file); group != kRootGroup) {
+    const std::int64_t evicted = cache_->totals().evicted;
     co_await make_group_room(group, bytes, file, "writing");
-    reclaimed += cache_->evicted_bytes() - evicted;
+    reclaimed += cache_->totals().evicted - evicted;
     bytes = std::min(bytes, cache_->free());  // others may have taken memory meanwhile
     if (bytes == 0) co_return 0;
   }
   const std::int64_t cold = cold_taken();
-  const std::int64_t reserved = cache_->remote().reserved;
+  const std::int64_t reserved = cache_->nodes().remote().reserved;
   cache_->touch_from(node);
   cache_->reserve(bytes);
   co_await memory(node).write(bytes, std::min(reclaimed, bytes), cold_taken() - cold,
                               numa_ ? remote_since(&RemoteTally::reserved, reserved, bytes) : RemoteShare{});
   cache_->touch_from(node);
   commit_write(file, at, bytes);
-  flusher_->notify_dirty(cache_->group_of(file));
+  flusher_->notify_dirty(cache_->groups().of(file));
   co_return bytes;
 }
 
@@ -54,8 +54,7 @@ Task<std::int64_t> IoController::write_to_cache(FileId file, std::int64_t bytes,
 // What is decided between two suspensions is decided by the writer's DirtyThrottle::Writer, so
 // that the frame holds little more than it.
 void IoController::commit_write(FileId file, std::int64_t at, std::int64_t bytes) {
-  if (at == ReadRequest::kWholeFile) cache_->commit_dirty(file, bytes, sim_->now());
-  else cache_->commit_dirty_at(file, at, bytes, sim_->now());
+  cache_->commit_dirty(file, bytes, sim_->now(), at);  // kWholeFile is kNoOffset
 }
 
 Task<IoResult> IoController::write_file_throttled(FileId file, std::int64_t bytes, std::int64_t chunk_size, bool whole_file, std::int64_t at,
@@ -63,20 +62,20 @@ Task<IoResult> IoController::write_file_throttled(FileId file, std::int64_t byte
   const double start = sim_->now();
   if (whole_file) cache_->set_being_written(file, true);
   const double device_bw = (*files_)[file].disk->write_bandwidth();
-  const GroupId group = cache_->group_of(file);
+  const GroupId group = cache_->groups().of(file);
   for (std::int64_t offset = 0; offset < bytes; offset += chunk_size) {
     std::int64_t remaining = std::min(chunk_size, bytes - offset);
     DirtyThrottle::Writer writer(throttle_, device_bw, group);
     while (remaining > 0) {
       // What is evicted from here to the copy frees the pages the copy fills.
-      std::int64_t evicted = cache_->evicted_bytes();
+      std::int64_t evicted = cache_->totals().evicted;
       const std::int64_t cold = cold_taken();
-      const std::int64_t reserved = cache_->remote().reserved;
+      const std::int64_t reserved = cache_->nodes().remote().reserved;
       cache_->touch_from(node);  // the step's pages are reserved on the writer's node first
       const DirtyThrottle::Step step = writer.next(remaining);
       if (step.kind == DirtyThrottle::Step::Pause) {
         co_await sim_->sleep(step.pause);
-        cache_->tracer().throttle(sim_->now() - step.pause);
+        cache_->listeners().tracer.throttle(sim_->now() - step.pause);
         writer.paused(step);
       } else if (step.kind == DirtyThrottle::Step::MakeRoom) {
         // Out of memory with nothing clean to reclaim: dirty data must be written first, as
@@ -87,7 +86,7 @@ Task<IoResult> IoController::write_file_throttled(FileId file, std::int64_t byte
         }
       } else {
         if (group != kRootGroup) co_await make_group_room(group, step.to_cache, file, "writing");
-        evicted = cache_->evicted_bytes() - evicted;
+        evicted = cache_->totals().evicted - evicted;
         co_await memory(node).write(step.to_cache, std::min(evicted, step.to_cache), cold_taken() - cold,
                                     numa_ ? remote_since(&RemoteTally::reserved, reserved, step.to_cache) : RemoteShare{});
         cache_->touch_from(node);
@@ -134,7 +133,7 @@ Task<IoTally> IoController::write_chunk_writethrough(FileId file, std::int64_t c
   cache_->evict(chunk - cache_->free(), file);
   cache_->touch_from(node);
   // A range written through is cached clean, as if read: what was not cached of it, if it fits.
-  if (at != ReadRequest::kWholeFile && chunk - cache_->cached_in(file, at, chunk) <= cache_->free()) cache_->read_range(file, at, chunk, sim_->now());
+  if (at != ReadRequest::kWholeFile && chunk - cache_->ranges().cached_in(file, at, chunk) <= cache_->free()) cache_->read_range(file, at, chunk, sim_->now());
   else if (at == ReadRequest::kWholeFile) cache_->add_clean(file, std::min(chunk, cache_->free()), sim_->now());
   co_return IoTally{.bytes = chunk, .cache_bytes = 0, .disk_bytes = chunk};
 }
@@ -146,7 +145,7 @@ Task<IoResult> IoController::write_file(FileId file, std::int64_t bytes, std::in
   if (!direct && !info.is_remote() && cache_->settings().write_mode == WriteMode::Writeback && throttles_writers()) {
     chunks_ += static_cast<std::uint64_t>((bytes + chunk_size - 1) / chunk_size);
     // A file held by range is written in place, from its start.
-    return write_file_throttled(file, bytes, chunk_size, true, cache_->ranged(file) ? 0 : ReadRequest::kWholeFile, node);
+    return write_file_throttled(file, bytes, chunk_size, true, cache_->ranges().tracked(file) ? 0 : ReadRequest::kWholeFile, node);
   }
   return write_file_in_chunks(file, bytes, chunk_size, direct, node);
 }
@@ -158,7 +157,7 @@ Task<IoResult> IoController::write_file_in_chunks(FileId file, std::int64_t byte
   // Over NFS there is no client write cache: O_DIRECT changes nothing, every write goes to the
   // server (write_chunk).
   const Disk* const direct_to = direct && !(*files_)[file].is_remote() ? (*files_)[file].disk : nullptr;
-  const bool in_place = cache_->ranged(file);  // a file held by range is written in place
+  const bool in_place = cache_->ranges().tracked(file);  // a file held by range is written in place
   for (std::int64_t offset = 0; offset < bytes; offset += chunk_size) {
     const std::int64_t chunk = std::min(chunk_size, bytes - offset);
     ++chunks_;

@@ -47,6 +47,8 @@ class LruList {
   BlockId front() const noexcept { return blocks_.front(); }
   BlockId back() const noexcept { return blocks_.back(); }
   BlockId next(BlockId block) const noexcept { return LruOrder::next(*pool_, block); }
+  /// A block of the list (or of another list sharing its pool).
+  const Block& block(BlockId block) const noexcept { return (*pool_)[block]; }
   /// Least recently used block in `state` (clean: of `node`), and the next one in the state
   /// (clean: and node) of `block`. A one-node host's blocks are all on node 0.
   BlockId front(BlockState state, NodeId node = 0) const noexcept { return by_state_[sub_list(state, node)].front(); }

@@ -41,6 +41,16 @@ struct RemoteTally {
 
 class NumaNodes {
  public:
+  /// The nodes modelled: 1 on a host whose table is empty.
+  std::size_t count() const noexcept { return std::max<std::size_t>(nodes_.size(), 1); }
+  /// The node of the thread whose operations follow (0 until set): they take new memory there
+  /// first (place), give memory back there first, and read the cache from there.
+  NodeId toucher() const noexcept { return toucher_; }
+  void touch_from(NodeId node) noexcept { toucher_ = node; }
+  /// What threads placed, or read from the cache, on another node than their own, so far.
+  const RemoteTally& remote() const noexcept { return remote_; }
+  RemoteTally& remote() noexcept { return remote_; }
+
   /// `count` nodes sharing `total` bytes evenly (the first ones take the remainder).
   void split(std::int64_t total, int count) {
     nodes_.assign(static_cast<std::size_t>(count), NodeUse{});
@@ -79,8 +89,14 @@ class NumaNodes {
     }
   }
 
+  /// Throws InvariantError unless each node's cache is `cached_on[node]` (its blocks' sum), no
+  /// node holds more than it has, and the nodes add up to `host`.
+  void check(const std::int64_t* cached_on, const NodeUse& host) const;
+
  private:
   std::vector<NodeUse> nodes_;
+  NodeId toucher_ = 0;
+  RemoteTally remote_;
 };
 
 }  // namespace pagecache::cache

@@ -20,17 +20,18 @@ bool PageCache::checking_by_default() {
 #endif
 }
 
-PageCache::PageCache(std::int64_t total_memory, const CacheSettings& settings)
-    : PageCache(total_memory, settings, make_policy(settings)) {}
-
-PageCache::PageCache(std::int64_t total_memory, const CacheSettings& settings, std::unique_ptr<Policy> policy)
+PageCache::PageCache(std::int64_t total_memory, const CacheSettings& settings, MemoryLayout layout, std::unique_ptr<Policy> policy)
     : settings_(settings),
-      policy_(std::move(policy)),
+      policy_(policy ? std::move(policy) : make_policy(settings)),
       index_clean_(policy_->spares_files_being_written()),
       first_touch_(policy_->read_is_first_touch()),
       balance_always_(policy_->balances_after_every_change()),
-      total_(total_memory) {
+      total_(total_memory),
+      ranges_(layout.page_size) {
   if (total_memory <= 0) throw ConfigError(fmt::format("memory size must be > 0, got {} bytes", total_memory));
+  if (layout.page_size <= 0) throw ConfigError(fmt::format("a page must be > 0 bytes, got {}", layout.page_size));
+  if (layout.nodes < 1 || layout.nodes > kMaxNodes) throw ConfigError(fmt::format("a host has 1 to {} NUMA nodes, got {}", kMaxNodes, layout.nodes));
+  if (layout.nodes > 1) nodes_.split(total_, layout.nodes);
 }
 
 PageCache::~PageCache() = default;
@@ -51,27 +52,25 @@ std::int64_t PageCache::writeback() const noexcept {
   return inactive_.bytes(BlockState::Writeback) + active_.bytes(BlockState::Writeback);
 }
 
-std::int64_t PageCache::dirty_and_writeback() const noexcept { return dirty() + writeback(); }
-
 void PageCache::allocate_anonymous(std::int64_t bytes, GroupId group) {
   PC_ASSERT(bytes >= 0);
   if (bytes > free()) {
     throw SimulationError(fmt::format("out of memory: {} bytes of application memory requested, {} free", bytes, free()));
   }
   if (!groups_.empty()) {
-    if (group != kRootGroup && bytes > group_room(group)) {
+    if (group != kRootGroup && bytes > group_room(*this, group)) {
       throw SimulationError(fmt::format("memory group {} over its limit: {} bytes of application memory requested, {} of {} used", group,
-                                        bytes, group_usage(group), groups_[group].max));
+                                        bytes, groups_.usage(group), groups_.max(group)));
     }
-    groups_[group].anonymous += bytes;
+    groups_.charge_anonymous(group, bytes);
   } else {
     PC_ASSERT(group == kRootGroup);
   }
   anonymous_ += bytes;
   if (!nodes_.empty()) {
-    nodes_.place(bytes, toucher_, [&](NodeId node, std::int64_t part) {
+    nodes_.place(bytes, nodes_.toucher(), [&](NodeId node, std::int64_t part) {
       nodes_[node].anonymous += part;
-      if (node != toucher_) remote_.anonymous += part;
+      if (node != nodes_.toucher()) nodes_.remote().anonymous += part;
     });
   }
   settle();
@@ -80,13 +79,18 @@ void PageCache::allocate_anonymous(std::int64_t bytes, GroupId group) {
 void PageCache::release_anonymous(std::int64_t bytes, GroupId group) {
   PC_ASSERT(bytes >= 0 && bytes <= anonymous_);
   if (!groups_.empty()) {
-    PC_ASSERT(bytes <= groups_[group].anonymous);
-    groups_[group].anonymous -= bytes;
+    PC_ASSERT(bytes <= groups_.anonymous(group));
+    groups_.charge_anonymous(group, -bytes);
   }
   anonymous_ -= bytes;
-  if (!nodes_.empty()) nodes_.release(bytes, toucher_, &NodeUse::anonymous, [](NodeId, std::int64_t) {});
+  if (!nodes_.empty()) nodes_.release(bytes, nodes_.toucher(), &NodeUse::anonymous, [](NodeId, std::int64_t) {});
   settle();
-  if (progress_hook_) progress_hook_();
+  if (listeners_.progress) listeners_.progress();
+}
+
+std::int64_t dirty_and_writeback(const PageCache& cache) noexcept {
+  const MemoryState memory = cache.memory();
+  return memory.dirty + memory.writeback;
 }
 
 // --- Per file -------------------------------------------------------------------------------
@@ -100,18 +104,10 @@ PageCache::FileEntry& PageCache::file_entry(FileId file) {
   return files_[file];
 }
 
-std::int64_t PageCache::cached(FileId file) const noexcept {
-  if (file >= files_.size()) return 0;
-  return files_[file].inactive_bytes + files_[file].active_bytes;
-}
-
-std::int64_t PageCache::cached(FileId file, ListKind kind) const noexcept {
-  if (file >= files_.size()) return 0;
-  return kind == ListKind::Inactive ? files_[file].inactive_bytes : files_[file].active_bytes;
-}
-
-std::int64_t PageCache::dirty(FileId file) const noexcept {
-  return file < files_.size() ? files_[file].dirty_bytes : 0;
+FileUse PageCache::file(FileId file) const noexcept {
+  if (file >= files_.size()) return {};
+  const FileEntry& entry = files_[file];
+  return FileUse{.inactive = entry.inactive_bytes, .active = entry.active_bytes, .dirty = entry.dirty_bytes};
 }
 
 // --- Block bookkeeping: every list and counter changes here and only here -------------------
@@ -138,7 +134,7 @@ void PageCache::append(BlockId id, ListKind kind) {
   charge(block.file, block.node, block.size);
   if (block.state == BlockState::Dirty) entry.dirty_bytes += block.size;
   if (block.state == BlockState::Clean) on_clean_linked(id);
-  else charge_dirty(block.file, block.size);
+  else groups_.charge_dirty(block.file, block.size);
 }
 
 void PageCache::unlink(BlockId id) {
@@ -152,7 +148,7 @@ void PageCache::unlink(BlockId id) {
   (block.list == ListKind::Inactive ? entry.inactive_bytes : entry.active_bytes) -= block.size;
   charge(block.file, block.node, -block.size);
   if (block.state == BlockState::Dirty) entry.dirty_bytes -= block.size;
-  if (block.state != BlockState::Clean) charge_dirty(block.file, -block.size);
+  if (block.state != BlockState::Clean) groups_.charge_dirty(block.file, -block.size);
 }
 
 bool PageCache::extend_tail(ListKind kind, FileId file, std::int64_t bytes, bool referenced, NodeId node) {
@@ -193,7 +189,7 @@ void PageCache::set_state(BlockId id, BlockState state) {
   if (block.state == BlockState::Dirty) entry.dirty_bytes -= block.size;
   if (state == BlockState::Dirty) entry.dirty_bytes += block.size;
   const bool was_clean = block.state == BlockState::Clean;
-  if (was_clean != (state == BlockState::Clean)) charge_dirty(block.file, was_clean ? block.size : -block.size);
+  if (was_clean != (state == BlockState::Clean)) groups_.charge_dirty(block.file, was_clean ? block.size : -block.size);
   if (was_clean && state != BlockState::Clean) on_clean_unlinked(id);
   if (block.state == BlockState::Writeback && state != BlockState::Writeback) {
     writeback_[block.file].erase(blocks_, id);
@@ -220,7 +216,7 @@ void PageCache::link_clean(BlockId id) {
 
 void PageCache::mark_reclaimable(ListKind kind, FileId file, std::uint64_t key) {
   reclaimable(kind).lower(0, file, key);
-  if (const GroupId group = group_of(file); group != kRootGroup) reclaimable(kind, true).lower(group, file, key);
+  if (const GroupId group = groups_.of(file); group != kRootGroup) reclaimable(kind, true).lower(group, file, key);
 }
 
 void PageCache::unlink_clean(BlockId id) {
@@ -264,8 +260,8 @@ BlockId PageCache::split_front(BlockId id, std::int64_t head_size) {
 void PageCache::settle() {
   if (balance_always_) balance();
   if (checking_) check_after_operation();
-  if (free_memory_hook_) free_memory_hook_(free(), anonymous_);
-  if (observer_) observer_();
+  if (listeners_.free_memory) listeners_.free_memory(free(), anonymous_);
+  if (listeners_.change) listeners_.change();
 }
 
 // --- Cache contents -------------------------------------------------------------------------
@@ -279,8 +275,8 @@ void PageCache::add_new(FileId file, std::int64_t bytes, BlockState state, doubl
   if (nodes_.empty()) {
     add_new_on(0, file, bytes, state, now, referenced);
   } else {
-    nodes_.place(bytes, toucher_, [&](NodeId node, std::int64_t part) {
-      if (node != toucher_) remote_.cache += part;
+    nodes_.place(bytes, nodes_.toucher(), [&](NodeId node, std::int64_t part) {
+      if (node != nodes_.toucher()) nodes_.remote().cache += part;
       add_new_on(node, file, part, state, now, referenced);
     });
   }
@@ -316,7 +312,7 @@ void PageCache::add_read(FileId file, std::int64_t bytes, double now) {
 
 void PageCache::add_dirty(FileId file, std::int64_t bytes, double now) {
   add_new(file, bytes, BlockState::Dirty, now);
-  peak_dirty_ = std::max(peak_dirty_, dirty());
+  totals_.peak_dirty = std::max(totals_.peak_dirty, dirty());
 }
 
 void PageCache::reserve(std::int64_t bytes) {
@@ -324,27 +320,32 @@ void PageCache::reserve(std::int64_t bytes) {
   if (bytes > free()) throw SimulationError(fmt::format("cannot reserve {} bytes: only {} free", bytes, free()));
   reserved_ += bytes;
   if (!nodes_.empty()) {
-    nodes_.place(bytes, toucher_, [&](NodeId node, std::int64_t part) {
+    nodes_.place(bytes, nodes_.toucher(), [&](NodeId node, std::int64_t part) {
       nodes_[node].reserved += part;
-      if (node != toucher_) remote_.reserved += part;
+      if (node != nodes_.toucher()) nodes_.remote().reserved += part;
     });
   }
   settle();
 }
 
-void PageCache::commit_dirty(FileId file, std::int64_t bytes, double now) {
+void PageCache::commit_dirty(FileId file, std::int64_t bytes, double now, std::int64_t offset) {
   PC_ASSERT(bytes >= 0 && bytes <= reserved_);
+  PC_ASSERT_MSG(offset == kNoOffset || ranged(file), "an offset is written in a file held by range");
   reserved_ -= bytes;
-  if (nodes_.empty()) {
+  if (offset != kNoOffset) {
+    // The pages reserved are freed and taken again where write_range places the holes.
+    if (!nodes_.empty()) nodes_.release(bytes, nodes_.toucher(), &NodeUse::reserved, [](NodeId, std::int64_t) {});
+    write_range(file, offset, bytes, now);
+  } else if (nodes_.empty()) {
     add_dirty(file, bytes, now);
   } else {
     // The pages the copy filled: its reservation's, on their nodes.
-    nodes_.release(bytes, toucher_, &NodeUse::reserved,
+    nodes_.release(bytes, nodes_.toucher(), &NodeUse::reserved,
                    [&](NodeId node, std::int64_t part) { add_new_on(node, file, part, BlockState::Dirty, now, false); });
-    peak_dirty_ = std::max(peak_dirty_, dirty());
+    totals_.peak_dirty = std::max(totals_.peak_dirty, dirty());
     settle();
   }
-  if (progress_hook_) progress_hook_();
+  if (listeners_.progress) listeners_.progress();
 }
 
 ReadCursor PageCache::reaccess(FileId file, std::int64_t bytes, double now, ReadCursor from) {
@@ -376,7 +377,7 @@ ReadCursor PageCache::reaccess(FileId file, std::int64_t bytes, double now, Read
       at = FileOrder::next(blocks_, id);
       Block& block = blocks_[id];
       left -= block.size;
-      if (block.node != toucher_) remote_.reread += block.size;
+      if (block.node != nodes_.toucher()) nodes_.remote().reread += block.size;
       const Policy::Reread what = policy_->reread(block);
       switch (what) {
         case Policy::Reread::Mark: block.referenced = true; break;
@@ -405,7 +406,7 @@ ReadCursor PageCache::reaccess(FileId file, std::int64_t bytes, double now, Read
     const BlockId front = entry.active.front();
     const BlockId id = blocks_[front].size > left ? split_front(front, left) : front;
     left -= blocks_[id].size;
-    if (blocks_[id].node != toucher_) remote_.reread += blocks_[id].size;
+    if (blocks_[id].node != nodes_.toucher()) nodes_.remote().reread += blocks_[id].size;
     move(id, ListKind::Active);
   }
   // More than this read left untouched (others read or evicted meanwhile): the blocks it

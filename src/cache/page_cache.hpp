@@ -7,7 +7,10 @@
 // IoController's and the Flusher's business: they ask PageCache what to move, then charge the
 // transfer to the devices. PageCache is the mechanism; where models differ (what a re-read
 // activates, what reclaim takes, which expired data goes first, the dirtyable memory) it asks
-// its Policy (cache/policy.hpp).
+// its Policy (cache/policy.hpp), which acts on the lists through CacheWalks. State of its own
+// lives in collaborators, each with its own invariant check: MemoryGroups (limits, charges, a
+// group's reclaim order), NumaNodes (the nodes' memory, placement), FileRanges (the files held
+// by byte range, their blocks by offset).
 //
 // Invariants (checked by check_invariants(), after every operation when set_checking(true),
 // amortised in debug builds): total = free + anonymous + cached, free >= 0, 0 <= dirty <= cached,
@@ -23,6 +26,7 @@
 #include "cache/file_heaps.hpp"
 #include "cache/file_ranges.hpp"
 #include "cache/lru_list.hpp"
+#include "cache/memory_groups.hpp"
 #include "cache/numa_nodes.hpp"
 #include "cache/policy.hpp"
 #include "cache/tracer.hpp"
@@ -41,12 +45,8 @@
 namespace pagecache::cache {
 
 inline constexpr FileId kNoFile = std::numeric_limits<FileId>::max();
-
-/// A memory group (a cgroup's memory controller): 0 is the root group, which has no limit.
-using GroupId = std::uint16_t;
-inline constexpr GroupId kRootGroup = 0;
-/// As a reclaim or flush target: every group.
-inline constexpr GroupId kAnyGroup = std::numeric_limits<GroupId>::max();
+/// As an offset: none, the data of a whole-file read or write.
+inline constexpr std::int64_t kNoOffset = -1;
 
 /// Where a read of a file in chunks left off in the page cache (PageCache::reaccess).
 struct ReadCursor {
@@ -55,31 +55,83 @@ struct ReadCursor {
   std::uint64_t order = 0;   ///< its order key then: a block moved or reused since has another
 };
 
+/// How a host's memory is laid out for its page cache.
+struct MemoryLayout {
+  int nodes = 1;                       ///< NUMA nodes sharing it evenly, 1 to kMaxNodes (docs/model.md §6.20)
+  std::int64_t page_size = kPageSize;  ///< reclaim takes files held by range in pages of this (> 0)
+};
+
+/// Who is told what happens in the cache: each may be left empty.
+struct CacheListeners {
+  /// Memory that was tied up may be reclaimable now (a writeback ended, a copy in flight
+  /// landed, application memory was released): writers and readers that found nothing to
+  /// reclaim wait for it.
+  std::function<void()> progress;
+  /// After every change of the memory state (memory profiles, peaks).
+  std::function<void()> change;
+  /// With the free and the anonymous memory, after every change (free page reporting).
+  std::function<void(std::int64_t free, std::int64_t anonymous)> free_memory;
+  /// Where this host's flushes, evictions and throttling pauses are reported (evict() reports
+  /// its own; the flusher and the I/O controller report theirs through it).
+  Tracer tracer;
+};
+
+/// One file's data in the cache.
+struct FileUse {
+  std::int64_t inactive = 0;
+  std::int64_t active = 0;
+  std::int64_t dirty = 0;  ///< of inactive + active
+  std::int64_t cached() const noexcept { return inactive + active; }
+  std::int64_t in(ListKind kind) const noexcept { return kind == ListKind::Inactive ? inactive : active; }
+};
+
+/// What the cache has done so far.
+struct CacheTotals {
+  std::int64_t evicted = 0;     ///< bytes evicted
+  std::int64_t peak_dirty = 0;  ///< the most dirty data at once (data becomes dirty only when written)
+};
+
+class PageCache;
+
+/// What a policy may do to the lists (Policy::reclaim, Policy::next_expired): the walks, which
+/// change the lists and leave settling to the operation that called the policy. Each block
+/// they evict is reported to the policy (Policy::evicted).
+class CacheWalks {
+ public:
+  explicit CacheWalks(PageCache& cache) noexcept : cache_(&cache) {}
+  /// Evicts clean blocks of `kind`, least recently used first, up to `budget` bytes (the last
+  /// one split), skipping `excluded` and, if `spare_written` (the policy spares files being
+  /// written), the files being written. Returns the bytes evicted.
+  std::int64_t evict_clean(ListKind kind, std::int64_t budget, FileId excluded, bool spare_written);
+  /// Active list aging (mm/vmscan.c, shrink_active_list): moves the oldest active data to the
+  /// inactive list, evicting it if clean and not spared as evict_clean spares, until `budget`
+  /// bytes are evicted or the active list is empty. Returns the bytes evicted.
+  std::int64_t deactivate_oldest(std::int64_t budget, FileId excluded, bool spare_written);
+  /// The dirty block that became dirty first, or kNoBlock.
+  BlockId oldest_dirty() const noexcept;
+  /// The least recently used dirty block with entry time <= `cutoff`, inactive list first,
+  /// or kNoBlock. Repeated searches under one cutoff resume where the last one stopped.
+  BlockId lru_expired(double cutoff);
+  /// Moves least recently used active data to the inactive list until active <= 2 x inactive.
+  void balance();
+
+ private:
+  PageCache* cache_;
+};
+
 class PageCache {
  public:
-  /// A cache under the policy `settings.policy` names (make_policy).
-  PageCache(std::int64_t total_memory, const CacheSettings& settings);
-  /// A cache under `policy` (e.g. a test's own).
-  PageCache(std::int64_t total_memory, const CacheSettings& settings, std::unique_ptr<Policy> policy);
+  /// A cache of `total_memory` bytes laid out as `layout` says, under `policy` (e.g. a test's
+  /// own), or when none is given the policy `settings.policy` names (make_policy).
+  PageCache(std::int64_t total_memory, const CacheSettings& settings, MemoryLayout layout = {}, std::unique_ptr<Policy> policy = nullptr);
   PageCache(const PageCache&) = delete;
   PageCache& operator=(const PageCache&) = delete;
   ~PageCache();
 
   const CacheSettings& settings() const noexcept { return settings_; }
   const Policy& policy() const noexcept { return *policy_; }
-  /// Calls `on_progress` when memory that was tied up may be reclaimable now: a writeback
-  /// ended, a copy in flight landed, application memory was released. Writers and readers that
-  /// found nothing to reclaim wait for it.
-  void set_progress_hook(std::function<void()> on_progress) { progress_hook_ = std::move(on_progress); }
-  /// Where this host's flushes, evictions and throttling pauses are reported (evict() reports
-  /// its own; the flusher and the I/O controller report theirs through tracer()).
-  void set_tracer(const Tracer& tracer) noexcept { tracer_ = tracer; }
-  const Tracer& tracer() const noexcept { return tracer_; }
-  /// Calls `observer` after every change of the memory state (memory profiles, peaks).
-  void set_observer(std::function<void()> observer) { observer_ = std::move(observer); }
-  /// Calls `hook` with the free memory after every change of the memory state (free page
-  /// reporting watches it).
-  void set_free_memory_hook(std::function<void(std::int64_t free, std::int64_t anonymous)> hook) { free_memory_hook_ = std::move(hook); }
+  CacheListeners& listeners() noexcept { return listeners_; }
+  const CacheListeners& listeners() const noexcept { return listeners_; }
   /// Runs check_invariants() after every mutating operation (tests). Debug builds check by
   /// default, amortised: one operation in blocks/4, as a full check visits every block.
   void set_checking(bool on) noexcept { checking_ = on, amortised_ = false; }
@@ -87,68 +139,30 @@ class PageCache {
   // --- Memory -----------------------------------------------------------------------------
   MemoryState memory() const noexcept;
   std::int64_t free() const noexcept { return total_ - anonymous_ - cached() - reserved_; }
-  std::int64_t reserved() const noexcept { return reserved_; }
-  std::int64_t anonymous() const noexcept { return anonymous_; }
-  std::int64_t cached() const noexcept { return inactive_.bytes() + active_.bytes(); }
-  std::int64_t dirty() const noexcept { return inactive_.bytes(BlockState::Dirty) + active_.bytes(BlockState::Dirty); }
-  std::int64_t writeback() const noexcept;
   const LruList& list(ListKind kind) const noexcept { return kind == ListKind::Inactive ? inactive_ : active_; }
-
-  /// What the dirty thresholds limit: data dirty or being written back (as the kernel's
-  /// balance_dirty_pages counts NR_FILE_DIRTY + NR_WRITEBACK).
-  std::int64_t dirty_and_writeback() const noexcept;
-  /// Memory the dirty thresholds are fractions of (Policy::dirtyable).
-  std::int64_t dirtyable() const noexcept { return policy_->dirtyable(*this); }
-  /// Memory a read may count on freeing by eviction before it must flush (Policy::evictable),
-  /// the excluded file's included.
-  std::int64_t evictable() const noexcept { return policy_->evictable(*this); }
-
   /// Takes `bytes` of free memory for application buffers. Throws SimulationError if there
   /// is not that much free memory (the caller makes room first).
   void allocate_anonymous(std::int64_t bytes, GroupId group = kRootGroup);
   void release_anonymous(std::int64_t bytes, GroupId group = kRootGroup);
+
   // --- Memory groups (cgroup v2 memory.max; mm/memcontrol.c) ------------------------------
-  /// A group whose memory (the anonymous memory allocated for it and the page cache charged
-  /// to it) may not exceed `max` bytes. Returns its id: 1, 2, ...
-  /// `high` (memory.high; 0: none): above it the group reclaims its own data at each charge
-  /// but is never refused.
+  const MemoryGroups& groups() const noexcept { return groups_; }
+  /// MemoryGroups::add, the root group taking what the host holds when the first is added.
   GroupId add_group(std::int64_t max, std::int64_t high = 0);
-  std::size_t group_count() const noexcept { return groups_.size(); }
   /// Charges the data of `file` to `group` unless a group has it already. The kernel charges
   /// each page to the group of the task that brought it in (first touch); pcsim charges a
   /// whole file to the first group that caches any of it.
   void charge_file(FileId file, GroupId group);
-  GroupId group_of(FileId file) const noexcept { return file < file_group_.size() ? file_group_[file] : kRootGroup; }
-  /// The group's memory: anonymous + cached (the root group's: every byte not in a group).
-  std::int64_t group_usage(GroupId group) const noexcept;
-  std::int64_t group_cached(GroupId group) const noexcept { return groups_[group].cached; }
-  /// The group's data dirty or being written back (its writeback domain's NR_FILE_DIRTY +
-  /// NR_WRITEBACK, as mem_cgroup_wb_stats reads them).
-  std::int64_t group_dirty_and_writeback(GroupId group) const noexcept { return groups_[group].dirty; }
-  /// What the group may still take before memory.max or memory.high, whichever is lower
-  /// (mem_cgroup_wb_stats' headroom); >= 0.
-  std::int64_t group_ceiling_headroom(GroupId group) const noexcept;
-  std::int64_t group_max(GroupId group) const noexcept { return groups_[group].max; }
-  /// How far the group is above memory.high after taking `bytes` more (<= 0: not above).
-  std::int64_t group_over_high(GroupId group, std::int64_t bytes) const noexcept;
-  /// What the group may still take before its limit, as far as free memory allows.
-  std::int64_t group_room(GroupId group) const noexcept;
-  /// What the group may still take before its limit (free memory aside); the root's: unlimited.
-  std::int64_t group_headroom(GroupId group) const noexcept;
 
   // --- NUMA nodes (docs/model.md §6.20; page_cache_nodes.cpp) ------------------------------
-  void set_nodes(int count);  ///< splits the memory evenly among 1 to kMaxNodes nodes, before anything is held
-  std::size_t node_count() const noexcept { return std::max<std::size_t>(nodes_.size(), 1); }
-  /// The node of the thread whose operations follow (0 until set): they take new memory there
-  /// first (NumaNodes::place), give memory back there first, and read the cache from there.
-  void touch_from(NodeId node) noexcept { toucher_ = node; }
-  NodeUse node(NodeId node) const noexcept;  ///< a node's memory (a one-node host's: the whole)
-  const RemoteTally& remote() const noexcept { return remote_; }
+  const NumaNodes& nodes() const noexcept { return nodes_; }
+  /// The node of the thread whose operations follow (NumaNodes::toucher).
+  void touch_from(NodeId node) noexcept { nodes_.touch_from(node); }
 
   // --- Per file ---------------------------------------------------------------------------
-  std::int64_t cached(FileId file) const noexcept;
-  std::int64_t cached(FileId file, ListKind kind) const noexcept;
-  std::int64_t dirty(FileId file) const noexcept;
+  FileUse file(FileId file) const noexcept;
+  /// Bytes of `file` being written back now.
+  std::int64_t writeback(FileId file) const noexcept;
   /// Makes the entry of a file its host has just registered. Optional (any id gets its entry
   /// when first cached), but entries made during the run move every file's list heads when
   /// their array grows: with 10^5 applications each move relinks blocks long out of cache.
@@ -165,9 +179,11 @@ class PageCache {
   /// New data written: a dirty block (entry time `now`) at the MRU end of the inactive list.
   void add_dirty(FileId file, std::int64_t bytes, double now);
   /// Takes `bytes` of free memory for a copy into the cache that is about to start (throws
-  /// SimulationError if not free); commit_dirty turns them into a dirty block when it ends.
+  /// SimulationError if not free); commit_dirty turns them into dirty data when it ends.
   void reserve(std::int64_t bytes);
-  void commit_dirty(FileId file, std::int64_t bytes, double now);
+  /// The copy of `bytes` reserved ended: they become dirty data of `file`, entered `now`, written
+  /// at `offset` of a file held by range (as write_range writes), else after its data.
+  void commit_dirty(FileId file, std::int64_t bytes, double now, std::int64_t offset = kNoOffset);
   /// Re-access of `bytes` cached bytes of `file` by a read: inactive blocks first, then
   /// active ones, least recently used first. Clean data read is merged into one block at the
   /// MRU end of the active list; dirty blocks move there individually, keeping their entry
@@ -186,12 +202,8 @@ class PageCache {
   /// From now on the file's data is held by range; what it has takes ranges from offset 0,
   /// least recently used first, inactive list then active. Idempotent.
   void track_ranges(FileId file);
-  /// Reclaim and aging take such files' data in whole pages of `bytes` > 0 (kPageSize unless set;
-  /// a reference model whose bytes stand for pages sets 1). Before any data is cached.
-  void set_page_size(std::int64_t bytes) noexcept { page_size_ = bytes; }
-  bool ranged(FileId file) const noexcept { return file < ranged_.size() && ranged_[file] != 0; }
-  /// Cached bytes of [offset, offset + bytes) of a ranged file.
-  std::int64_t cached_in(FileId file, std::int64_t offset, std::int64_t bytes) const noexcept;
+  /// The files held by range and their blocks' offsets (FileRanges::tracked, cached_in).
+  const FileRanges& ranges() const noexcept { return ranges_; }
   /// A read of the range: each cached part re-accessed as reaccess() does (only the part read
   /// moves), then each hole new data read as add_read() makes it. Returns the holes' bytes.
   std::int64_t read_range(FileId file, std::int64_t offset, std::int64_t bytes, double now);
@@ -206,10 +218,6 @@ class PageCache {
   /// dirty data stays dirty with its entry time; all to the inactive list's MRU end, by offset.
   /// Returns the holes' bytes.
   std::int64_t write_range(FileId file, std::int64_t offset, std::int64_t bytes, double now);
-  /// commit_dirty for a ranged file: the reservation of `bytes` ends, written at `offset`.
-  void commit_dirty_at(FileId file, std::int64_t offset, std::int64_t bytes, double now);
-  const FileRanges& ranges() const noexcept { return ranges_; }
-  const Block& block(BlockId id) const noexcept { return blocks_[id]; }
 
   /// Bytes of one file taken for writing to its device.
   struct Flushed {
@@ -221,7 +229,7 @@ class PageCache {
   /// list then active list, skipping `excluded`: they are in writeback (neither dirty nor
   /// evictable) until end_writeback. Appends a part per run of one file's data to `out`, each
   /// a write of its own (the caller writes each, then ends it), and returns the total.
-  /// `group`: only that group's data (a group's own reclaim at its limit).
+  /// `group`: only that group's data (a group's own reclaim at its limit; not the root's).
   std::int64_t flush(std::int64_t amount, FileId excluded, std::vector<Flushed>& out, GroupId group = kAnyGroup);
   /// Takes for writing back a dirty block whose entry time is <= `cutoff` (the one
   /// Policy::next_expired chooses), or returns {kNoFile, 0}. The periodic flusher writes
@@ -230,54 +238,46 @@ class PageCache {
   /// The write of `taken` is done: its data still in writeback becomes clean (it may have been
   /// split or moved meanwhile).
   void end_writeback(const Flushed& taken);
-
   /// Takes every dirty byte of `file` for writing back (fsync), as flush() does.
   std::int64_t flush_file(FileId file, std::vector<Flushed>& out);
-  /// Bytes of `file` being written back now.
-  std::int64_t writeback(FileId file) const noexcept;
   /// Drops every block of `file` (the file is deleted): clean data is freed, dirty data is
   /// discarded. None of it may be in writeback (wait for it first). The policy is told
   /// (Policy::dropped).
   void drop_file(FileId file);
   /// Deletes up to `amount` bytes of clean data, skipping `excluded`, as Policy::reclaim
-  /// chooses; `group`: only that group's data (the kernel's memcg reclaim,
-  /// try_to_free_mem_cgroup_pages, scans the group's own lists). Returns how many. Takes no
+  /// chooses; `group`: only that group's data, a group other than the root (the kernel's memcg
+  /// reclaim, try_to_free_mem_cgroup_pages, scans the group's own lists). Returns how many. Takes no
   /// simulated time.
   std::int64_t evict(std::int64_t amount, FileId excluded, GroupId group = kAnyGroup);
   /// A write of `file` starts (true) or ends (false): a policy may spare files being written.
   void set_being_written(FileId file, bool writing);
-  /// Bytes evicted so far.
-  std::int64_t evicted_bytes() const noexcept { return evicted_total_; }
-  /// The most dirty data there has been at once (data becomes dirty only when written).
-  std::int64_t peak_dirty() const noexcept { return peak_dirty_; }
-  /// Moves least recently used active data to the inactive list until active <= 2 x inactive.
-  void balance();
+  CacheTotals totals() const noexcept { return totals_; }
+  /// The walks a policy takes over the lists.
+  CacheWalks walks() noexcept { return CacheWalks(*this); }
 
   /// Throws InvariantError naming the first broken invariant.
   void check_invariants() const;
 
-  // --- Walks for policies: they change the lists, and leave settling to the operation ----
-  // Each block they evict is reported to the policy (Policy::evicted).
-  /// Evicts clean blocks of `kind`, least recently used first, up to `budget` bytes (the last
-  /// one split), skipping `excluded` and, if `spare_written` (the policy spares files being
-  /// written), the files being written. Returns the bytes evicted.
-  std::int64_t evict_clean(ListKind kind, std::int64_t budget, FileId excluded, bool spare_written);
-  /// Active list aging (mm/vmscan.c, shrink_active_list): moves the oldest active data to the
-  /// inactive list, evicting it if clean and not spared as evict_clean spares, until `budget`
-  /// bytes are evicted or the active list is empty. Returns the bytes evicted.
-  std::int64_t deactivate_oldest(std::int64_t budget, FileId excluded, bool spare_written);
-  /// The dirty block that became dirty first, or kNoBlock.
-  BlockId oldest_dirty() const noexcept { return dirty_by_age_.front(); }
-  /// The least recently used dirty block with entry time <= `cutoff`, inactive list first,
-  /// or kNoBlock. Repeated searches under one cutoff resume where the last one stopped.
-  BlockId lru_expired(double cutoff);
-
  private:
+  friend class CacheWalks;
+  // Figures the operations need, all of them in memory() too.
+  std::int64_t cached() const noexcept { return inactive_.bytes() + active_.bytes(); }
+  std::int64_t dirty() const noexcept { return inactive_.bytes(BlockState::Dirty) + active_.bytes(BlockState::Dirty); }
+  std::int64_t writeback() const noexcept;
+  std::int64_t cached(FileId file) const noexcept { return this->file(file).cached(); }
+  std::int64_t dirty(FileId file) const noexcept { return file < files_.size() ? files_[file].dirty_bytes : 0; }
+  // The walks CacheWalks offers the policies.
+  std::int64_t evict_clean(ListKind kind, std::int64_t budget, FileId excluded, bool spare_written);
+  std::int64_t deactivate_oldest(std::int64_t budget, FileId excluded, bool spare_written);
+  BlockId lru_expired(double cutoff);
+  void balance();
+
   void check_after_operation();  // check_invariants(), amortised unless set_checking asked
   // check_invariants' parts (page_cache_check.cpp). `most`: the blocks in use, more steps
   // than which is a cycle.
   std::size_t check_file(std::size_t f, std::size_t most) const;  // returns the file's blocks
   void check_groups() const;
+  void check_nodes() const;
   void check_dirty_by_age(std::size_t most) const;
   void check_expiry_scan() const;
   void check_ranges(std::size_t f, std::size_t most) const;
@@ -309,9 +309,9 @@ class PageCache {
   FileCleanOrder& file_clean_list(FileEntry& entry, ListKind kind) noexcept {
     return kind == ListKind::Inactive ? entry.clean_inactive : entry.clean_active;
   }
-  /// reclaimable_ (heap 0: the host's), or with `by_group` group_reclaimable_ (heap: GroupId).
+  /// reclaimable_ (heap 0: the host's), or with `by_group` the groups' (heap: GroupId).
   FileHeaps& reclaimable(ListKind kind, bool by_group = false) noexcept {
-    return (by_group ? group_reclaimable_ : reclaimable_)[static_cast<std::size_t>(kind)];
+    return by_group ? groups_.reclaimable(kind) : reclaimable_[static_cast<std::size_t>(kind)];
   }
   /// `file`'s first clean block in `kind` has order `key`: its key lowered there, in both.
   void mark_reclaimable(ListKind kind, FileId file, std::uint64_t key);
@@ -350,7 +350,6 @@ class PageCache {
   void add_new_on(NodeId node, FileId file, std::int64_t bytes, BlockState state, double now, bool referenced);
   /// evict() by node: each node an equal share of its own data, then the others what it could not.
   std::int64_t evict_by_node(std::int64_t amount, FileId excluded);
-  void check_nodes() const;
   void append(BlockId block, ListKind kind);
   void unlink(BlockId block);
   void destroy(BlockId block);
@@ -402,49 +401,42 @@ class PageCache {
   ExpiryScan expiry_scan_;
   std::vector<FileEntry> files_;
   std::vector<FileWriteback> writeback_;  // by file, its blocks in writeback (in no order)
-  // Files held by byte range (track_ranges), by FileId; the offsets of their blocks. Beside
-  // files_: a FileEntry fills its cache line. Empty in a run of whole-file I/O only.
-  std::vector<std::uint8_t> ranged_;
+  // The files held by byte range (track_ranges) and their blocks' offsets; beside files_: a
+  // FileEntry fills its cache line. Empty in a run of whole-file I/O only.
   FileRanges ranges_;
-  std::int64_t page_size_ = kPageSize;
-  // Memory groups: each group's limit and charges; every file's group (only when there are
-  // groups: a run without them pays nothing). Walks skip groups but target_ (kAnyGroup: none).
-  struct Group {
-    std::int64_t max = 0;
-    std::int64_t high = 0;  // 0: none
-    std::int64_t anonymous = 0;
-    std::int64_t cached = 0;
-    std::int64_t dirty = 0;  // of `cached`: dirty or in writeback
-  };
-  std::vector<Group> groups_;
-  std::vector<GroupId> file_group_;
-  GroupId target_ = kAnyGroup;
-  bool in_target(const Block& block) const noexcept {
-    return (target_ == kAnyGroup || group_of(block.file) == target_) && (target_node_ == kAnyNode || block.node == target_node_);
-  }
+  bool ranged(FileId file) const noexcept { return ranges_.tracked(file); }
+  MemoryGroups groups_;
   NumaNodes nodes_;  // empty on a one-node host
-  NodeId toucher_ = 0, target_node_ = kAnyNode;  // target: reclaim's node (evict_by_node)
-  RemoteTally remote_;
+  // What the walks take from: one group's data, one node's (kAnyGroup, kAnyNode: all).
+  GroupId target_ = kAnyGroup;
+  NodeId target_node_ = kAnyNode;  // reclaim's node (evict_by_node)
+  bool in_target(const Block& block) const noexcept {
+    return (target_ == kAnyGroup || groups_.of(block.file) == target_) && (target_node_ == kAnyNode || block.node == target_node_);
+  }
   /// Adds `bytes` to the cached bytes of the file's group and of the node.
   void charge(FileId file, NodeId node, std::int64_t bytes) noexcept {
-    if (!groups_.empty()) groups_[group_of(file)].cached += bytes;
+    groups_.charge(file, bytes);
     if (!nodes_.empty()) nodes_[node].cached += bytes;
   }
-  /// Adds `bytes` to the dirty or writeback bytes of the file's group.
-  void charge_dirty(FileId file, std::int64_t bytes) noexcept { if (!groups_.empty()) groups_[group_of(file)].dirty += bytes; }
   // Per LRU list, with the clean index: the files an eviction sparing the files being written
-  // takes from, by first clean block (next_unwritten_clean); and each group's (root's unused).
-  std::array<FileHeaps, 2> reclaimable_, group_reclaimable_;  // by ListKind
+  // takes from, by first clean block (next_unwritten_clean); each group's are in groups_.
+  std::array<FileHeaps, 2> reclaimable_;  // by ListKind
   std::uint64_t next_token_ = 1;
-  std::int64_t evicted_total_ = 0;
-  std::int64_t peak_dirty_ = 0;
-  std::function<void(std::int64_t, std::int64_t)> free_memory_hook_;
-  std::function<void()> observer_;
-  std::function<void()> progress_hook_;
-  Tracer tracer_;
+  CacheTotals totals_;
+  CacheListeners listeners_;
   bool checking_ = checking_by_default();
   bool amortised_ = checking_;
   std::size_t unchecked_operations_ = 0;
 };
+
+/// A node's memory (a one-node host's: the whole).
+NodeUse node_use(const PageCache& cache, NodeId node) noexcept;
+/// A group's memory, anonymous + cached (on a host without groups, the root's: all of it).
+std::int64_t group_usage(const PageCache& cache, GroupId group) noexcept;
+/// The data dirty or being written back: what the dirty thresholds limit (as the kernel's
+/// balance_dirty_pages counts NR_FILE_DIRTY + NR_WRITEBACK).
+std::int64_t dirty_and_writeback(const PageCache& cache) noexcept;
+/// What a group may still take before its limit, as far as free memory allows.
+std::int64_t group_room(const PageCache& cache, GroupId group) noexcept;
 
 }  // namespace pagecache::cache

@@ -35,10 +35,10 @@ void PageCache::check_invariants() const {
   if (!groups_.empty()) check_groups();
   check_nodes();
   PC_ASSERT(target_ == kAnyGroup);
-  for (const auto* heaps : {&reclaimable_, &group_reclaimable_}) {
-    for (const FileHeaps& files : *heaps) {
-      files.check();
-      for (std::size_t h = 0; h < files.heaps(); ++h) PC_ASSERT(index_clean_ || files.empty(h));
+  for (ListKind kind : {ListKind::Inactive, ListKind::Active}) {
+    for (const FileHeaps* files : {&reclaimable_[static_cast<std::size_t>(kind)], &groups_.reclaimable(kind)}) {
+      files->check();
+      for (std::size_t h = 0; h < files->heaps(); ++h) PC_ASSERT(index_clean_ || files->empty(h));
     }
   }
   check_dirty_by_age(most);
@@ -72,8 +72,8 @@ std::size_t PageCache::check_file(std::size_t f, std::size_t most) const {
       PC_ASSERT_MSG(files.contains(file) && files.key(0, file) <= blocks_[clean.front()].order,
                     fmt::format("file {} missing from the reclaimable files, or its key too high", f));
       // And in its group's heap, for the group's own reclaim.
-      if (const GroupId group = group_of(file); group != kRootGroup) {
-        const FileHeaps& own = group_reclaimable_[static_cast<std::size_t>(kind)];
+      if (const GroupId group = groups_.of(file); group != kRootGroup) {
+        const FileHeaps& own = groups_.reclaimable(kind);
         PC_ASSERT_MSG(own.contains(file) && own.key(group, file) <= blocks_[clean.front()].order,
                       fmt::format("file {} missing from its group's reclaimable files, or its key too high", f));
       }
@@ -112,18 +112,12 @@ std::size_t PageCache::check_file(std::size_t f, std::size_t most) const {
 void PageCache::check_groups() const {
   std::vector<std::int64_t> charged(groups_.size(), 0);
   std::vector<std::int64_t> unclean(groups_.size(), 0);
-  std::int64_t anonymous = 0;
   for (std::size_t f = 0; f < files_.size(); ++f) {
     const auto file = static_cast<FileId>(f);
-    charged[group_of(file)] += cached(file);
-    unclean[group_of(file)] += dirty(file) + writeback(file);
+    charged[groups_.of(file)] += cached(file);
+    unclean[groups_.of(file)] += dirty(file) + writeback(file);
   }
-  for (std::size_t g = 0; g < groups_.size(); ++g) {
-    PC_ASSERT_MSG(groups_[g].cached == charged[g], fmt::format("group {}: {} bytes charged, its files hold {}", g, groups_[g].cached, charged[g]));
-    PC_ASSERT_MSG(groups_[g].dirty == unclean[g], fmt::format("group {}: {} bytes dirty or in writeback, its files hold {}", g, groups_[g].dirty, unclean[g]));
-    anonymous += groups_[g].anonymous;
-  }
-  PC_ASSERT_MSG(anonymous == anonymous_, "the groups' anonymous memory is not the host's");
+  groups_.check(charged, unclean, anonymous_);
 }
 
 void PageCache::check_dirty_by_age(std::size_t most) const {

@@ -1,5 +1,5 @@
-// PageCache: NUMA nodes (docs/model.md §6.20): the memory's split, reclaim node by node, and
-// the nodes' invariants. Placement itself is NumaNodes::place, called where memory is taken.
+// PageCache: NUMA nodes (docs/model.md §6.20): reclaim node by node, and the blocks' nodes
+// against the nodes' counts. Placement itself is NumaNodes::place, called where memory is taken.
 
 #include "cache/page_cache.hpp"
 
@@ -11,15 +11,10 @@
 
 namespace pagecache::cache {
 
-void PageCache::set_nodes(int count) {
-  if (count < 1 || count > kMaxNodes) throw ConfigError(fmt::format("a host has 1 to {} NUMA nodes, got {}", kMaxNodes, count));
-  PC_ASSERT_MSG(anonymous_ == 0 && cached() == 0 && reserved_ == 0, "NUMA nodes are set before any memory is held");
-  if (count > 1) nodes_.split(total_, count);
-}
-
-NodeUse PageCache::node(NodeId node) const noexcept {
-  if (nodes_.empty()) return NodeUse{.total = total_, .anonymous = anonymous_, .cached = cached(), .reserved = reserved_};
-  return nodes_[node];
+NodeUse node_use(const PageCache& cache, NodeId node) noexcept {
+  if (!cache.nodes().empty()) return cache.nodes()[node];
+  const MemoryState memory = cache.memory();
+  return NodeUse{.total = memory.total, .anonymous = memory.anonymous, .cached = memory.cached, .reserved = memory.reserved};
 }
 
 std::int64_t PageCache::evict_by_node(std::int64_t amount, FileId excluded) {
@@ -50,16 +45,7 @@ void PageCache::check_nodes() const {
       cached_on[block.node] += block.size;
     }
   }
-  NodeUse sum;
-  for (NodeId n = 0; n < nodes_.size(); ++n) {
-    const NodeUse& use = nodes_[n];
-    PC_ASSERT_MSG(use.cached == cached_on[n], fmt::format("node {}: {} bytes cached counted, {} in its blocks", n, use.cached, cached_on[n]));
-    PC_ASSERT_MSG(use.free() >= 0 && use.anonymous >= 0 && use.reserved >= 0,
-                  fmt::format("node {}: {} total, {} anonymous, {} cached, {} reserved", n, use.total, use.anonymous, use.cached, use.reserved));
-    sum.total += use.total, sum.anonymous += use.anonymous, sum.cached += use.cached, sum.reserved += use.reserved;
-  }
-  PC_ASSERT_MSG(sum.total == total_ && sum.anonymous == anonymous_ && sum.cached == cached() && sum.reserved == reserved_,
-                "the nodes' memory does not add up to the host's");
+  nodes_.check(cached_on.data(), NodeUse{.total = total_, .anonymous = anonymous_, .cached = cached(), .reserved = reserved_});
 }
 
 }  // namespace pagecache::cache

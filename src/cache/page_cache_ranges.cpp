@@ -13,8 +13,7 @@ namespace pagecache::cache {
 
 void PageCache::track_ranges(FileId file) {
   if (ranged(file)) return;
-  if (file >= ranged_.size()) ranged_.resize(static_cast<std::size_t>(file) + 1, 0);
-  ranged_[file] = 1;
+  ranges_.track(file);
   FileEntry& entry = file_entry(file);
   std::int64_t offset = 0;
   for (FileOrder* flist : {&entry.inactive, &entry.active}) {
@@ -25,20 +24,6 @@ void PageCache::track_ranges(FileId file) {
     }
   }
   if (checking_) check_after_operation();
-}
-
-std::int64_t PageCache::cached_in(FileId file, std::int64_t offset, std::int64_t bytes) const noexcept {
-  PC_ASSERT(ranged(file) && offset >= 0 && bytes >= 0);
-  const std::int64_t end = offset + bytes;
-  std::int64_t cached = 0;
-  // Each step down the index is a few cache misses under random access: the next block is
-  // looked up only when the range goes past this one.
-  for (Located at = ranges_.at_or_after(file, offset); at.id != kNoBlock && at.offset < end;) {
-    cached += std::min(end, at.end) - std::max(offset, at.offset);
-    if (at.end >= end) break;
-    at = ranges_.at_or_after(file, at.end);
-  }
-  return cached;
 }
 
 BlockId PageCache::new_ranged_block(FileId file, std::int64_t offset, std::int64_t size, BlockState state, double now, NodeId node) {
@@ -89,8 +74,8 @@ void PageCache::move_ranged(BlockId id, std::int64_t offset, ListKind to) {
 
 void PageCache::place_ranged(FileId file, std::int64_t offset, std::int64_t bytes, BlockState state, double now, bool referenced) {
   if (nodes_.empty()) return add_ranged(file, offset, bytes, state, now, referenced, 0);
-  nodes_.place(bytes, toucher_, [&](NodeId node, std::int64_t part) {
-    if (node != toucher_) remote_.cache += part;
+  nodes_.place(bytes, nodes_.toucher(), [&](NodeId node, std::int64_t part) {
+    if (node != nodes_.toucher()) nodes_.remote().cache += part;
     add_ranged(file, offset, part, state, now, referenced, node);
     offset += part;
   });
@@ -110,7 +95,7 @@ void PageCache::add_ranged(FileId file, std::int64_t offset, std::int64_t bytes,
       charge(file, node, bytes);
       if (state == BlockState::Dirty) {
         entry.dirty_bytes += bytes;
-        charge_dirty(file, bytes);
+        groups_.charge_dirty(file, bytes);
       }
       return;
     }
@@ -134,7 +119,7 @@ std::int64_t PageCache::read_range(FileId file, std::int64_t offset, std::int64_
     if (part.offset == held_to) held_to = part.end;
     at = part.end < end ? ranges_.at_or_after(file, part.end) : Located{};
     Block& block = blocks_[part.id];
-    if (block.node != toucher_) remote_.reread += block.size;
+    if (block.node != nodes_.toucher()) nodes_.remote().reread += block.size;
     if (block.list == ListKind::Active) {
       move_ranged(part.id, part.offset, ListKind::Active);
     } else {
@@ -188,7 +173,7 @@ std::int64_t PageCache::drop_clean_range(FileId file, std::int64_t offset, std::
     }
   }
   settle();
-  if (dropped > 0 && progress_hook_) progress_hook_();
+  if (dropped > 0 && listeners_.progress) listeners_.progress();
   return dropped;
 }
 
@@ -216,25 +201,15 @@ std::int64_t PageCache::write_range(FileId file, std::int64_t offset, std::int64
     }
     at = part.end;
   }
-  peak_dirty_ = std::max(peak_dirty_, dirty());
+  totals_.peak_dirty = std::max(totals_.peak_dirty, dirty());
   settle();
   return missing;
-}
-
-void PageCache::commit_dirty_at(FileId file, std::int64_t offset, std::int64_t bytes, double now) {
-  PC_ASSERT(bytes >= 0 && bytes <= reserved_);
-  reserved_ -= bytes;
-  // The pages reserved are freed and taken again where write_range places the holes.
-  if (!nodes_.empty()) nodes_.release(bytes, toucher_, &NodeUse::reserved, [](NodeId, std::int64_t) {});
-  write_range(file, offset, bytes, now);
-  if (progress_hook_) progress_hook_();
 }
 
 void PageCache::check_ranges(std::size_t f, std::size_t most) const {
   const auto file = static_cast<FileId>(f);
   const FileEntry& entry = files_[f];
   if (!ranged(file)) {
-    PC_ASSERT_MSG(ranges_.empty(file), fmt::format("file {}: offsets indexed for a file not held by range", f));
     for (const FileOrder* flist : {&entry.inactive, &entry.active}) {
       for (const Block& block : flist->range(blocks_)) PC_ASSERT_MSG(!block.ranged, fmt::format("file {}: a ranged block", f));
     }
@@ -242,13 +217,10 @@ void PageCache::check_ranges(std::size_t f, std::size_t most) const {
   }
   const std::size_t indexed = ranges_.check(file, most);
   PC_ASSERT_MSG(indexed == entry.blocks, fmt::format("file {}: {} blocks indexed by offset, {} in its lists", f, indexed, entry.blocks));
-  std::int64_t end = 0;
   ranges_.for_each(file, [&](BlockId id) {
     const Block& block = blocks_[id];
     PC_ASSERT_MSG(block.ranged && block.file == file && block.size > 0, fmt::format("file {}: block {} indexed wrongly", f, id));
-    PC_ASSERT_MSG(ranges_.offset(id) >= end, fmt::format("file {}: block {} overlaps the one before", f, id));
-    PC_ASSERT_MSG(ranges_.end(id) == ranges_.offset(id) + block.size, fmt::format("file {}: block {}'s end is not indexed", f, id));
-    end = ranges_.offset(id) + block.size;
+    PC_ASSERT_MSG(ranges_.end(id) == ranges_.offset(id) + block.size, fmt::format("file {}: block {}'s end is not its size", f, id));
   });
 }
 

@@ -28,13 +28,14 @@ void prefetch_victims(const LruList& list, const BlockPool& blocks, const FileRa
 }  // namespace
 
 std::int64_t PageCache::evict(std::int64_t amount, FileId excluded, GroupId group) {
+  PC_ASSERT_MSG(group != kRootGroup, "a reclaim targets one group other than the root, or all");
   target_ = group;
   std::int64_t evicted = 0;
   if (amount > 0) evicted = nodes_.empty() || group != kAnyGroup ? policy_->reclaim(*this, amount, excluded) : evict_by_node(amount, excluded);
   target_ = kAnyGroup;
   if (evicted > 0) prefetch_victims(inactive_, blocks_, ranges_);
   settle();
-  tracer_.eviction(evicted);
+  listeners_.tracer.eviction(evicted);
   return evicted;
 }
 
@@ -46,7 +47,7 @@ std::int64_t PageCache::evict_clean(ListKind kind, std::int64_t budget, FileId e
     const FileId file = blocks_[victim].file;
     const std::int64_t size = blocks_[victim].size;
     evicted += size;
-    evicted_total_ += size;
+    totals_.evicted += size;
     destroy(victim);
     policy_->evicted(*this, file, kind, size);
   };
@@ -102,7 +103,8 @@ BlockId PageCache::front_part(BlockId id, std::int64_t bytes) {
     // Up to a page boundary of the file: a page is freed or aged whole, and cutting one in two
     // at every eviction (a memory that is not a number of pages) would make a block of each.
     const std::int64_t start = ranges_.offset(id);
-    bytes = (start + bytes + page_size_ - 1) / page_size_ * page_size_ - start;
+    const std::int64_t page = ranges_.page_size();
+    bytes = (start + bytes + page - 1) / page * page - start;
   }
   return blocks_[id].size > bytes ? split_front(id, bytes) : id;
 }
@@ -126,7 +128,7 @@ std::int64_t PageCache::deactivate_oldest(std::int64_t budget, FileId excluded, 
     const FileId file = blocks_[victim].file;
     const std::int64_t size = blocks_[victim].size;
     evicted += size;
-    evicted_total_ += size;
+    totals_.evicted += size;
     destroy(victim);
     policy_->evicted(*this, file, ListKind::Active, size);  // chosen as the oldest active data
   }
@@ -202,5 +204,21 @@ void PageCache::balance() {
     append(id, ListKind::Inactive);
   }
 }
+
+// --- The walks, as a policy sees them ------------------------------------------------------
+
+std::int64_t CacheWalks::evict_clean(ListKind kind, std::int64_t budget, FileId excluded, bool spare_written) {
+  return cache_->evict_clean(kind, budget, excluded, spare_written);
+}
+
+std::int64_t CacheWalks::deactivate_oldest(std::int64_t budget, FileId excluded, bool spare_written) {
+  return cache_->deactivate_oldest(budget, excluded, spare_written);
+}
+
+BlockId CacheWalks::oldest_dirty() const noexcept { return cache_->dirty_by_age_.front(); }
+
+BlockId CacheWalks::lru_expired(double cutoff) { return cache_->lru_expired(cutoff); }
+
+void CacheWalks::balance() { cache_->balance(); }
 
 }  // namespace pagecache::cache

@@ -10,6 +10,7 @@
 namespace pagecache::cache {
 
 std::int64_t PageCache::flush(std::int64_t amount, FileId excluded, std::vector<Flushed>& out, GroupId group) {
+  PC_ASSERT_MSG(group != kRootGroup, "a flush targets one group other than the root, or all");
   target_ = group;
   std::int64_t flushed = 0;
   const std::size_t first_part = out.size();
@@ -79,7 +80,7 @@ void PageCache::drop_file(FileId file) {
   }
   policy_->dropped(*this, file);
   settle();
-  if (progress_hook_) progress_hook_();
+  if (listeners_.progress) listeners_.progress();
 }
 
 PageCache::Flushed PageCache::take_for_writeback(BlockId id) {
@@ -148,7 +149,7 @@ void PageCache::end_writeback(const Flushed& taken) {
     id = next;
   }
   settle();
-  if (progress_hook_) progress_hook_();
+  if (listeners_.progress) listeners_.progress();
 }
 
 }  // namespace pagecache::cache

@@ -17,24 +17,24 @@ DirtyLimits limits_of(const CacheSettings& s, std::int64_t available) noexcept {
 
 }  // namespace
 
-DirtyLimits dirty_limits(const PageCache& cache) noexcept { return limits_of(cache.settings(), cache.dirtyable()); }
+DirtyLimits dirty_limits(const PageCache& cache) noexcept { return limits_of(cache.settings(), cache.policy().dirtyable(cache)); }
 
 DirtyLimits group_dirty_limits(const PageCache& cache, GroupId group) noexcept {
-  const std::int64_t filepages = cache.group_cached(group);
-  const std::int64_t clean = filepages - std::min(filepages, cache.group_dirty_and_writeback(group));
-  const std::int64_t global_dirtyable = std::max<std::int64_t>(cache.dirtyable(), 0);
-  const std::int64_t global_clean = global_dirtyable - std::min(global_dirtyable, cache.dirty_and_writeback());
+  const std::int64_t filepages = cache.groups().cached(group);
+  const std::int64_t clean = filepages - std::min(filepages, cache.groups().dirty_and_writeback(group));
+  const std::int64_t global_dirtyable = std::max<std::int64_t>(cache.policy().dirtyable(cache), 0);
+  const std::int64_t global_clean = global_dirtyable - std::min(global_dirtyable, dirty_and_writeback(cache));
   const std::int64_t other_clean = global_clean - std::min(global_clean, clean);
-  return limits_of(cache.settings(), filepages + std::min(cache.group_ceiling_headroom(group), other_clean));
+  return limits_of(cache.settings(), filepages + std::min(cache.groups().ceiling_headroom(group), other_clean));
 }
 
 std::int64_t room_under_dirty_threshold(const PageCache& cache) noexcept {
-  return dirty_limits(cache).thresh - cache.dirty_and_writeback();
+  return dirty_limits(cache).thresh - dirty_and_writeback(cache);
 }
 
 RoomPlan plan_room(const PageCache& cache, std::int64_t required) noexcept {
   const std::int64_t free = cache.free();
-  return RoomPlan{.flush = required - free - cache.evictable(), .evict = required - free, .fits = required <= free};
+  return RoomPlan{.flush = required - free - cache.policy().evictable(cache), .evict = required - free, .fits = required <= free};
 }
 
 FileId spared_by_read(const PageCache& cache, FileId file) noexcept {
@@ -47,12 +47,12 @@ FileId spared_by_chunk(const PageCache& cache, const ReadRequest& request) noexc
   return request.offset == ReadRequest::kWholeFile ? spared_by_read(cache, request.file) : kNoFile;
 }
 
-bool nothing_can_be_freed(const PageCache& cache) noexcept { return cache.writeback() == 0 && cache.reserved() == 0; }
+bool nothing_can_be_freed(const PageCache& cache) noexcept { return cache.memory().writeback == 0 && cache.memory().reserved == 0; }
 
 ReadPlan plan_read(const PageCache& cache, const ReadRequest& request) noexcept {
   const std::int64_t from_disk = request.offset == ReadRequest::kWholeFile
-                                     ? std::clamp<std::int64_t>(request.file_size - cache.cached(request.file), 0, request.bytes)
-                                     : request.bytes - cache.cached_in(request.file, request.offset, request.bytes);
+                                     ? std::clamp<std::int64_t>(request.file_size - cache.file(request.file).cached(), 0, request.bytes)
+                                     : request.bytes - cache.ranges().cached_in(request.file, request.offset, request.bytes);
   const std::int64_t required = request.anonymous + from_disk;
   return ReadPlan{.from_disk = from_disk,
                   .from_cache = request.bytes - from_disk,

@@ -23,7 +23,7 @@ struct DirtyLimits {
   std::int64_t thresh = 0;      ///< at it, writers not throttled flush before they write
   std::int64_t freerun = 0;     ///< (background + thresh) / 2: under it writers are never throttled
 };
-/// The thresholds now, as fractions of PageCache::dirtyable(): dirty_ratio for `thresh`,
+/// The thresholds now, as fractions of Policy::dirtyable: dirty_ratio for `thresh`,
 /// dirty_background_ratio for `background`, or half of `thresh` if that ratio is not below
 /// dirty_ratio (the kernel clamps it so). Truncated to whole bytes.
 DirtyLimits dirty_limits(const PageCache& cache) noexcept;
@@ -63,7 +63,7 @@ struct ReadRequest {
   /// Where the chunk starts in a file held by range (PageCache::track_ranges); kWholeFile: a
   /// chunk of a whole-file read, which reads what is not cached whatever its place.
   std::int64_t offset = kWholeFile;
-  static constexpr std::int64_t kWholeFile = -1;
+  static constexpr std::int64_t kWholeFile = kNoOffset;
 };
 struct ReadPlan {
   std::int64_t from_disk = 0;   ///< the part not cached: read from the device, then new cache data

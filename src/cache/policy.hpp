@@ -58,7 +58,7 @@ class Policy {
   /// blocks indexed (asked once, when the cache is made).
   virtual bool spares_files_being_written() const noexcept = 0;
   /// Evicts up to `amount` bytes of clean data, never of `excluded`, with PageCache's
-  /// reclaim walks (evict_clean, deactivate_oldest); returns how many bytes it evicted.
+  /// reclaim walks (CacheWalks: evict_clean, deactivate_oldest); returns how many bytes it evicted.
   /// Not const: a policy with state of its own may change it as it decides.
   virtual std::int64_t reclaim(PageCache& cache, std::int64_t amount, FileId excluded) = 0;
   /// Memory a read may count on freeing by eviction before it must flush.

@@ -27,17 +27,17 @@ TEST_CASE("evict_for_chunk: eviction alone makes room, and counts the file's own
       // Reclaim took 100 of the file's own data (the least recently used): from_disk 200,
       // required 600 > free 500: not yet, and the needs say so.
       CHECK(from_disk == -1);
-      CHECK(cache.cached(0) == 200);
+      CHECK(cache.file(0).cached() == 200);
       CHECK(needs.from_disk == 200);
       CHECK(needs.required == 600);
       // A second try evicts the next 100 (file 0's, still the oldest): from_disk 300,
       // required 700 > free 600. Eviction alone chases its own tail.
       CHECK(evict_for_chunk(cache, request) == -1);
-      CHECK(cache.cached(0) == 100);
+      CHECK(cache.file(0).cached() == 100);
     } else {
       // The paper spares the file being read: file 1 goes, 100 from the device.
       CHECK(from_disk == 100);
-      CHECK(cache.cached(1) == 0);
+      CHECK(cache.file(1).cached() == 0);
       CHECK(needs.from_disk == 100);
       CHECK(needs.room.fits);
     }
@@ -55,7 +55,7 @@ TEST_CASE("evict_for_chunk: when dirty data must be written back first, nothing 
   cache.add_dirty(1, 400, 1.0);
   ReadPlan needs;
   CHECK(evict_for_chunk(cache, {.file = 0, .file_size = 300, .bytes = 300, .anonymous = 300}, &needs) == -1);
-  CHECK(cache.cached(1) == 500);
+  CHECK(cache.file(1).cached() == 500);
   CHECK(needs.required == 600);
   CHECK(needs.room.flush == 200);
 }
@@ -71,7 +71,7 @@ TEST_CASE("evict_to_fit evicts what is not free and says whether the bytes fit",
     cache.add_clean(1, 300, 1.0);
     CHECK(evict_to_fit(cache, 350, spared));
     CHECK(cache.free() == 350);
-    CHECK(cache.cached(spared == kNoFile ? 0 : 1) == (spared == kNoFile ? 350 : 50));
+    CHECK(cache.file(spared == kNoFile ? 0 : 1).cached() == (spared == kNoFile ? 350 : 50));
   }
   PageCache full(1000, CacheSettings::kernel());
   full.set_checking(true);
@@ -92,14 +92,14 @@ TEST_CASE("start_chunk: new data, the re-access, the buffer, all before any tran
   cache.add_read(0, 300, 0.0);
   const ReadRequest request{.file = 0, .file_size = 500, .bytes = 400, .anonymous = 400};
   start_chunk(cache, request, 100, {}, kRootGroup, 1.0);
-  CHECK(cache.cached(0) == 400);
-  CHECK(cache.cached(0, ListKind::Active) == 266);
-  CHECK(cache.anonymous() == 400);
+  CHECK(cache.file(0).cached() == 400);
+  CHECK(cache.file(0).in(ListKind::Active) == 266);
+  CHECK(cache.memory().anonymous == 400);
   CHECK(cache.free() == 200);
   // A server's chunk has no buffer of its own: nothing anonymous is taken.
   start_chunk(cache, {.file = 1, .file_size = 100, .bytes = 100, .anonymous = 0}, 100, {}, kRootGroup, 2.0);
-  CHECK(cache.anonymous() == 400);
-  CHECK(cache.cached(1) == 100);
+  CHECK(cache.memory().anonymous == 400);
+  CHECK(cache.file(1).cached() == 100);
 }
 
 }  // namespace pagecache::cache

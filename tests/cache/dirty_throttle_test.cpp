@@ -44,7 +44,7 @@ TEST_CASE("under the setpoint a writer copies at once, its pages reserved", "[th
   const DirtyThrottle::Step step = writer.next(50 * MB);  // 120 + 50 <= 175
   CHECK(step.kind == DirtyThrottle::Step::Copy);
   CHECK(step.to_cache == 50 * MB);
-  CHECK(h.cache.reserved() == 50 * MB);
+  CHECK(h.cache.memory().reserved == 50 * MB);
 }
 
 TEST_CASE("at the setpoint a writer is paced at the device's bandwidth, shared by the throttled writers", "[throttle]") {

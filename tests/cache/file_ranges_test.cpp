@@ -7,6 +7,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <iterator>
 #include <map>
@@ -27,6 +28,13 @@ using Reference = std::map<std::int64_t, Range>;
 BlockId floor_of(const Reference& ref, std::int64_t offset) {
   auto it = ref.upper_bound(offset);
   return it == ref.begin() ? kNoBlock : std::prev(it)->second.id;
+}
+
+// The bytes of [offset, offset + bytes) the reference's blocks hold, by visiting them all.
+std::int64_t cached_in_of(const Reference& ref, std::int64_t offset, std::int64_t bytes) {
+  std::int64_t cached = 0;
+  for (const auto& [start, range] : ref) cached += std::max<std::int64_t>(0, std::min(offset + bytes, start + range.size) - std::max(offset, start));
+  return cached;
 }
 
 BlockId ceiling_of(const Reference& ref, std::int64_t offset) {
@@ -53,6 +61,9 @@ TEST_CASE("A file's blocks are found by offset, whatever order they came in") {
   FileRanges index;
   REQUIRE(index.first(0) == kNoBlock);
   REQUIRE(index.floor(3, 100) == kNoBlock);
+  index.track(0);
+  index.track(1);
+  REQUIRE(!index.tracked(2));
   index.insert(0, 7, 4096, 4096);
   index.insert(0, 2, 0, 4096);
   index.insert(0, 9, 8192, 4096);
@@ -67,7 +78,11 @@ TEST_CASE("A file's blocks are found by offset, whatever order they came in") {
   REQUIRE(index.next(0, 9) == kNoBlock);
   REQUIRE(index.offset(9) == 8192);
   REQUIRE(index.floor(1, 5) == 3);
+  REQUIRE(index.cached_in(0, 100, 8000) == 8000);
+  REQUIRE(index.cached_in(0, 10000, 10000) == 12288 - 10000);
+  REQUIRE(index.cached_in(1, 5, 100) == 5);
   index.erase(0, 7);
+  REQUIRE(index.cached_in(0, 100, 8000) == 4096 - 100);  // block 9 starts after the range
   REQUIRE(index.next(0, 2) == 9);
   REQUIRE(index.floor(0, 5000) == 2);
   index.erase(0, 2);
@@ -76,8 +91,17 @@ TEST_CASE("A file's blocks are found by offset, whatever order they came in") {
   REQUIRE(!index.empty(1));
 }
 
+TEST_CASE("A file not held by range has no offsets indexed (the check)") {
+  FileRanges index;
+  index.insert(4, 1, 0, 4096);
+  REQUIRE_THROWS_AS(index.check(4, 1), pagecache::InvariantError);
+  index.track(4);
+  REQUIRE(index.check(4, 1) == 1);
+}
+
 TEST_CASE("Two blocks of one file at one offset are refused") {
   FileRanges index;
+  index.track(0);
   for (BlockId id = 0; id < 64; ++id) index.insert(0, id, 4096 * std::int64_t{id}, 4096);
   // Either on the way down or by the check, depending on where the new node lands.
   bool refused = false;
@@ -92,6 +116,7 @@ TEST_CASE("Two blocks of one file at one offset are refused") {
 
 TEST_CASE("A file read in order stays shallow: 10^5 blocks appended by offset") {
   FileRanges index;
+  index.track(0);
   constexpr BlockId n = 100000;
   for (BlockId id = 0; id < n; ++id) index.insert(0, id, std::int64_t{id} * 4096, 4096);
   REQUIRE(index.check(0, n) == n);
@@ -107,6 +132,7 @@ TEST_CASE("Random inserts, erases, splits and look-ups agree with std::map") {
   constexpr FileId kFiles = 5;
   constexpr std::int64_t kFileSize = 1 << 24;
   FileRanges index;
+  for (FileId file = 0; file < kFiles; ++file) index.track(file);
   std::vector<Reference> refs(kFiles);
   std::vector<BlockId> free_ids;
   BlockId fresh = 0;
@@ -178,6 +204,10 @@ TEST_CASE("Random inserts, erases, splits and look-ups agree with std::map") {
         // The block holding `at`, else the first after it.
         const bool held = above != ref.begin() && std::prev(above)->first + std::prev(above)->second.size > at;
         REQUIRE(index.at_or_after(file, at).id == (held ? std::prev(above)->second.id : found.above.id));
+        if (step % 16 == 4) {  // a range's cached bytes (a walk of the whole reference: not every time)
+          const std::int64_t bytes = static_cast<std::int64_t>(rng() % (kFileSize / 64));
+          REQUIRE(index.cached_in(file, at, bytes) == cached_in_of(ref, at, bytes));
+        }
         if (!ref.empty()) {
           const auto it = pick(ref);
           REQUIRE(index.offset(it->second.id) == it->first);

@@ -25,12 +25,6 @@ namespace {
 
 constexpr std::int64_t MB = 1'000'000;
 
-// Two nodes of 500 bytes, invariants checked after every operation.
-void split_in_two(PageCache& cache) {
-  cache.set_nodes(2);
-  cache.set_checking(true);
-}
-
 // A host of two nodes of 500 MB; one thread copies at 1000 MB/s, the nodes together at 2000
 // MB/s each; first touch free unless given. A remote copy goes at `copy` of the local rate.
 HostSpec two_node_host(double copy, double first_touch = 0.0, double first_touch_ratio = 1.0, double aggregate = 1.0) {
@@ -49,88 +43,88 @@ Task<void> read_on(Simulator& sim, Host& host, FileRef file, Thread thread, doub
 }  // namespace
 
 TEST_CASE("new memory goes to the toucher's node first, then to the other one, without reclaim", "[cache][numa]") {
-  PageCache cache(1000, CacheSettings::kernel());
-  split_in_two(cache);
+  PageCache cache(1000, CacheSettings::kernel(), {.nodes = 2});  // two nodes of 500 bytes
+  cache.set_checking(true);
   cache.touch_from(0);
   cache.add_clean(0, 300, 0.0);
   cache.allocate_anonymous(150);
-  CHECK(cache.node(0).cached == 300);
-  CHECK(cache.node(0).anonymous == 150);
-  CHECK(cache.node(1).cached == 0);
+  CHECK(node_use(cache, 0).cached == 300);
+  CHECK(node_use(cache, 0).anonymous == 150);
+  CHECK(node_use(cache, 1).cached == 0);
   // Node 0 has 50 free: the rest of a 200 file goes to node 1, nothing evicted.
   cache.add_clean(1, 200, 1.0);
-  CHECK(cache.node(0).free() == 0);
-  CHECK(cache.node(1).cached == 150);
-  CHECK(cache.remote().cache == 150);
-  CHECK(cache.evicted_bytes() == 0);
+  CHECK(node_use(cache, 0).free() == 0);
+  CHECK(node_use(cache, 1).cached == 150);
+  CHECK(cache.nodes().remote().cache == 150);
+  CHECK(cache.totals().evicted == 0);
   // A thread on node 1 takes its own node's memory: nothing remote.
   cache.touch_from(1);
   cache.allocate_anonymous(100);
-  CHECK(cache.node(1).anonymous == 100);
-  CHECK(cache.remote().anonymous == 0);
+  CHECK(node_use(cache, 1).anonymous == 100);
+  CHECK(cache.nodes().remote().anonymous == 0);
   // Released memory is its node's first: node 1's 100, then 20 of node 0's.
   cache.release_anonymous(120);
-  CHECK(cache.node(1).anonymous == 0);
-  CHECK(cache.node(0).anonymous == 130);
+  CHECK(node_use(cache, 1).anonymous == 0);
+  CHECK(node_use(cache, 0).anonymous == 130);
 }
 
 TEST_CASE("a copy into the cache takes its pages where they were reserved", "[cache][numa]") {
-  PageCache cache(1000, CacheSettings::kernel());
-  split_in_two(cache);
+  PageCache cache(1000, CacheSettings::kernel(), {.nodes = 2});  // two nodes of 500 bytes
+  cache.set_checking(true);
   cache.touch_from(1);
   cache.allocate_anonymous(450);
   cache.reserve(100);  // 50 on node 1, 50 on node 0
-  CHECK(cache.node(1).reserved == 50);
-  CHECK(cache.remote().reserved == 50);
+  CHECK(node_use(cache, 1).reserved == 50);
+  CHECK(cache.nodes().remote().reserved == 50);
   cache.commit_dirty(0, 100, 1.0);
-  CHECK(cache.node(0).cached == 50);
-  CHECK(cache.node(1).cached == 50);
-  CHECK(cache.dirty(0) == 100);
+  CHECK(node_use(cache, 0).cached == 50);
+  CHECK(node_use(cache, 1).cached == 50);
+  CHECK(cache.file(0).dirty == 100);
 }
 
 TEST_CASE("each node reclaims its own data, however old the other node's is", "[cache][numa]") {
   // Node 1 full of older data, node 0 of newer: a global LRU list would take 200 from node 1;
   // each node's kswapd takes its share of its own.
-  PageCache cache(1000, CacheSettings::kernel());
-  split_in_two(cache);
+  PageCache cache(1000, CacheSettings::kernel(), {.nodes = 2});  // two nodes of 500 bytes
+  cache.set_checking(true);
   cache.touch_from(1);
   cache.add_clean(0, 500, 0.0);
   cache.touch_from(0);
   cache.add_clean(1, 500, 1.0);
   CHECK(cache.evict(200, cache::kNoFile) == 200);
-  CHECK(cache.cached(0) == 400);
-  CHECK(cache.cached(1) == 400);
-  CHECK(cache.node(0).free() == 100);
-  CHECK(cache.node(1).free() == 100);
+  CHECK(cache.file(0).cached() == 400);
+  CHECK(cache.file(1).cached() == 400);
+  CHECK(node_use(cache, 0).free() == 100);
+  CHECK(node_use(cache, 1).free() == 100);
 }
 
 TEST_CASE("a node with nothing to reclaim leaves it to the other, where the memory then is", "[cache][numa]") {
   // Node 1 full of application memory, node 0 of cache: a thread on node 1 needing 100 finds
   // them on node 0 only, reclaimed from node 0's data, and takes them there (remote).
-  PageCache cache(1000, CacheSettings::kernel());
-  split_in_two(cache);
+  PageCache cache(1000, CacheSettings::kernel(), {.nodes = 2});  // two nodes of 500 bytes
+  cache.set_checking(true);
   cache.touch_from(1);
   cache.allocate_anonymous(500);
   cache.touch_from(0);
   cache.add_clean(0, 500, 0.0);
   cache.touch_from(1);
   CHECK(cache.evict(100, cache::kNoFile) == 100);
-  CHECK(cache.node(0).free() == 100);
+  CHECK(node_use(cache, 0).free() == 100);
   cache.add_clean(1, 100, 1.0);
-  CHECK(cache.node(0).cached == 500);
-  CHECK(cache.remote().cache == 100);
+  CHECK(node_use(cache, 0).cached == 500);
+  CHECK(cache.nodes().remote().cache == 100);
 }
 
 TEST_CASE("a node's data stays in its own blocks: a read of a file on both nodes keeps them apart", "[cache][numa]") {
-  PageCache cache(1000, CacheSettings::kernel());
-  split_in_two(cache);
+  PageCache cache(1000, CacheSettings::kernel(), {.nodes = 2});  // two nodes of 500 bytes
+  cache.set_checking(true);
   cache.touch_from(0);
   cache.allocate_anonymous(400);
   cache.add_clean(0, 300, 0.0);  // 100 on node 0, 200 on node 1
   cache.reaccess(0, 300, 1.0);
-  CHECK(cache.node(0).cached == 100);
-  CHECK(cache.node(1).cached == 200);
-  CHECK(cache.remote().reread == 200);
+  CHECK(node_use(cache, 0).cached == 100);
+  CHECK(node_use(cache, 1).cached == 200);
+  CHECK(cache.nodes().remote().reread == 200);
 }
 
 TEST_CASE("a reader reads a file cached on the other node at the remote copy rate", "[cache][numa][host]") {
@@ -340,8 +334,8 @@ class ReferenceNodes {
 TEST_CASE("placement, release and reclaim on two nodes follow a small reference, on random operations", "[cache][numa][random]") {
   for (std::uint32_t seed = 1; seed <= 40; ++seed) {
     std::mt19937 rng(seed);
-    PageCache cache(1000, CacheSettings::kernel());
-  split_in_two(cache);
+    PageCache cache(1000, CacheSettings::kernel(), {.nodes = 2});  // two nodes of 500 bytes
+  cache.set_checking(true);
     ReferenceNodes ref(500);
     auto pick = [&](std::int64_t low, std::int64_t high) { return std::uniform_int_distribution<std::int64_t>(low, high)(rng); };
     for (int step = 0; step < 200; ++step) {
@@ -357,7 +351,7 @@ TEST_CASE("placement, release and reclaim on two nodes follow a small reference,
           if (bytes <= ref.free()) cache.allocate_anonymous(bytes), ref.allocate(toucher, bytes);
           break;
         case 2: {
-          const std::int64_t held = cache.anonymous();
+          const std::int64_t held = cache.memory().anonymous;
           cache.release_anonymous(std::min(bytes, held));
           ref.release(toucher, std::min(bytes, held));
           break;
@@ -367,11 +361,11 @@ TEST_CASE("placement, release and reclaim on two nodes follow a small reference,
       }
       INFO("seed " << seed << ", step " << step);
       for (int n = 0; n < 2; ++n) {
-        const NodeUse use = cache.node(static_cast<cache::NodeId>(n));
+        const NodeUse use = node_use(cache, static_cast<cache::NodeId>(n));
         REQUIRE(use.cached == ref.cached(n));
         REQUIRE(use.anonymous == ref.anonymous(n));
       }
-      for (std::uint32_t f = 0; f <= 5; ++f) REQUIRE(cache.cached(f) == ref.cached_file(f));
+      for (std::uint32_t f = 0; f <= 5; ++f) REQUIRE(cache.file(f).cached() == ref.cached_file(f));
     }
   }
 }

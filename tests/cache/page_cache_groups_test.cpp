@@ -30,22 +30,22 @@ TEST_CASE("a group at its limit reclaims its own data while the host has free me
     cache.add_clean(0, 500, 0.0);
     cache.charge_file(1, group);
     cache.add_clean(1, 200, 1.0);
-    CHECK(cache.group_usage(group) == 200);
-    CHECK(cache.group_room(group) == 100);
-    CHECK(cache.group_usage(kRootGroup) == 500);
-    CHECK(cache.evict(200 - cache.group_room(group), kNoFile, group) == 100);
-    CHECK(cache.cached(0) == 500);
-    CHECK(cache.cached(1) == 100);
+    CHECK(group_usage(cache, group) == 200);
+    CHECK(group_room(cache, group) == 100);
+    CHECK(group_usage(cache, kRootGroup) == 500);
+    CHECK(cache.evict(200 - group_room(cache, group), kNoFile, group) == 100);
+    CHECK(cache.file(0).cached() == 500);
+    CHECK(cache.file(1).cached() == 100);
     cache.allocate_anonymous(200, group);
-    CHECK(cache.group_usage(group) == 300);
-    CHECK(cache.group_room(group) == 0);
+    CHECK(group_usage(cache, group) == 300);
+    CHECK(group_room(cache, group) == 0);
     // Past the limit: refused, the group named.
     CHECK_THROWS_WITH(cache.allocate_anonymous(1, group), Catch::Contains("memory group 1 over its limit"));
     // Not confined: the same eviction takes the oldest data, file 0's.
     CHECK(cache.evict(100, kNoFile) == 100);
-    CHECK(cache.cached(0) == 400);
+    CHECK(cache.file(0).cached() == 400);
     cache.release_anonymous(200, group);
-    CHECK(cache.group_usage(group) == 100);
+    CHECK(group_usage(cache, group) == 100);
   }
 }
 
@@ -57,18 +57,18 @@ TEST_CASE("a file is charged to the first group that caches it", "[page_cache][g
   cache.add_clean(0, 100, 0.0);
   const GroupId g1 = cache.add_group(1000);
   const GroupId g2 = cache.add_group(1000);
-  CHECK(cache.group_usage(kRootGroup) == 100);
+  CHECK(group_usage(cache, kRootGroup) == 100);
   cache.charge_file(0, g1);
-  CHECK(cache.group_of(0) == g1);
-  CHECK(cache.group_usage(kRootGroup) == 0);
-  CHECK(cache.group_cached(g1) == 100);
+  CHECK(cache.groups().of(0) == g1);
+  CHECK(group_usage(cache, kRootGroup) == 0);
+  CHECK(cache.groups().cached(g1) == 100);
   cache.charge_file(0, g2);
-  CHECK(cache.group_of(0) == g1);
+  CHECK(cache.groups().of(0) == g1);
   cache.add_read(0, 50, 1.0);  // more data of the file: its group's
-  CHECK(cache.group_cached(g1) == 150);
-  CHECK(cache.group_cached(g2) == 0);
+  CHECK(cache.groups().cached(g1) == 150);
+  CHECK(cache.groups().cached(g2) == 0);
   cache.drop_file(0);
-  CHECK(cache.group_cached(g1) == 0);
+  CHECK(cache.groups().cached(g1) == 0);
 }
 
 TEST_CASE("a group's writeback and active-list aging take only its data", "[page_cache][groups]") {
@@ -88,19 +88,19 @@ TEST_CASE("a group's writeback and active-list aging take only its data", "[page
   REQUIRE(taken.size() == 1);
   CHECK(taken[0].file == 1);
   for (const auto& t : taken) cache.end_writeback(t);
-  CHECK(cache.dirty(0) == 100);
+  CHECK(cache.file(0).dirty == 100);
   cache.add_clean(9, 1000, 2.0);  // root data, keeps active <= 2 x inactive
   for (const FileId f : {FileId{2}, FileId{3}}) {
     cache.add_read(f, 100, 3.0);
     cache.reaccess(f, 100, 4.0);
   }
-  REQUIRE(cache.cached(2, A) == 100);
-  REQUIRE(cache.cached(3, A) == 100);
+  REQUIRE(cache.file(2).in(A) == 100);
+  REQUIRE(cache.file(3).in(A) == 100);
   // The group's clean inactive data: 50 of file 1 (written back above). It goes first.
   CHECK(cache.evict(110, kNoFile, group) == 110);
-  CHECK(cache.cached(1) == 50);  // its dirty half stays
-  CHECK(cache.cached(3) == 40);
-  CHECK(cache.cached(3, I) == 40);  // deactivated with the part evicted
-  CHECK(cache.cached(2, A) == 100);
-  CHECK(cache.cached(9) == 1000);
+  CHECK(cache.file(1).cached() == 50);  // its dirty half stays
+  CHECK(cache.file(3).cached() == 40);
+  CHECK(cache.file(3).in(I) == 40);  // deactivated with the part evicted
+  CHECK(cache.file(2).in(A) == 100);
+  CHECK(cache.file(9).cached() == 1000);
 }

@@ -2,7 +2,8 @@
 // vectors of blocks, every operation written as the obvious loop. 10^5+ random operations
 // (reads, writes, flushes with writebacks left in flight and ended out of order, expiry
 // flushes, often several under one cutoff as the flusher's tick makes them, evictions, re-accesses, application memory, reservations of copies in flight,
-// writes of files starting and ending, which eviction spares with protect_files_being_written)
+// writes of files starting and ending, which eviction spares with protect_files_being_written;
+// with memory groups, files charged to them and evictions and flushes of one group)
 // run on both, and after every step the lists (block by block, in order), the per-file
 // cached and dirty bytes and the memory totals must agree exactly, with every invariant
 // checked by PageCache itself.
@@ -45,6 +46,23 @@ class Reference {
   std::int64_t anonymous = 0, reserved = 0;
   std::uint64_t next_token = 1;
   std::vector<int> writers = std::vector<int>(kFiles, 0);  // writes in progress, per file
+  std::vector<GroupId> group = std::vector<GroupId>(kFiles, kRootGroup);  // each file's memory group
+  // The walks' target: kAnyGroup, or only that group's files.
+  GroupId target = kAnyGroup;
+  bool in_target(const RefBlock& b) const { return target == kAnyGroup || group[b.file] == target; }
+  std::int64_t group_cached(GroupId g) const {
+    std::int64_t n = 0;
+    for (FileId f = 0; f < kFiles; ++f)
+      if (group[f] == g) n += cached(f);
+    return n;
+  }
+  std::int64_t group_unclean(GroupId g) const {
+    std::int64_t n = 0;
+    for (const auto* list : {&inactive, &active})
+      for (const auto& b : *list)
+        if (group[b.file] == g && b.state != BlockState::Clean) n += b.size;
+    return n;
+  }
 
   static std::int64_t sum(const std::vector<RefBlock>& list) {
     std::int64_t n = 0;
@@ -180,14 +198,15 @@ class Reference {
     settle();
   }
 
-  std::vector<PageCache::Flushed> flush(std::int64_t amount, FileId excluded) {
+  std::vector<PageCache::Flushed> flush(std::int64_t amount, FileId excluded, GroupId g = kAnyGroup) {
+    target = g;
     std::vector<PageCache::Flushed> out;
     std::int64_t flushed = 0;
     std::vector<RefBlock> moved;  // flushed heads of split blocks (paper: to the inactive tail)
     for (auto* list : {&inactive, &active}) {
       for (std::size_t i = 0; i < list->size() && flushed < amount; ++i) {
         RefBlock& b = (*list)[i];
-        if (b.state != BlockState::Dirty || b.file == excluded) continue;
+        if (b.state != BlockState::Dirty || b.file == excluded || !in_target(b)) continue;
         const bool partial = b.size > amount - flushed;
         RefBlock head = b;
         if (partial) {
@@ -211,6 +230,7 @@ class Reference {
       }
     }
     for (const auto& b : moved) inactive.push_back(b);
+    target = kAnyGroup;
     settle();
     return out;
   }
@@ -241,10 +261,11 @@ class Reference {
 
   // Two passes with protect_files_being_written: the first spares the files being written
   // too, the second (if the first freed too little) only `excluded`.
-  std::int64_t evict(std::int64_t amount, FileId excluded) {
+  std::int64_t evict(std::int64_t amount, FileId excluded, GroupId g = kAnyGroup) {
+    target = g;
     std::int64_t evicted = 0;
     auto pass = [&](bool spare_written) {
-      auto spared = [&](const RefBlock& b) { return b.file == excluded || (spare_written && writers[b.file] > 0); };
+      auto spared = [&](const RefBlock& b) { return b.file == excluded || (spare_written && writers[b.file] > 0) || !in_target(b); };
       for (auto* list : {&inactive, &active}) {
         if (list == &active && s_.reclaim_inactive_only) break;
         for (std::size_t i = 0; i < list->size() && evicted < amount;) {
@@ -263,10 +284,13 @@ class Reference {
         }
       }
       if (s_.reclaim_inactive_only) {
-        // Aging: the oldest active block goes to the inactive tail, and is reclaimed if clean.
-        while (evicted < amount && !active.empty()) {
-          RefBlock b = active.front();
-          active.erase(active.begin());
+        // Aging: the oldest active block (of the target) goes to the inactive tail, and is
+        // reclaimed if clean.
+        for (;;) {
+          const auto oldest = std::find_if(active.begin(), active.end(), [&](const RefBlock& b) { return in_target(b); });
+          if (evicted >= amount || oldest == active.end()) break;
+          RefBlock b = *oldest;
+          active.erase(oldest);
           b.referenced = false;
           if (b.state == BlockState::Clean && !spared(b)) {
             if (b.size > amount - evicted) {
@@ -284,6 +308,7 @@ class Reference {
     };
     pass(s_.protect_files_being_written);
     if (evicted < amount && s_.protect_files_being_written) pass(false);
+    target = kAnyGroup;
     settle();
     return evicted;
   }
@@ -312,20 +337,34 @@ void compare(const PageCache& cache, const Reference& ref, std::uint64_t step) {
     }
   }
   for (FileId f = 0; f < kFiles; ++f) {
-    REQUIRE(cache.cached(f) == ref.cached(f));
-    REQUIRE(cache.dirty(f) == ref.dirty(f));
+    REQUIRE(cache.file(f).cached() == ref.cached(f));
+    REQUIRE(cache.file(f).dirty == ref.dirty(f));
   }
   REQUIRE(cache.free() == ref.free());
-  REQUIRE(cache.dirty() == ref.dirty());
-  REQUIRE(cache.anonymous() == ref.anonymous);
-  REQUIRE(cache.reserved() == ref.reserved);
+  REQUIRE(cache.memory().dirty == ref.dirty());
+  REQUIRE(cache.memory().anonymous == ref.anonymous);
+  REQUIRE(cache.memory().reserved == ref.reserved);
+  for (std::size_t g = 0; g < cache.groups().size(); ++g) {
+    const auto group = static_cast<GroupId>(g);
+    REQUIRE(cache.groups().cached(group) == ref.group_cached(group));
+    REQUIRE(cache.groups().dirty_and_writeback(group) == ref.group_unclean(group));
+  }
 }
 
-void run_random(const CacheSettings& settings, std::uint64_t seed, int steps) {
+// `groups`: files are charged to two memory groups as the run goes, and evictions and flushes
+// target one group or all (limits high enough never to refuse: the I/O controller's business).
+void run_random(const CacheSettings& settings, std::uint64_t seed, int steps, bool groups = false) {
   constexpr std::int64_t kTotal = 3000;
   PageCache cache(kTotal, settings);
   cache.set_checking(true);
   Reference ref(kTotal, settings);
+  if (groups) {
+    REQUIRE(cache.add_group(kTotal) == 1);
+    REQUIRE(cache.add_group(kTotal, kTotal / 2) == 2);
+  }
+  // The target of an eviction or flush: any group, or (with groups) one of those added.
+  auto target = [&](std::int64_t roll) { return groups && roll > 0 ? static_cast<GroupId>(roll) : kAnyGroup; };
+  std::vector<std::int64_t> anonymous(groups ? 3 : 1, 0);  // by group
   std::mt19937_64 rng(seed);
   auto pick = [&](std::int64_t lo, std::int64_t hi) { return std::uniform_int_distribution<std::int64_t>(lo, hi)(rng); };
   std::vector<PageCache::Flushed> in_flight;   // writebacks not yet ended
@@ -336,7 +375,7 @@ void run_random(const CacheSettings& settings, std::uint64_t seed, int steps) {
   for (int step = 0; step < steps; ++step) {
     now += static_cast<double>(pick(0, 3));
     const auto file = static_cast<FileId>(pick(0, kFiles - 1));
-    const auto op = pick(0, 13);
+    const auto op = pick(0, groups ? 14 : 13);
     switch (op) {
       case 0:
       case 1: {  // new data read or written
@@ -348,7 +387,7 @@ void run_random(const CacheSettings& settings, std::uint64_t seed, int steps) {
         break;
       }
       case 2: {  // cache hit
-        const std::int64_t bytes = pick(0, cache.cached(file));
+        const std::int64_t bytes = pick(0, cache.file(file).cached());
         cache.reaccess(file, bytes, now);
         ref.reaccess(file, bytes, now);
         break;
@@ -356,9 +395,10 @@ void run_random(const CacheSettings& settings, std::uint64_t seed, int steps) {
       case 3: {  // forced flush, written back later
         const std::int64_t amount = pick(1, 300);
         const FileId excluded = pick(0, 1) ? file : kNoFile;
+        const GroupId group = target(pick(0, 2));
         std::vector<PageCache::Flushed> got;
-        cache.flush(amount, excluded, got);
-        const auto want = ref.flush(amount, excluded);
+        cache.flush(amount, excluded, got, group);
+        const auto want = ref.flush(amount, excluded, group);
         REQUIRE(got.size() == want.size());
         for (std::size_t i = 0; i < got.size(); ++i) {
           REQUIRE(got[i].file == want[i].file);
@@ -389,18 +429,22 @@ void run_random(const CacheSettings& settings, std::uint64_t seed, int steps) {
       case 6: {
         const std::int64_t amount = pick(1, 400);
         const FileId excluded = pick(0, 1) ? file : kNoFile;
-        REQUIRE(cache.evict(amount, excluded) == ref.evict(amount, excluded));
+        const GroupId group = target(pick(0, 2));
+        REQUIRE(cache.evict(amount, excluded, group) == ref.evict(amount, excluded, group));
         break;
       }
       case 7: {  // application memory
+        const auto group = static_cast<GroupId>(pick(0, static_cast<std::int64_t>(anonymous.size()) - 1));
         if (pick(0, 1)) {
           const std::int64_t bytes = pick(0, std::min<std::int64_t>(cache.free(), 200));
-          cache.allocate_anonymous(bytes);
+          cache.allocate_anonymous(bytes, group);
           ref.anonymous += bytes;
+          anonymous[group] += bytes;
         } else {
-          const std::int64_t bytes = pick(0, cache.anonymous());
-          cache.release_anonymous(bytes);
+          const std::int64_t bytes = pick(0, anonymous[group]);
+          cache.release_anonymous(bytes, group);
           ref.anonymous -= bytes;
+          anonymous[group] -= bytes;
         }
         break;
       }
@@ -427,7 +471,7 @@ void run_random(const CacheSettings& settings, std::uint64_t seed, int steps) {
         break;
       }
       case 11:
-        cache.balance();
+        cache.walks().balance();
         ref.balance();
         break;
       case 12: {  // data read from a device by an application
@@ -440,6 +484,13 @@ void run_random(const CacheSettings& settings, std::uint64_t seed, int steps) {
         const bool start = ref.writers[file] == 0 || (ref.writers[file] < 3 && pick(0, 1));
         cache.set_being_written(file, start);
         ref.writers[file] += start ? 1 : -1;
+        break;
+      }
+      case 14: {  // the file charged to a group, unless one has it already (the first keeps it)
+        const auto group = static_cast<GroupId>(pick(1, 2));
+        cache.charge_file(file, group);
+        if (ref.group[file] == kRootGroup) ref.group[file] = group;
+        REQUIRE(cache.groups().of(file) == ref.group[file]);
         break;
       }
       default:
@@ -478,4 +529,16 @@ TEST_CASE("PageCache agrees with the reference model over random operations (ker
   settings.set("expire_oldest_first", false);
   settings.set("reclaim_inactive_only", false);
   for (std::uint64_t seed : {7u, 8u, 9u}) run_random(settings, seed, 20000);
+}
+
+TEST_CASE("PageCache agrees with the reference model with memory groups: a group's eviction and flush take only its files",
+          "[page_cache][random][groups]") {
+  // Under the kernel settings eviction spares the files being written through each group's own
+  // heap of reclaimable files; under the paper's it walks the lists.
+  CacheSettings kernel = CacheSettings::kernel();
+  kernel.set("expire_oldest_first", false);
+  for (std::uint64_t seed : {10u, 11u}) run_random(kernel, seed, 20000, true);
+  kernel.set("reclaim_inactive_only", false);
+  run_random(kernel, 12u, 20000, true);
+  run_random(CacheSettings::paper(), 13u, 20000, true);
 }

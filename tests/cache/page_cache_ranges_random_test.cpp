@@ -240,7 +240,7 @@ std::vector<Unit> expand(const PageCache& cache, ListKind kind) {
   std::vector<Unit> units;
   const LruList& list = cache.list(kind);
   for (BlockId id = list.front(); id != kNoBlock; id = list.next(id)) {
-    const Block& b = cache.block(id);
+    const Block& b = list.block(id);
     const bool dirty = b.state == BlockState::Dirty;  // in writeback its token holds the entry time's place
     const std::uint64_t token = b.state == BlockState::Writeback ? b.writeback_batch : 0;
     for (std::int64_t i = 0; i < b.size; ++i)
@@ -257,8 +257,8 @@ void compare(const PageCache& cache, const Reference& ref, std::uint64_t step) {
   std::int64_t dirty = 0;
   for (const auto* list : {&ref.inactive, &ref.active})
     for (const Unit& u : *list) dirty += u.state == BlockState::Dirty;
-  REQUIRE(cache.dirty() == dirty);
-  for (FileId f = 0; f < kFiles; ++f) REQUIRE(cache.ranged(f) == ref.ranged[f]);
+  REQUIRE(cache.memory().dirty == dirty);
+  for (FileId f = 0; f < kFiles; ++f) REQUIRE(cache.ranges().tracked(f) == ref.ranged[f]);
 }
 
 struct Counts {
@@ -273,8 +273,7 @@ struct Counts {
 
 Counts run_random(const CacheSettings& settings, std::uint64_t seed, int steps) {
   constexpr std::int64_t kTotal = 160;
-  PageCache cache(kTotal, settings);
-  cache.set_page_size(1);  // bytes stand for pages
+  PageCache cache(kTotal, settings, {.page_size = 1});  // bytes stand for pages
   cache.set_checking(true);
   Reference ref(kTotal, settings, cache.policy().read_is_first_touch());
   std::mt19937_64 rng(seed);
@@ -296,11 +295,11 @@ Counts run_random(const CacheSettings& settings, std::uint64_t seed, int steps) 
         const std::int64_t offset = pick(0, kFileSize - 1);
         const std::int64_t bytes = pick(1, kFileSize - offset);
         const FileId spared = pick(0, 1) ? file : kNoFile;
-        const std::int64_t missing = bytes - cache.cached_in(file, offset, bytes);
+        const std::int64_t missing = bytes - cache.ranges().cached_in(file, offset, bytes);
         REQUIRE(missing == bytes - ref.cached_in(file, offset, bytes));
         if (missing > cache.free()) REQUIRE(cache.evict(missing - cache.free(), spared) == ref.evict(missing - ref.free(), spared));
         // The eviction may have taken some of the range itself.
-        if (bytes - cache.cached_in(file, offset, bytes) > cache.free()) break;
+        if (bytes - cache.ranges().cached_in(file, offset, bytes) > cache.free()) break;
         REQUIRE(cache.read_range(file, offset, bytes, now) == ref.read(file, offset, bytes));
         ++counts.reads;
         break;
@@ -317,7 +316,7 @@ Counts run_random(const CacheSettings& settings, std::uint64_t seed, int steps) 
           cache.allocate_anonymous(bytes);
           ref.anonymous += bytes;
         } else {
-          const std::int64_t bytes = pick(0, cache.anonymous());
+          const std::int64_t bytes = pick(0, cache.memory().anonymous);
           cache.release_anonymous(bytes);
           ref.anonymous -= bytes;
         }
@@ -325,7 +324,7 @@ Counts run_random(const CacheSettings& settings, std::uint64_t seed, int steps) 
       }
       case 6: {  // whole-file data of a file not (yet) held by range
         if (ref.ranged[file]) break;
-        const std::int64_t bytes = std::min<std::int64_t>(pick(1, 30), std::min(cache.free(), kFileSize - cache.cached(file)));
+        const std::int64_t bytes = std::min<std::int64_t>(pick(1, 30), std::min(cache.free(), kFileSize - cache.file(file).cached()));
         cache.add_read(file, bytes, now);
         ref.add_whole(file, bytes);
         break;
@@ -334,7 +333,7 @@ Counts run_random(const CacheSettings& settings, std::uint64_t seed, int steps) 
         if (!ref.ranged[file]) break;
         const std::int64_t offset = pick(0, kFileSize - 1);
         const std::int64_t bytes = pick(1, kFileSize - offset);
-        if (bytes - cache.cached_in(file, offset, bytes) > cache.free()) break;
+        if (bytes - cache.ranges().cached_in(file, offset, bytes) > cache.free()) break;
         REQUIRE(cache.write_range(file, offset, bytes, now) == ref.write(file, offset, bytes, now));
         ++counts.writes;
         break;

@@ -30,7 +30,7 @@ std::vector<std::pair<std::int64_t, std::int64_t>> held(const PageCache& cache, 
   std::vector<std::pair<std::int64_t, std::int64_t>> runs;
   cache.ranges().for_each(file, [&](BlockId id) {
     const std::int64_t offset = cache.ranges().offset(id);
-    const std::int64_t end = offset + cache.block(id).size;
+    const std::int64_t end = offset + cache.list(ListKind::Inactive).block(id).size;
     if (!runs.empty() && runs.back().second == offset) runs.back().second = end;
     else runs.emplace_back(offset, end);
   });
@@ -46,12 +46,12 @@ TEST_CASE("a read of a range hits exactly what is cached of it", "[page_cache][r
   cache.set_checking(true);
   cache.track_ranges(0);
   CHECK(cache.read_range(0, 100, 100, 0.0) == 100);  // [100, 200) from the device
-  CHECK(cache.cached_in(0, 0, 1000) == 100);
-  CHECK(cache.cached_in(0, 150, 100) == 50);
+  CHECK(cache.ranges().cached_in(0, 0, 1000) == 100);
+  CHECK(cache.ranges().cached_in(0, 150, 100) == 50);
   CHECK(cache.read_range(0, 150, 100, 1.0) == 50);  // [150, 200) hits, [200, 250) misses
   CHECK(cache.read_range(0, 0, 300, 2.0) == 150);   // [0, 100) and [250, 300) miss
   CHECK(held(cache, 0) == Runs{{0, 300}});
-  CHECK(cache.cached(0) == 300);
+  CHECK(cache.file(0).cached() == 300);
   CHECK(cache.read_range(0, 0, 300, 3.0) == 0);
 }
 
@@ -73,7 +73,7 @@ TEST_CASE("a file read in order in small requests stays one block", "[page_cache
   cache.set_checking(false);
   cache.track_ranges(0);
   for (std::int64_t offset = 0; offset < 10 * MB; offset += 4096) cache.read_range(0, offset, std::min<std::int64_t>(4096, 10 * MB - offset), 0.0);
-  CHECK(cache.cached(0) == 10 * MB);
+  CHECK(cache.file(0).cached() == 10 * MB);
   CHECK(cache.list(ListKind::Inactive).size() + cache.list(ListKind::Active).size() == 1);
   cache.check_invariants();
 }
@@ -86,7 +86,7 @@ TEST_CASE("data cached whole before a file is held by range takes offsets from 0
   cache.add_read(0, 20, 1.0);
   cache.track_ranges(0);
   CHECK(held(cache, 0) == Runs{{0, 120}});
-  CHECK_FALSE(cache.ranged(1));
+  CHECK_FALSE(cache.ranges().tracked(1));
   CHECK(cache.read_range(0, 100, 50, 2.0) == 30);
 }
 

@@ -75,8 +75,8 @@ TEST_CASE("a block read in part is split and only the part read moves", "[page_c
   cache.reaccess(0, 70, 1.0);
   CHECK(blocks(cache, I) == std::vector<Seen>{{0, 30, C}, {1, 400, C}});
   CHECK(blocks(cache, A) == std::vector<Seen>{{0, 70, C}});
-  CHECK(cache.cached(0, I) == 30);
-  CHECK(cache.cached(0, A) == 70);
+  CHECK(cache.file(0).in(I) == 30);
+  CHECK(cache.file(0).in(A) == 70);
 }
 
 TEST_CASE("balancing keeps the active list at most twice the inactive list", "[page_cache]") {
@@ -119,13 +119,13 @@ TEST_CASE("flushing takes the least recently used dirty data, skipping the exclu
       CHECK(blocks(cache, I) == std::vector<Seen>{{0, 100, D}, {1, 50, C}, {1, 100, W}, {2, 50, D}, {2, 50, W}});
     }
     // Data in writeback is neither dirty nor evictable; it is clean once written.
-    CHECK(cache.dirty() == 150);
-    CHECK(cache.writeback() == 150);
+    CHECK(cache.memory().dirty == 150);
+    CHECK(cache.memory().writeback == 150);
     CHECK(cache.evict(1000, kNoFile) == 50);
     for (const auto& t : taken) cache.end_writeback(t);
-    CHECK(cache.writeback() == 0);
-    CHECK(cache.dirty(2) == 50);
-    CHECK(cache.cached(1) == 100);
+    CHECK(cache.memory().writeback == 0);
+    CHECK(cache.file(2).dirty == 50);
+    CHECK(cache.file(1).cached() == 100);
   }
 }
 
@@ -145,8 +145,8 @@ TEST_CASE("each file's part of a flush is a write of its own, ending on its own"
   CHECK(cache.writeback(0) == 0);
   CHECK(cache.writeback(1) == 100);
   cache.end_writeback(taken[1]);
-  CHECK(cache.writeback() == 0);
-  CHECK(cache.dirty() == 0);
+  CHECK(cache.memory().writeback == 0);
+  CHECK(cache.memory().dirty == 0);
 }
 
 TEST_CASE("eviction frees clean data from the least recently used end", "[page_cache]") {
@@ -165,11 +165,11 @@ TEST_CASE("eviction frees clean data from the least recently used end", "[page_c
     cache.add_clean(3, 100, 0.0);
     cache.reaccess(3, 100, 0.0);
     CHECK(cache.evict(150, 2) == 150);
-    CHECK(cache.cached(0) == 0);
-    CHECK(cache.cached(1) == 100);
-    CHECK(cache.cached(2) == 100);
-    CHECK(cache.cached(3) == 50);
-    CHECK(cache.cached(3, ListKind::Active) == (inactive_only ? 0 : 50));
+    CHECK(cache.file(0).cached() == 0);
+    CHECK(cache.file(1).cached() == 100);
+    CHECK(cache.file(2).cached() == 100);
+    CHECK(cache.file(3).cached() == 50);
+    CHECK(cache.file(3).in(ListKind::Active) == (inactive_only ? 0 : 50));
   }
 }
 
@@ -186,8 +186,8 @@ TEST_CASE("the periodic flusher takes expired dirty blocks one at a time, inacti
   CHECK(cache.flush_expired_block(10.0).bytes == 0);
   cache.end_writeback(first);
   cache.end_writeback(second);
-  CHECK(cache.dirty() == 100);
-  CHECK(cache.dirty(1) == 100);
+  CHECK(cache.memory().dirty == 100);
+  CHECK(cache.file(1).dirty == 100);
 }
 
 TEST_CASE("expired data that appears where the flusher's last search has passed is still taken first", "[page_cache]") {
@@ -234,7 +234,7 @@ TEST_CASE("with expire_oldest_first the periodic flusher takes the oldest expire
     CHECK(cache.flush_expired_block(10.0).bytes == 0);  // file 1 is not expired
     cache.end_writeback(first);
     cache.end_writeback(second);
-    CHECK(cache.dirty() == 100);
+    CHECK(cache.memory().dirty == 100);
   }
 }
 
@@ -246,8 +246,8 @@ TEST_CASE("the dirty thresholds' base is free + cached (kernel) or free + clean 
     cache->add_clean(0, 200, 0.0);
     cache->add_dirty(1, 100, 0.0);
   }
-  CHECK(kernel.dirtyable() == 400 + 300);
-  CHECK(paper.dirtyable() == 400 + 300 - 100);
+  CHECK(kernel.policy().dirtyable(kernel) == 400 + 300);
+  CHECK(paper.policy().dirtyable(paper) == 400 + 300 - 100);
 }
 
 TEST_CASE("with balance_after_every_change an eviction rebalances the lists at once", "[page_cache]") {
@@ -284,10 +284,10 @@ TEST_CASE("two-touch activation: written data read once stays inactive, data rea
     cache.add_clean(2, 1000, 0.0);  // keeps active <= 2 x inactive
     cache.reaccess(0, 100, 1.0);
     cache.reaccess(1, 100, 1.0);
-    CHECK(cache.cached(0, ListKind::Inactive) == (two_touch ? 100 : 0));
-    CHECK(cache.cached(1, ListKind::Active) == 100);
+    CHECK(cache.file(0).in(ListKind::Inactive) == (two_touch ? 100 : 0));
+    CHECK(cache.file(1).in(ListKind::Active) == 100);
     cache.reaccess(0, 100, 2.0);
-    CHECK(cache.cached(0, ListKind::Active) == 100);
+    CHECK(cache.file(0).in(ListKind::Active) == 100);
   }
 }
 
@@ -304,10 +304,10 @@ TEST_CASE("files being written keep their pages while other clean data is left",
     cache.add_clean(1, 100, 0.0);
     cache.set_being_written(0, true);
     CHECK(cache.evict(100, kNoFile) == 100);
-    CHECK(cache.cached(0) == (protect ? 100 : 0));
-    CHECK(cache.cached(1) == (protect ? 0 : 100));
+    CHECK(cache.file(0).cached() == (protect ? 100 : 0));
+    CHECK(cache.file(1).cached() == (protect ? 0 : 100));
     CHECK(cache.evict(50, kNoFile) == 50);
-    CHECK(cache.cached(0) + cache.cached(1) == 50);
+    CHECK(cache.file(0).cached() + cache.file(1).cached() == 50);
     cache.set_being_written(0, false);
   }
 }
@@ -327,13 +327,13 @@ TEST_CASE("a read in chunks touches each page once: its cursor skips what it mar
   for (int i = 0; i < 3; ++i) cache.add_dirty(0, 100, i);
   ReadCursor cursor;
   for (int i = 0; i < 3; ++i) cursor = cache.reaccess(0, 100, 10.0 + i, cursor);
-  CHECK(cache.cached(0, A) == 0);
+  CHECK(cache.file(0).in(A) == 0);
   CHECK(cursor.after);
   cache.add_dirty(0, 100, 20.0);
   cursor = cache.reaccess(0, 100, 21.0, cursor);
-  CHECK(cache.cached(0, A) == 0);
+  CHECK(cache.file(0).in(A) == 0);
   cache.reaccess(0, 100, 22.0, cursor);
-  CHECK(cache.cached(0, A) == 100);
+  CHECK(cache.file(0).in(A) == 100);
   CHECK(blocks(cache, A) == std::vector<Seen>{{0, 100, D}});
 
   // A cursor naming a block that has gone (evicted, its id reused by another file's data)
@@ -345,10 +345,10 @@ TEST_CASE("a read in chunks touches each page once: its cursor skips what it mar
   other.add_clean(1, 100, 0.0);  // a second block of file 1, not referenced
   const ReadCursor stale = other.reaccess(1, 50, 1.0, {});  // activates half the first block
   REQUIRE(stale.block != kNoBlock);
-  CHECK(other.cached(1, A) == 50);
+  CHECK(other.file(1).in(A) == 50);
   other.evict(1000 + 150, kNoFile);  // everything clean and inactive goes, the cursor's block too
   other.add_clean(2, 100, 2.0);      // may take the freed id
   other.add_read(1, 100, 3.0);
   other.reaccess(1, 100, 4.0, stale);  // the new block of file 1, referenced: activated
-  CHECK(other.cached(1, A) == 150);
+  CHECK(other.file(1).in(A) == 150);
 }

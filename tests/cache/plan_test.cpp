@@ -107,7 +107,7 @@ TEST_CASE("room: evictable is every inactive byte (paper) or the clean inactive 
     cache.add_read(0, 300, 0.0);
     cache.reaccess(0, 100, 1.0);
     cache.add_dirty(1, 100, 2.0);
-    REQUIRE(cache.cached(0, A) == 100);
+    REQUIRE(cache.file(0).in(A) == 100);
     REQUIRE(cache.list(I).bytes() == 300);
     REQUIRE(cache.free() == 200);
     const RoomPlan room = plan_room(cache, 700);
@@ -199,14 +199,14 @@ TEST_CASE("evicting for a read may take the file's own data: more then comes fro
     if (kernel) {
       // Reclaim takes the least recently used data, the file's own: 200 of it left, so
       // from_disk = 200 and required = 600 > free = 500. The room made is not enough.
-      CHECK(cache.cached(0) == 200);
+      CHECK(cache.file(0).cached() == 200);
       CHECK(second.from_disk == 200);
       CHECK(second.required == 600);
       CHECK_FALSE(second.room.fits);
       CHECK(second.room.evict == 100);
     } else {
       // The paper spares the file being read: file 1 goes, and the first plan holds.
-      CHECK(cache.cached(0) == 300);
+      CHECK(cache.file(0).cached() == 300);
       CHECK(second.from_disk == 100);
       CHECK(second.room.fits);
     }

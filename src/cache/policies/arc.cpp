@@ -120,9 +120,9 @@ class ArcPolicy final : public Policy {
     // place (deactivating it would move T2's dirty data into T1 and inflate it against p);
     // then T1's again when T2 has too little clean data.
     const std::int64_t above_target = std::max<std::int64_t>(cache.list(ListKind::Inactive).bytes() - p_, 0);
-    std::int64_t evicted = cache.evict_clean(ListKind::Inactive, std::min(amount, above_target), excluded, false);
-    evicted += cache.evict_clean(ListKind::Active, amount - evicted, excluded, false);
-    evicted += cache.evict_clean(ListKind::Inactive, amount - evicted, excluded, false);
+    std::int64_t evicted = cache.walks().evict_clean(ListKind::Inactive, std::min(amount, above_target), excluded, false);
+    evicted += cache.walks().evict_clean(ListKind::Active, amount - evicted, excluded, false);
+    evicted += cache.walks().evict_clean(ListKind::Inactive, amount - evicted, excluded, false);
     return evicted;
   }
   std::int64_t evictable(const PageCache& cache) const noexcept override {
@@ -164,7 +164,10 @@ class ArcPolicy final : public Policy {
 
  private:
   // ARC's c: what the page cache may hold now, all memory but the applications'.
-  static std::int64_t capacity(const PageCache& cache) noexcept { return cache.free() + cache.cached() + cache.reserved(); }
+  static std::int64_t capacity(const PageCache& cache) noexcept {
+    const MemoryState memory = cache.memory();
+    return memory.free + memory.cached + memory.reserved;
+  }
 
   // ARC's delta for `hit` ghost bytes of a list of `own` bytes, the other holding `other`:
   // hit x max(1, other / own), at most `cap` (in double: hit x other may overflow).

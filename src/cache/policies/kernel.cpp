@@ -102,9 +102,9 @@ class KernelPolicy final : public Policy {
     // the active list. Files being written are spared in a first pass when asked.
     std::int64_t evicted = 0;
     auto pass = [&](bool spare_written) {
-      evicted += cache.evict_clean(ListKind::Inactive, amount - evicted, excluded, spare_written);
-      if (s_.reclaim_inactive_only) evicted += cache.deactivate_oldest(amount - evicted, excluded, spare_written);
-      else evicted += cache.evict_clean(ListKind::Active, amount - evicted, excluded, spare_written);
+      evicted += cache.walks().evict_clean(ListKind::Inactive, amount - evicted, excluded, spare_written);
+      if (s_.reclaim_inactive_only) evicted += cache.walks().deactivate_oldest(amount - evicted, excluded, spare_written);
+      else evicted += cache.walks().evict_clean(ListKind::Active, amount - evicted, excluded, spare_written);
     };
     pass(s_.protect_files_being_written);
     if (evicted < amount && s_.protect_files_being_written) pass(false);
@@ -118,7 +118,7 @@ class KernelPolicy final : public Policy {
 
   // kupdate-style writeback takes expired inodes in the order they were dirtied.
   BlockId next_expired(PageCache& cache, double cutoff) const override {
-    return s_.expire_oldest_first ? cache.oldest_dirty() : cache.lru_expired(cutoff);
+    return s_.expire_oldest_first ? cache.walks().oldest_dirty() : cache.walks().lru_expired(cutoff);
   }
   bool splits_flushed_block_in_place() const noexcept override { return s_.flush_splits_in_place; }
   bool background_writeback() const noexcept override { return s_.background_writeback; }
@@ -133,8 +133,8 @@ class KernelPolicy final : public Policy {
   // global_dirtyable_memory: free + file pages; copies into the cache in flight (reserved)
   // are file pages already, as the kernel dirties pages one by one while the copy runs.
   std::int64_t dirtyable(const PageCache& cache) const noexcept override {
-    return s_.dirtyable_memory ? cache.free() + cache.cached() + cache.reserved()
-                               : cache.free() + cache.cached() - cache.dirty() - cache.writeback();
+    const MemoryState m = cache.memory();
+    return s_.dirtyable_memory ? m.free + m.cached + m.reserved : m.free + m.cached - m.dirty - m.writeback;
   }
 
  private:

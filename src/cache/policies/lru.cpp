@@ -23,20 +23,21 @@ class LruPolicy final : public Policy {
 
   bool spares_files_being_written() const noexcept override { return false; }
   std::int64_t reclaim(PageCache& cache, std::int64_t amount, FileId excluded) override {
-    return cache.evict_clean(ListKind::Inactive, amount, excluded, false);
+    return cache.walks().evict_clean(ListKind::Inactive, amount, excluded, false);
   }
   std::int64_t evictable(const PageCache& cache) const noexcept override {
     return cache.list(ListKind::Inactive).bytes(BlockState::Clean);
   }
   bool reclaim_may_take_file_being_read() const noexcept override { return true; }
 
-  BlockId next_expired(PageCache& cache, double) const override { return cache.oldest_dirty(); }
+  BlockId next_expired(PageCache& cache, double) const override { return cache.walks().oldest_dirty(); }
   bool splits_flushed_block_in_place() const noexcept override { return true; }
   bool background_writeback() const noexcept override { return true; }
   bool throttles_writers() const noexcept override { return true; }
 
   std::int64_t dirtyable(const PageCache& cache) const noexcept override {
-    return cache.free() + cache.cached() + cache.reserved();
+    const MemoryState memory = cache.memory();
+    return memory.free + memory.cached + memory.reserved;
   }
 };
 

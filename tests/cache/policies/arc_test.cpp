@@ -22,7 +22,7 @@ CacheSettings named(const std::string& policy) {
 // A read of all `bytes` of `file` as IoController does it: its cached part re-accessed, the rest
 // evicted for if memory is short and brought in from the device. Returns the bytes read from it.
 std::int64_t read(PageCache& cache, FileId file, std::int64_t bytes, double now) {
-  const std::int64_t cached = cache.cached(file);
+  const std::int64_t cached = cache.file(file).cached();
   if (cached > 0) cache.reaccess(file, cached, now);
   const std::int64_t missing = bytes - cached;
   if (missing > cache.free()) REQUIRE(cache.evict(missing - cache.free(), kNoFile) == missing - cache.free());
@@ -46,14 +46,14 @@ TEST_CASE("arc: a re-read activates, and a scan of data read once evicts only da
     read(cache, 9, 200, 0.0);
     read(cache, 0, 400, 0.0);
     read(cache, 0, 400, 1.0);
-    if (policy != "lru") CHECK(cache.cached(0, ListKind::Active) == 400);
+    if (policy != "lru") CHECK(cache.file(0).in(ListKind::Active) == 400);
     for (FileId f = 1; f <= 8; ++f) read(cache, f, 100, 2.0 + f);
-    CHECK(cache.evicted_bytes() == 400);
-    CHECK(cache.cached(0) == (policy == "lru" ? 200 : 400));
-    CHECK(cache.cached(9) == 0);
-    CHECK(cache.cached(1) == (policy == "lru" ? 100 : 0));
-    CHECK(cache.cached(2) == (policy == "lru" ? 100 : 0));
-    for (FileId f = 3; f <= 8; ++f) CHECK(cache.cached(f) == 100);
+    CHECK(cache.totals().evicted == 400);
+    CHECK(cache.file(0).cached() == (policy == "lru" ? 200 : 400));
+    CHECK(cache.file(9).cached() == 0);
+    CHECK(cache.file(1).cached() == (policy == "lru" ? 100 : 0));
+    CHECK(cache.file(2).cached() == (policy == "lru" ? 100 : 0));
+    for (FileId f = 3; f <= 8; ++f) CHECK(cache.file(f).cached() == 100);
   }
 }
 
@@ -84,12 +84,12 @@ TEST_CASE("arc: ghost hits raise p until reclaim takes the stale twice-read data
     std::int64_t device = 0;
     for (int r = 1; r <= 12; ++r) {
       device += read(cache, static_cast<FileId>((r - 1) % 4 + 1), 200, 1.0 + r);
-      if (r == 4) CHECK(cache.cached(0) == e.h_after_r4);
-      if (r == 8) CHECK(cache.cached(0) == e.h_after_r8);
+      if (r == 4) CHECK(cache.file(0).cached() == e.h_after_r4);
+      if (r == 8) CHECK(cache.file(0).cached() == e.h_after_r8);
     }
-    CHECK(cache.cached(9) == 0);
+    CHECK(cache.file(9).cached() == 0);
     CHECK(device == e.device_bytes);
-    CHECK(cache.evicted_bytes() == e.evicted);
+    CHECK(cache.totals().evicted == e.evicted);
   }
 }
 
@@ -111,8 +111,8 @@ TEST_CASE("arc: the ghost lists hold at most the cache's size, oldest first; a d
     for (FileId f : {1, 2, 3}) read(cache, f, 300, 0.0);
     read(cache, 2, 300, 1.0);
     read(cache, 3, 300, 1.0);
-    REQUIRE(cache.cached(2, ListKind::Active) == 300);
-    REQUIRE(cache.cached(3, ListKind::Active) == 300);
+    REQUIRE(cache.file(2).in(ListKind::Active) == 300);
+    REQUIRE(cache.file(3).in(ListKind::Active) == 300);
     for (FileId f : {4, 5}) read(cache, f, 300, 2.0);
     if (c == Case::Trimmed) {
       for (FileId f : {6, 7}) read(cache, f, 300, 3.0);
@@ -121,10 +121,10 @@ TEST_CASE("arc: the ghost lists hold at most the cache's size, oldest first; a d
     CHECK(read(cache, 1, 300, 4.0) == 300);
     read(cache, 8, 300, 5.0);
     const bool remembered = c == Case::Remembered;
-    CHECK(cache.cached(1) == (remembered ? 300 : 0));
-    CHECK(cache.cached(2) == (remembered ? 0 : 300));
-    CHECK(cache.cached(3) == 300);
-    CHECK(cache.cached(8) == 300);
+    CHECK(cache.file(1).cached() == (remembered ? 300 : 0));
+    CHECK(cache.file(2).cached() == (remembered ? 0 : 300));
+    CHECK(cache.file(3).cached() == 300);
+    CHECK(cache.file(8).cached() == 300);
   }
 }
 
@@ -148,15 +148,15 @@ TEST_CASE("arc: a miss on B2 ghosts lowers p, scaled by B1 / B2, so reclaim keep
     read(cache, 2, 300, 1.0);
     read(cache, 3, 300, 1.0);
     for (FileId f : {4, 5, 1, 8}) read(cache, f, 300, 2.0);
-    REQUIRE(cache.cached(2) == 0);
-    REQUIRE(cache.cached(1) == 300);
+    REQUIRE(cache.file(2).cached() == 0);
+    REQUIRE(cache.file(1).cached() == 300);
     CHECK(read(cache, b2_hit ? 2 : 9, 150, 3.0) == 150);
-    CHECK(cache.cached(1) == 150);
+    CHECK(cache.file(1).cached() == 150);
     read(cache, 10, 600, 4.0);
-    CHECK(cache.cached(1) == 0);
-    CHECK(cache.cached(8) == (b2_hit ? 0 : 150));
-    CHECK(cache.cached(b2_hit ? 2 : 9) == (b2_hit ? 0 : 150));
-    CHECK(cache.cached(3) == (b2_hit ? 300 : 0));
-    CHECK(cache.cached(10) == 600);
+    CHECK(cache.file(1).cached() == 0);
+    CHECK(cache.file(8).cached() == (b2_hit ? 0 : 150));
+    CHECK(cache.file(b2_hit ? 2 : 9).cached() == (b2_hit ? 0 : 150));
+    CHECK(cache.file(3).cached() == (b2_hit ? 300 : 0));
+    CHECK(cache.file(10).cached() == 600);
   }
 }

@@ -27,9 +27,9 @@ TEST_CASE("lru: a re-read moves data to the most recently used end, nothing is e
   cache.reaccess(0, 100, 2.0);
   CHECK(cache.list(ListKind::Active).bytes() == 0);
   CHECK(cache.evict(150, kNoFile) == 150);
-  CHECK(cache.cached(1) == 0);
-  CHECK(cache.cached(2) == 50);
-  CHECK(cache.cached(0) == 100);
+  CHECK(cache.file(1).cached() == 0);
+  CHECK(cache.file(2).cached() == 50);
+  CHECK(cache.file(0).cached() == 100);
 }
 
 TEST_CASE("lru: a file read twice is evicted by a scan that the kernel's active list resists", "[policy][lru]") {
@@ -45,9 +45,9 @@ TEST_CASE("lru: a file read twice is evicted by a scan that the kernel's active 
     cache.reaccess(0, 400, 1.0);
     cache.add_read(1, 400, 2.0);
     CHECK(cache.evict(600, kNoFile) == 600);
-    CHECK(cache.cached(2) == 0);
-    CHECK(cache.cached(0) == (is_lru ? 0 : 400));
-    CHECK(cache.cached(1) == (is_lru ? 400 : 0));
+    CHECK(cache.file(2).cached() == 0);
+    CHECK(cache.file(0).cached() == (is_lru ? 0 : 400));
+    CHECK(cache.file(1).cached() == (is_lru ? 400 : 0));
   }
 }
 

@@ -75,9 +75,9 @@ TEST_CASE("kernel and wrench_cache decide activation differently", "[policy]") {
     cache.add_clean(1, 100, 0.0);
     cache.reaccess(0, 100, 1.0);
     cache.reaccess(1, 100, 1.0);
-    CHECK(cache.cached(0, A) == 100);
-    CHECK(cache.cached(1, A) == (kernel ? 0 : 100));
-    CHECK(cache.cached(1, I) == (kernel ? 100 : 0));
+    CHECK(cache.file(0).in(A) == 100);
+    CHECK(cache.file(1).in(A) == (kernel ? 0 : 100));
+    CHECK(cache.file(1).in(I) == (kernel ? 100 : 0));
   }
 }
 
@@ -92,8 +92,8 @@ TEST_CASE("kernel and wrench_cache count dirtyable and evictable memory differen
     cache.add_clean(0, 200, 0.0);
     cache.add_dirty(1, 300, 0.0);
     cache.reserve(50);
-    CHECK(cache.dirtyable() == (kernel ? 900 : 550));
-    CHECK(cache.evictable() == (kernel ? 200 : 500));
+    CHECK(cache.policy().dirtyable(cache) == (kernel ? 900 : 550));
+    CHECK(cache.policy().evictable(cache) == (kernel ? 200 : 500));
   }
 }
 
@@ -113,11 +113,11 @@ TEST_CASE("kernel reclaim ages the active list; wrench_cache evicts active data 
     cache.reaccess(1, 100, 1.0);
     cache.reaccess(2, 100, 1.0);
     CHECK(cache.evict(250, kNoFile) == 250);
-    CHECK(cache.cached(0) == 0);
-    CHECK(cache.cached(1) == 0);
-    CHECK(cache.cached(2) == 50);
-    CHECK(cache.cached(2, I) == (kernel ? 50 : 0));
-    CHECK(cache.evicted_bytes() == 250);
+    CHECK(cache.file(0).cached() == 0);
+    CHECK(cache.file(1).cached() == 0);
+    CHECK(cache.file(2).cached() == 50);
+    CHECK(cache.file(2).in(I) == (kernel ? 50 : 0));
+    CHECK(cache.totals().evicted == 250);
   }
 }
 
@@ -148,13 +148,13 @@ class CountingPolicy final : public Policy {
   bool spares_files_being_written() const noexcept override { return false; }
   std::int64_t reclaim(PageCache& cache, std::int64_t amount, FileId excluded) override {
     ++reclaims;
-    return cache.evict_clean(ListKind::Inactive, amount, excluded, false);
+    return cache.walks().evict_clean(ListKind::Inactive, amount, excluded, false);
   }
   std::int64_t evictable(const PageCache&) const noexcept override { return 7; }
   bool reclaim_may_take_file_being_read() const noexcept override { return true; }
   BlockId next_expired(PageCache& cache, double) const override {
     ++expiries;
-    return cache.oldest_dirty();
+    return cache.walks().oldest_dirty();
   }
   bool splits_flushed_block_in_place() const noexcept override { return true; }
   bool background_writeback() const noexcept override { return true; }
@@ -173,7 +173,7 @@ class CountingPolicy final : public Policy {
 TEST_CASE("PageCache asks its policy at each decision", "[policy]") {
   auto owned = std::make_unique<CountingPolicy>();
   const CountingPolicy& policy = *owned;
-  PageCache cache(1000, CacheSettings::kernel(), std::move(owned));
+  PageCache cache(1000, CacheSettings::kernel(), {}, std::move(owned));
   cache.set_checking(true);
   CHECK(cache.policy().name() == "counting");
   // Refresh: file 0 re-read moves to the MRU end of the inactive list, behind file 1, and
@@ -186,10 +186,10 @@ TEST_CASE("PageCache asks its policy at each decision", "[policy]") {
   CHECK(cache.list(I).blocks().begin()->file == 1);
   CHECK(cache.evict(100, kNoFile) == 100);
   CHECK(policy.reclaims == 1);
-  CHECK(cache.cached(1) == 0);
-  CHECK(cache.cached(0) == 100);
-  CHECK(cache.evictable() == 7);
-  CHECK(cache.dirtyable() == 1234);
+  CHECK(cache.file(1).cached() == 0);
+  CHECK(cache.file(0).cached() == 100);
+  CHECK(cache.policy().evictable(cache) == 7);
+  CHECK(cache.policy().dirtyable(cache) == 1234);
   CHECK(policy.dirtyables == 1);
   cache.add_dirty(2, 50, 1.0);
   const PageCache::Flushed taken = cache.flush_expired_block(5.0);
@@ -201,7 +201,7 @@ TEST_CASE("PageCache asks its policy at each decision", "[policy]") {
 TEST_CASE("PageCache tells its policy of each block evicted, each read from a device and each file dropped", "[policy]") {
   auto owned = std::make_unique<CountingPolicy>();
   CountingPolicy& policy = *owned;
-  PageCache cache(1000, CacheSettings::kernel(), std::move(owned));
+  PageCache cache(1000, CacheSettings::kernel(), {}, std::move(owned));
   cache.set_checking(true);
   using E = CountingPolicy::Eviction;
   // Misses are device reads only: file 0's 100 and file 2's 50; an empty read, file 1's data
@@ -219,15 +219,15 @@ TEST_CASE("PageCache tells its policy of each block evicted, each read from a de
   // active list (the other 20 go to the inactive list, not evicted: not reported).
   policy.on_reread = Policy::Reread::Activate;
   cache.reaccess(2, 50, 1.0);
-  CHECK(cache.deactivate_oldest(30, kNoFile, false) == 30);
+  CHECK(cache.walks().deactivate_oldest(30, kNoFile, false) == 30);
   CHECK(policy.evictions.back() == E{2, A, 30});
   CHECK(policy.evictions.size() == 3);
-  CHECK(cache.cached(2, I) == 20);
+  CHECK(cache.file(2).in(I) == 20);
   // Dropping file 1 frees its 50 bytes: a drop, not an eviction.
   cache.drop_file(1);
   CHECK(policy.drops == std::vector<FileId>{1});
   CHECK(policy.evictions.size() == 3);
-  CHECK(cache.cached(1) == 0);
+  CHECK(cache.file(1).cached() == 0);
 }
 
 TEST_CASE("every parameter a policy declares is documented: docs/linux-profile.md and docs/model.md name it", "[policy][docs]") {

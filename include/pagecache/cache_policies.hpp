@@ -1,7 +1,7 @@
 #pragma once
 // The page-cache policies, as each declares itself (src/cache/policies/, one file each): its
 // name, what it is, and its parameters, the [hosts.page_cache] switches, with their defaults
-// under each profile. The scenario reader, `pcsim show`, `pcsim validate --switch` and the
+// under each profile; and the host model's switches, which every policy keeps. The scenario reader, `pcsim show`, `pcsim validate --switch` and the
 // docs' tests read these declarations rather than naming policies or switches.
 
 #include <span>
@@ -30,6 +30,12 @@ struct PolicyDeclaration {
   /// This policy's parameter `key`, or none.
   const PolicyParameter* parameter(std::string_view key) const noexcept;
 };
+
+/// The host model's switches (CacheSettings::copies_hold_cores, large_folios, numa_nodes):
+/// [hosts.page_cache] keys of every policy, declared as a policy's parameters are.
+std::span<const PolicyParameter> host_model_switches() noexcept;
+/// The host model's switch `key`, or none.
+const PolicyParameter* find_host_model_switch(std::string_view key) noexcept;
 
 /// Every registered policy, in the order registered.
 std::span<const PolicyDeclaration> cache_policies() noexcept;

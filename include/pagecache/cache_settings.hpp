@@ -29,18 +29,29 @@ struct CacheSettings {
   /// vm.dirty_writeback_centisecs, in seconds: period of the flusher.
   double writeback_interval = 5.0;
 
+  // The host model's switches (pagecache/cache_policies.hpp, host_model_switches): what the
+  // host is made of, kept whatever the policy. On in the linux profile but copies_hold_cores,
+  // off in the paper profile.
+  /// Copies into and out of the page cache hold a core of their host (docs/model.md §6.15).
+  bool copies_hold_cores = false;
+  /// The page cache allocates multi-page folios, which single pages freed by buffers serve
+  /// last (docs/model.md §6.16).
+  bool large_folios = true;
+  /// A platform's NUMA nodes are modelled (docs/model.md §6.20); off: one uniform memory.
+  bool numa_nodes = true;
+
   /// The decisions' model, a registered policy (pagecache/cache_policies.hpp).
   std::string policy = "kernel";
   /// The policy's parameters given a value, by key; the others keep their defaults (under
   /// the linux profile; a preset's, the paper profile's). Set them with set().
   std::map<std::string, bool, std::less<>> parameters;
 
-  /// Sets the policy's parameter `key`. On a preset (wrench_cache), the policy it presets
-  /// takes its place with the preset's values, so that the other parameters keep them.
-  /// Throws ConfigError if the policy has no such parameter.
+  /// Sets the host model's switch or the policy's parameter `key`. On a preset (wrench_cache),
+  /// the policy it presets takes its place with the preset's values, so that the other
+  /// parameters keep them. Throws ConfigError if neither has such a key.
   void set(std::string_view key, bool value);
-  /// The value of the policy's parameter `key` (given, or its default). Throws ConfigError if
-  /// the policy has no such parameter.
+  /// The value of the host model's switch or the policy's parameter `key` (given, or its
+  /// default). Throws ConfigError if neither has such a key.
   bool get(std::string_view key) const;
 
   /// The paper's model as WRENCH-cache implements it: dirty ratio 0.4, 5 s interval, 30 s
@@ -52,6 +63,7 @@ struct CacheSettings {
     s.dirty_background_ratio = 0.1;
     s.dirty_expire = 30.0;
     s.writeback_interval = 5.0;
+    s.copies_hold_cores = s.large_folios = s.numa_nodes = false;
     return s;
   }
   /// The kernel's behaviour with its default knobs.

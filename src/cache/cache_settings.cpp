@@ -1,10 +1,13 @@
-// CacheSettings' parameters, read through the declaration of the policy they belong to.
+// CacheSettings' switches: the host model's, declared here, and the policy's, read through the
+// declaration of the policy they belong to.
 
 #include <pagecache/cache_policies.hpp>
 #include <pagecache/cache_settings.hpp>
 #include <pagecache/error.hpp>
 
 #include <fmt/format.h>
+
+#include <iterator>
 
 namespace pagecache {
 
@@ -20,9 +23,43 @@ const PolicyDeclaration& declaration_of(const std::string& policy) {
   throw ConfigError(fmt::format("'{}' is not a parameter of the page-cache policy '{}'", key, policy));
 }
 
+constexpr PolicyParameter kHostModelSwitches[] = {
+    {"copies_hold_cores", false, false,
+     "copies into and out of the page cache hold a core of their host, competing with computations (Memory::copy_on)"},
+    {"large_folios", true, false,
+     "the page cache allocates multi-page folios (mm/filemap.c), which single pages freed by buffers serve last; with free "
+     "page reporting only (docs/model.md §6.16)"},
+    {"numa_nodes", true, false,
+     "a platform's [hosts.numa] splits the host into NUMA nodes: allocations local first, reclaim per node, remote copies slower "
+     "(docs/model.md §6.20); off: one uniform memory, as in the paper"},
+};
+constexpr bool CacheSettings::*kHostModelFields[] = {&CacheSettings::copies_hold_cores, &CacheSettings::large_folios, &CacheSettings::numa_nodes};
+static_assert(std::size(kHostModelSwitches) == std::size(kHostModelFields), "a field of CacheSettings for each switch");
+
+// The field of the host model's switch `key`, or none.
+bool CacheSettings::* host_model_field(std::string_view key) {
+  for (std::size_t i = 0; i < std::size(kHostModelSwitches); ++i) {
+    if (kHostModelSwitches[i].key == key) return kHostModelFields[i];
+  }
+  return nullptr;
+}
+
 }  // namespace
 
+std::span<const PolicyParameter> host_model_switches() noexcept { return kHostModelSwitches; }
+
+const PolicyParameter* find_host_model_switch(std::string_view key) noexcept {
+  for (const PolicyParameter& p : kHostModelSwitches) {
+    if (p.key == key) return &p;
+  }
+  return nullptr;
+}
+
 void CacheSettings::set(std::string_view key, bool value) {
+  if (bool CacheSettings::*field = host_model_field(key)) {
+    this->*field = value;
+    return;
+  }
   const PolicyDeclaration& d = declaration_of(policy);
   if (!d.preset_of.empty()) {
     const PolicyDeclaration& base = declaration_of(std::string(d.preset_of));
@@ -36,6 +73,7 @@ void CacheSettings::set(std::string_view key, bool value) {
 }
 
 bool CacheSettings::get(std::string_view key) const {
+  if (bool CacheSettings::*field = host_model_field(key)) return this->*field;
   if (const auto given = parameters.find(key); given != parameters.end()) return given->second;
   const PolicyDeclaration& d = declaration_of(policy);
   if (!d.preset_of.empty()) {

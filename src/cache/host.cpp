@@ -23,12 +23,12 @@ HostSpec with_defaults(HostSpec spec) {
   return spec;
 }
 
-// The host's NUMA nodes as its page-cache policy models them (one unless it does).
+// The host's NUMA nodes as its model has them (one unless numa_nodes).
 int modelled_nodes(const HostSpec& spec) {
   if (spec.numa.nodes < 1 || spec.numa.nodes > cache::kMaxNodes) {
     throw ConfigError(fmt::format("host '{}': a host has 1 to {} NUMA nodes, got {}", spec.name, cache::kMaxNodes, spec.numa.nodes));
   }
-  return cache::make_policy(spec.cache)->numa_nodes() ? spec.numa.nodes : 1;
+  return spec.cache.numa_nodes ? spec.numa.nodes : 1;
 }
 
 // One NUMA node's memory bandwidth: its share of the host's aggregates, a thread's own rates.
@@ -61,7 +61,8 @@ struct Host::Impl {
       other_node->set_numa(spec.numa.remote, spec.name);
       io.set_node_memory(1, *other_node);
     }
-    if (cache.policy().copies_hold_cores()) {
+    // The copy is a memcpy by the application's thread (copy_page_to_iter, copy_page_from_iter).
+    if (spec.cache.copies_hold_cores) {
       memory.copy_on(&cpu);
       if (other_node) other_node->copy_on(&cpu);
     }

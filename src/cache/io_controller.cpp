@@ -49,7 +49,7 @@ bool IoController::throttles_writers() const noexcept { return cache_->policy().
 void IoController::machine_at_rest() { throttle_.at_rest(); }
 
 void IoController::report_free_pages(double delay, std::int64_t warm) {
-  reporting_.emplace(cache_->free(), cache_->memory().anonymous, warm, delay, cache_->policy().large_folios());
+  reporting_.emplace(cache_->free(), cache_->memory().anonymous, warm, delay, cache_->settings().large_folios);
   cache_->listeners().free_memory = [this](std::int64_t free, std::int64_t anonymous) { reporting_->observe(free, anonymous, sim_->now()); };
 }
 

@@ -79,15 +79,6 @@ class Policy {
   /// throttling) rather than flushing data themselves.
   virtual bool throttles_writers() const noexcept = 0;
 
-  // --- The host ---------------------------------------------------------------------------
-  /// Whether copies into and out of the cache hold a core (Memory::copy_on). Not by default.
-  virtual bool copies_hold_cores() const noexcept { return false; }
-  /// Whether the page cache allocates multi-page folios, which memory freed by applications'
-  /// buffers (single pages) cannot serve (FreePageReporting). Not by default.
-  virtual bool large_folios() const noexcept { return false; }
-  /// Whether a platform's NUMA nodes are modelled (HostSpec::numa); not: one uniform memory.
-  virtual bool numa_nodes() const noexcept { return false; }
-
   // --- Dirty limits -----------------------------------------------------------------------
   /// Memory the dirty ratios are fractions of.
   virtual std::int64_t dirtyable(const PageCache& cache) const noexcept = 0;

@@ -62,6 +62,10 @@ CacheSettings read_page_cache(const toml::table* table, const TomlReader& parent
     }
     s.policy = *policy;
   }
+  // The host model's switches, whatever the policy.
+  for (const PolicyParameter& parameter : host_model_switches()) {
+    if (const auto v = r.optional_bool(std::string(parameter.key))) s.set(parameter.key, *v);
+  }
   // A policy's parameters: setting one chooses that policy, the others keeping the profile's
   // values (CacheSettings::set: under the paper profile, WRENCH-cache's).
   for (const PolicyDeclaration& owner : cache_policies()) {

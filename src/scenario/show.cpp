@@ -117,10 +117,12 @@ void write_page_cache(std::string& out, const CacheSettings& cache) {
       quoted(cache.write_mode == WriteMode::Writeback ? "writeback" : "writethrough"), cache.dirty_ratio, cache.dirty_background_ratio,
       quoted(units::format_duration(cache.dirty_expire)), quoted(units::format_duration(cache.writeback_interval)));
   out += fmt::format("policy = {}\n", quoted(cache.policy));
-  // The policy's own parameters, as its declaration lists them (a preset has none).
+  // The policy's own parameters, as its declaration lists them (a preset has none), then the
+  // host model's switches.
   if (const PolicyDeclaration* policy = find_cache_policy(cache.policy)) {
     for (const PolicyParameter& p : policy->parameters) out += fmt::format("{} = {}\n", p.key, cache.get(p.key));
   }
+  for (const PolicyParameter& p : host_model_switches()) out += fmt::format("{} = {}\n", p.key, cache.get(p.key));
 }
 
 void write_disk(std::string& out, const DiskSpec& d) {

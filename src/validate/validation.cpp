@@ -24,6 +24,10 @@ Scenario load(const Options& o, const std::string& file, const std::vector<std::
   Scenario s = load_scenario(file, overrides, o.profile);
   for (HostConfig& h : s.hosts) {
     for (const auto& [key, value] : o.switches) {
+      if (find_host_model_switch(key) != nullptr) {
+        h.cache.set(key, value);
+        continue;
+      }
       const PolicyDeclaration* owner = cache_policy_with(key);
       if (owner == nullptr) throw ConfigError(fmt::format("--switch: unknown page-cache switch '{}'", key));
       // A host whose policy (or preset) has no such switch takes the policy that has it.

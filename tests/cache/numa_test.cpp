@@ -7,6 +7,7 @@
 #include <pagecache/scenario_file.hpp>
 
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <array>
@@ -368,4 +369,26 @@ TEST_CASE("placement, release and reclaim on two nodes follow a small reference,
       for (std::uint32_t f = 0; f <= 5; ++f) REQUIRE(cache.file(f).cached() == ref.cached_file(f));
     }
   }
+}
+
+TEST_CASE("every policy keeps a two-node host's nodes; the host model's numa_nodes and the paper profile make it one",
+          "[numa][policy]") {
+  const std::string file = std::string(PCSIM_SOURCE_DIR) + "/scenarios/examples/two-sockets.toml";
+  auto nodes_of = [&](const std::vector<std::pair<std::string, std::string>>& overrides, const std::string& profile = "") {
+    const Scenario s = load_scenario(file, overrides, profile);
+    const HostConfig& c = s.hosts.at(0);
+    Simulator sim;
+    FairShare share(sim);
+    const Host host(sim, share,
+                    HostSpec{c.name, c.cores, c.memory, c.memory_bandwidth, c.cache, c.memory_in_use, c.page_reporting_delay,
+                             c.memory_freed_at_start, c.request_time, c.numa});
+    return host.nodes();
+  };
+  for (const char* policy : {"kernel", "lru", "arc"}) {
+    INFO(policy);
+    CHECK(nodes_of({{"hosts.0.page_cache.policy", fmt::format("\"{}\"", policy)}}) == 2);
+    CHECK(nodes_of({{"hosts.0.page_cache.policy", fmt::format("\"{}\"", policy)}, {"hosts.0.page_cache.numa_nodes", "false"}}) == 1);
+  }
+  CHECK(nodes_of({}, "paper") == 1);
+  CHECK(nodes_of({{"hosts.0.page_cache.numa_nodes", "true"}}, "paper") == 2);
 }

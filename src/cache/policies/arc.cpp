@@ -135,9 +135,6 @@ class ArcPolicy final : public Policy {
   bool splits_flushed_block_in_place() const noexcept override { return lru_->splits_flushed_block_in_place(); }
   bool background_writeback() const noexcept override { return lru_->background_writeback(); }
   bool throttles_writers() const noexcept override { return lru_->throttles_writers(); }
-  bool copies_hold_cores() const noexcept override { return lru_->copies_hold_cores(); }
-  bool large_folios() const noexcept override { return lru_->large_folios(); }
-  bool numa_nodes() const noexcept override { return lru_->numa_nodes(); }
   std::int64_t dirtyable(const PageCache& cache) const noexcept override { return lru_->dirtyable(cache); }
 
   void evicted(const PageCache& cache, FileId file, ListKind from, std::int64_t bytes) override {

@@ -27,9 +27,6 @@ struct Switches {
   bool reclaim_may_take_file_being_read;
   bool flush_splits_in_place;
   bool balance_after_every_change;
-  bool copies_hold_cores;
-  bool large_folios;
-  bool numa_nodes;
 };
 
 // In the order `pcsim show` writes them; each with its field of Switches.
@@ -59,20 +56,12 @@ constexpr PolicyParameter kParameters[] = {
      "a partly flushed block is split in place; off: its flushed part moves to the most recently used end of the inactive "
      "list"},
     {"balance_after_every_change", true, false, "the lists are balanced (active <= 2 x inactive) after every change; off: after reads"},
-    {"copies_hold_cores", false, false,
-     "copies into and out of the page cache hold a core of their host, competing with computations (Memory::copy_on)"},
-    {"large_folios", true, false,
-     "the page cache allocates multi-page folios (mm/filemap.c), which single pages freed by buffers serve last; with free "
-     "page reporting only (docs/model.md §6.16)"},
-    {"numa_nodes", true, false,
-     "a platform's [hosts.numa] splits the host into NUMA nodes: allocations local first, reclaim per node, remote copies slower "
-     "(docs/model.md §6.20); off: one uniform memory, as in the paper"},
 };
 constexpr bool Switches::*kFields[] = {
     &Switches::background_writeback,     &Switches::dirty_throttling,   &Switches::expire_oldest_first,
     &Switches::two_touch_activation,     &Switches::protect_files_being_written, &Switches::dirtyable_memory,
     &Switches::reclaim_inactive_only,    &Switches::reclaim_may_take_file_being_read, &Switches::flush_splits_in_place,
-    &Switches::balance_after_every_change, &Switches::copies_hold_cores, &Switches::large_folios, &Switches::numa_nodes,
+    &Switches::balance_after_every_change,
 };
 static_assert(std::size(kParameters) == std::size(kFields), "a field of Switches for each parameter");
 
@@ -124,11 +113,6 @@ class KernelPolicy final : public Policy {
   bool background_writeback() const noexcept override { return s_.background_writeback; }
   // Throttled writers wait for the flusher's background writeback; without it, they flush.
   bool throttles_writers() const noexcept override { return s_.dirty_throttling && s_.background_writeback; }
-
-  // The copy is a memcpy by the application's thread (copy_page_to_iter, copy_page_from_iter).
-  bool copies_hold_cores() const noexcept override { return s_.copies_hold_cores; }
-  bool large_folios() const noexcept override { return s_.large_folios; }
-  bool numa_nodes() const noexcept override { return s_.numa_nodes; }
 
   // global_dirtyable_memory: free + file pages; copies into the cache in flight (reserved)
   // are file pages already, as the kernel dirties pages one by one while the copy runs.

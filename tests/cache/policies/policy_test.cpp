@@ -62,6 +62,26 @@ TEST_CASE("a policy's parameters: defaults by profile, a preset becomes its poli
   CHECK_THROWS_WITH(CacheSettings::kernel().get("no_such_switch"), Catch::Contains("'no_such_switch'"));
 }
 
+TEST_CASE("the host model's switches: defaults by profile, owned by no policy, kept when the policy changes", "[policy]") {
+  REQUIRE(!host_model_switches().empty());
+  for (const PolicyParameter& p : host_model_switches()) {
+    INFO(p.key);
+    CHECK(cache_policy_with(p.key) == nullptr);
+    CHECK(find_host_model_switch(p.key) == &p);
+    CHECK(CacheSettings::kernel().get(p.key) == p.linux_default);
+    CHECK(CacheSettings::paper().get(p.key) == p.paper_default);
+    CHECK(!p.doc.empty());
+    for (const PolicyDeclaration& policy : cache_policies()) {
+      CacheSettings s = CacheSettings::kernel();
+      s.policy = std::string(policy.name);
+      s.set(p.key, !p.linux_default);  // every policy, a preset too, takes it and stays itself
+      CHECK(s.policy == policy.name);
+      CHECK(s.get(p.key) == !p.linux_default);
+    }
+  }
+  CHECK(find_host_model_switch("two_touch_activation") == nullptr);
+}
+
 TEST_CASE("kernel and wrench_cache decide activation differently", "[policy]") {
   // Data read from the device, then read again once. The kernel (two-touch activation): the
   // first read referenced it, the second activates it. Written data is not referenced: read
@@ -238,6 +258,10 @@ TEST_CASE("every parameter a policy declares is documented: docs/linux-profile.m
   };
   const std::string profile = read("linux-profile.md");
   const std::string model = read("model.md");
+  for (const PolicyParameter& p : host_model_switches()) {
+    INFO(p.key);
+    CHECK(model.find(std::string("`") + std::string(p.key) + "`") != std::string::npos);
+  }
   for (const PolicyDeclaration& policy : cache_policies()) {
     CHECK(model.find(std::string("`") + std::string(policy.name) + "`") != std::string::npos);
     for (const PolicyParameter& p : policy.parameters) {

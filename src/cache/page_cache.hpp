@@ -23,6 +23,7 @@
 #include "cache/block.hpp"
 #include "cache/block_list.hpp"
 #include "cache/block_pool.hpp"
+#include "cache/cache_walks.hpp"
 #include "cache/file_heaps.hpp"
 #include "cache/file_ranges.hpp"
 #include "cache/lru_list.hpp"
@@ -89,34 +90,6 @@ struct FileUse {
 struct CacheTotals {
   std::int64_t evicted = 0;     ///< bytes evicted
   std::int64_t peak_dirty = 0;  ///< the most dirty data at once (data becomes dirty only when written)
-};
-
-class PageCache;
-
-/// What a policy may do to the lists (Policy::reclaim, Policy::next_expired): the walks, which
-/// change the lists and leave settling to the operation that called the policy. Each block
-/// they evict is reported to the policy (Policy::evicted).
-class CacheWalks {
- public:
-  explicit CacheWalks(PageCache& cache) noexcept : cache_(&cache) {}
-  /// Evicts clean blocks of `kind`, least recently used first, up to `budget` bytes (the last
-  /// one split), skipping `excluded` and, if `spare_written` (the policy spares files being
-  /// written), the files being written. Returns the bytes evicted.
-  std::int64_t evict_clean(ListKind kind, std::int64_t budget, FileId excluded, bool spare_written);
-  /// Active list aging (mm/vmscan.c, shrink_active_list): moves the oldest active data to the
-  /// inactive list, evicting it if clean and not spared as evict_clean spares, until `budget`
-  /// bytes are evicted or the active list is empty. Returns the bytes evicted.
-  std::int64_t deactivate_oldest(std::int64_t budget, FileId excluded, bool spare_written);
-  /// The dirty block that became dirty first, or kNoBlock.
-  BlockId oldest_dirty() const noexcept;
-  /// The least recently used dirty block with entry time <= `cutoff`, inactive list first,
-  /// or kNoBlock. Repeated searches under one cutoff resume where the last one stopped.
-  BlockId lru_expired(double cutoff);
-  /// Moves least recently used active data to the inactive list until active <= 2 x inactive.
-  void balance();
-
- private:
-  PageCache* cache_;
 };
 
 class PageCache {
@@ -266,11 +239,15 @@ class PageCache {
   std::int64_t writeback() const noexcept;
   std::int64_t cached(FileId file) const noexcept { return this->file(file).cached(); }
   std::int64_t dirty(FileId file) const noexcept { return file < files_.size() ? files_[file].dirty_bytes : 0; }
-  // The walks CacheWalks offers the policies.
+  // The walks CacheWalks offers the policies (page_cache_reclaim.cpp, page_cache_walks.cpp).
   std::int64_t evict_clean(ListKind kind, std::int64_t budget, FileId excluded, bool spare_written);
   std::int64_t deactivate_oldest(std::int64_t budget, FileId excluded, bool spare_written);
   BlockId lru_expired(double cutoff);
   void balance();
+  /// Evicts front_part(block, bytes), as chosen from the list `from` (Policy::evicted); returns its size.
+  std::int64_t evict_front(BlockId block, std::int64_t bytes, ListKind from);
+  /// Moves `block` to the MRU end of `to`, its referenced mark set as given.
+  void move_to_back(BlockId block, ListKind to, bool referenced);
 
   void check_after_operation();  // check_invariants(), amortised unless set_checking asked
   // check_invariants' parts (page_cache_check.cpp). `most`: the blocks in use, more steps

@@ -42,15 +42,7 @@ std::int64_t PageCache::evict(std::int64_t amount, FileId excluded, GroupId grou
 std::int64_t PageCache::evict_clean(ListKind kind, std::int64_t budget, FileId excluded, bool spare_written) {
   PC_ASSERT(!spare_written || index_clean_);
   std::int64_t evicted = 0;
-  auto take = [&](BlockId id) {
-    const BlockId victim = front_part(id, budget - evicted);
-    const FileId file = blocks_[victim].file;
-    const std::int64_t size = blocks_[victim].size;
-    evicted += size;
-    totals_.evicted += size;
-    destroy(victim);
-    policy_->evicted(*this, file, kind, size);
-  };
+  auto take = [&](BlockId id) { evicted += evict_front(id, budget - evicted, kind); };
   if (spare_written && nodes_.empty()) {
     // The same victims in the same order as the walk below, without walking past the clean
     // blocks of the files being written (or of other groups).
@@ -98,6 +90,22 @@ std::int64_t PageCache::evict_clean(ListKind kind, std::int64_t budget, FileId e
   return evicted;
 }
 
+std::int64_t PageCache::evict_front(BlockId id, std::int64_t bytes, ListKind from) {
+  const BlockId victim = front_part(id, bytes);
+  const FileId file = blocks_[victim].file;
+  const std::int64_t size = blocks_[victim].size;
+  totals_.evicted += size;
+  destroy(victim);
+  policy_->evicted(*this, file, from, size);
+  return size;
+}
+
+void PageCache::move_to_back(BlockId id, ListKind to, bool referenced) {
+  unlink(id);
+  blocks_[id].referenced = referenced;
+  append(id, to);
+}
+
 BlockId PageCache::front_part(BlockId id, std::int64_t bytes) {
   if (blocks_[id].ranged) {
     // Up to a page boundary of the file: a page is freed or aged whole, and cutting one in two
@@ -119,18 +127,10 @@ std::int64_t PageCache::deactivate_oldest(std::int64_t budget, FileId excluded, 
     at = active_.next(oldest);
     Block& block = blocks_[oldest];
     if (!in_target(block)) continue;
-    unlink(oldest);
-    block.referenced = false;
-    append(oldest, ListKind::Inactive);
+    move_to_back(oldest, ListKind::Inactive, false);
     const bool spared = block.file == excluded || (spare_written && files_[block.file].writers > 0);
     if (block.state != BlockState::Clean || spared) continue;
-    const BlockId victim = front_part(oldest, budget - evicted);
-    const FileId file = blocks_[victim].file;
-    const std::int64_t size = blocks_[victim].size;
-    evicted += size;
-    totals_.evicted += size;
-    destroy(victim);
-    policy_->evicted(*this, file, ListKind::Active, size);  // chosen as the oldest active data
+    evicted += evict_front(oldest, budget - evicted, ListKind::Active);  // chosen as the oldest active data
   }
   return evicted;
 }
@@ -204,21 +204,5 @@ void PageCache::balance() {
     append(id, ListKind::Inactive);
   }
 }
-
-// --- The walks, as a policy sees them ------------------------------------------------------
-
-std::int64_t CacheWalks::evict_clean(ListKind kind, std::int64_t budget, FileId excluded, bool spare_written) {
-  return cache_->evict_clean(kind, budget, excluded, spare_written);
-}
-
-std::int64_t CacheWalks::deactivate_oldest(std::int64_t budget, FileId excluded, bool spare_written) {
-  return cache_->deactivate_oldest(budget, excluded, spare_written);
-}
-
-BlockId CacheWalks::oldest_dirty() const noexcept { return cache_->dirty_by_age_.front(); }
-
-BlockId CacheWalks::lru_expired(double cutoff) { return cache_->lru_expired(cutoff); }
-
-void CacheWalks::balance() { cache_->balance(); }
 
 }  // namespace pagecache::cache

@@ -10,8 +10,8 @@
 // PageCache tells it what happened to the data through the notifications at the end (evicted,
 // missed, dropped; by default they do nothing), and reclaim may change it.
 //
-// Implementations live in src/cache/policies/, one file each declaring the policy and its
-// parameters (pagecache/cache_policies.hpp), and are named in its registry.cpp: `kernel` (the
+// Implementations live in src/cache/policies/, one file each defining the policy's registration
+// (its declaration, pagecache/cache_policies.hpp, and factory), named in registry.cpp's list: `kernel` (the
 // kernel's behaviour; its switches are the `linux` profile's ablations), the `wrench_cache`
 // preset (the kernel policy with every switch at WRENCH-cache's reading of the paper, the
 // `paper` profile; docs/wrench-cache.md), `lru` (one LRU list, no activation: a plain
@@ -20,6 +20,7 @@
 
 #include "cache/block.hpp"
 
+#include <pagecache/cache_policies.hpp>
 #include <pagecache/cache_settings.hpp>
 
 #include <cstdint>
@@ -96,6 +97,13 @@ class Policy {
   /// `file` was deleted (PageCache::drop_file): its data left the cache without eviction, and
   /// a policy forgets what it remembers of it. Called after its blocks are gone.
   virtual void dropped(const PageCache& /*cache*/, FileId /*file*/) {}
+};
+
+/// A policy as its file defines it for the registry (policies/registry.cpp): its declaration
+/// and its factory (none for a preset: its policy's).
+struct PolicyRegistration {
+  PolicyDeclaration declaration;
+  std::unique_ptr<Policy> (*make)(const CacheSettings& settings) = nullptr;
 };
 
 /// The policy `settings.policy` names (a preset: the policy it presets), with its parameters

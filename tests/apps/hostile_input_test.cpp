@@ -227,8 +227,8 @@ file_size = "1 GB"
 }
 
 TEST_CASE("a page-cache policy is one of those registered, and the switches are the kernel policy's", "[cli][hostile]") {
-  refused(run_edited("policy", "[pipelines]", "[hosts.page_cache]\npolicy = \"clock\"\n[pipelines]"),
-          {"key 'hosts[0].page_cache.policy'", "unknown policy 'clock'", "kernel, wrench_cache, lru"});
+  refused(run_edited("policy", "[pipelines]", "[hosts.page_cache]\npolicy = \"belady\"\n[pipelines]"),
+          {"key 'hosts[0].page_cache.policy'", "unknown policy 'belady'", "kernel, wrench_cache, lru"});
   refused(run_edited("switch", "[pipelines]", "[hosts.page_cache]\npolicy = \"lru\"\ntwo_touch_activation = true\n[pipelines]"),
           {"key 'hosts[0].page_cache.two_touch_activation'", "a parameter of the kernel policy", "'lru'"});
   // A switch alone chooses the kernel policy, the paper profile's values for the others.

@@ -59,9 +59,10 @@ class Reference {
   Reference(std::int64_t total, const CacheSettings& s, bool first_touch)
       : total_(total),
         lru_(s.policy == "lru"),
-        two_touch_(!lru_ && s.get("two_touch_activation")),
-        splits_in_place_(!lru_ && s.get("flush_splits_in_place")),
-        balance_always_(!lru_ && s.get("balance_after_every_change")),
+        clock_(s.policy == "clock"),
+        two_touch_(!lru_ && !clock_ && s.get("two_touch_activation")),
+        splits_in_place_(lru_ || clock_ || s.get("flush_splits_in_place")),
+        balance_always_(!lru_ && !clock_ && s.get("balance_after_every_change")),
         first_touch_(first_touch) {}
 
   std::vector<Unit> inactive, active;
@@ -122,7 +123,7 @@ class Reference {
         u.referenced = false;
         active.push_back(u);
       } else if (auto jt = in(inactive); jt != inactive.end()) {
-        if (two_touch_ && !jt->referenced) {
+        if (clock_ || (two_touch_ && !jt->referenced)) {  // CLOCK: a hit sets the bit, nothing moves
           jt->referenced = true;
           continue;
         }
@@ -148,6 +149,26 @@ class Reference {
   // kernel policy without reclaim_inactive_only) the active list.
   std::int64_t evict(std::int64_t amount, FileId excluded) {
     std::int64_t evicted = 0;
+    if (clock_) {
+      // The hand at the front: a referenced byte loses its bit and goes to the back (met again
+      // at the end), the first unreferenced clean byte is evicted.
+      for (std::size_t i = 0; i < inactive.size() && evicted < amount;) {
+        Unit& u = inactive[i];
+        if (u.file == excluded || u.state != BlockState::Clean) {
+          ++i;
+        } else if (u.referenced) {
+          Unit back = u;
+          back.referenced = false;
+          inactive.erase(inactive.begin() + static_cast<std::ptrdiff_t>(i));
+          inactive.push_back(back);
+        } else {
+          inactive.erase(inactive.begin() + static_cast<std::ptrdiff_t>(i));
+          ++evicted;
+        }
+      }
+      settle();
+      return evicted;
+    }
     for (auto* list : {&inactive, &active}) {
       if (list == &active && lru_) break;
       for (auto it = list->begin(); it != list->end() && evicted < amount;) {
@@ -228,6 +249,7 @@ class Reference {
  private:
   std::int64_t total_;
   bool lru_;
+  bool clock_;
   bool two_touch_;
  public:
   bool splits_in_place_;
@@ -407,4 +429,5 @@ TEST_CASE("files held by range agree with a reference of single bytes (lru polic
   for (std::uint64_t seed : {15u, 16u}) counts += run_random(settings, seed, 200000);
   CHECK(counts.reads > 60000);
   CHECK(counts.writes > 15000);
+  CHECK(counts.flushes > 10000);
 }

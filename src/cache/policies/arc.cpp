@@ -25,7 +25,6 @@
 
 namespace pagecache::cache {
 
-std::unique_ptr<Policy> make_lru_policy(const CacheSettings& settings);
 
 namespace {
 
@@ -103,9 +102,16 @@ class GhostList {
   std::int64_t bytes_ = 0;
 };
 
+// The lru policy, for the questions ARC leaves to it.
+std::unique_ptr<Policy> lru_of(CacheSettings settings) {
+  settings.policy = "lru";
+  settings.parameters.clear();
+  return make_policy(settings);
+}
+
 class ArcPolicy final : public Policy {
  public:
-  explicit ArcPolicy(const CacheSettings& settings) : lru_(make_lru_policy(settings)) {}
+  explicit ArcPolicy(const CacheSettings& settings) : lru_(lru_of(settings)) {}
 
   std::string_view name() const noexcept override { return "arc"; }
 
@@ -191,13 +197,14 @@ class ArcPolicy final : public Policy {
 
 }  // namespace
 
-extern const PolicyDeclaration kArcPolicy{
-    .name = "arc",
-    .doc = "ARC (Megiddo & Modha 2003) over the two lists: ghost lists of evicted data steer reclaim between once- and twice-seen data",
-    .parameters = {},
-    .preset_of = {},
+extern const PolicyRegistration kArcPolicy{
+    .declaration = {
+        .name = "arc",
+        .doc = "ARC (Megiddo & Modha 2003) over the two lists: ghost lists of evicted data steer reclaim between once- and twice-seen data",
+        .parameters = {},
+        .preset_of = {},
+    },
+    .make = [](const CacheSettings& settings) -> std::unique_ptr<Policy> { return std::make_unique<ArcPolicy>(settings); },
 };
-
-std::unique_ptr<Policy> make_arc_policy(const CacheSettings& settings) { return std::make_unique<ArcPolicy>(settings); }
 
 }  // namespace pagecache::cache

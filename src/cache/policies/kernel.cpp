@@ -128,13 +128,14 @@ class KernelPolicy final : public Policy {
 
 }  // namespace
 
-extern const PolicyDeclaration kKernelPolicy{
-    .name = "kernel",
-    .doc = "the kernel's decisions (mm/swap.c, mm/vmscan.c, mm/page-writeback.c, fs/fs-writeback.c), each a switch",
-    .parameters = kParameters,
-    .preset_of = {},
+extern const PolicyRegistration kKernelPolicy{
+    .declaration = {
+        .name = "kernel",
+        .doc = "the kernel's decisions (mm/swap.c, mm/vmscan.c, mm/page-writeback.c, fs/fs-writeback.c), each a switch",
+        .parameters = kParameters,
+        .preset_of = {},
+    },
+    .make = [](const CacheSettings& settings) -> std::unique_ptr<Policy> { return std::make_unique<KernelPolicy>(settings); },
 };
-
-std::unique_ptr<Policy> make_kernel_policy(const CacheSettings& settings) { return std::make_unique<KernelPolicy>(settings); }
 
 }  // namespace pagecache::cache

@@ -43,13 +43,14 @@ class LruPolicy final : public Policy {
 
 }  // namespace
 
-extern const PolicyDeclaration kLruPolicy{
-    .name = "lru",
-    .doc = "one least-recently-used list, no activation, the kernel's writeback: a baseline",
-    .parameters = {},
-    .preset_of = {},
+extern const PolicyRegistration kLruPolicy{
+    .declaration = {
+        .name = "lru",
+        .doc = "one least-recently-used list, no activation, the kernel's writeback: a baseline",
+        .parameters = {},
+        .preset_of = {},
+    },
+    .make = [](const CacheSettings&) -> std::unique_ptr<Policy> { return std::make_unique<LruPolicy>(); },
 };
-
-std::unique_ptr<Policy> make_lru_policy(const CacheSettings&) { return std::make_unique<LruPolicy>(); }
 
 }  // namespace pagecache::cache

@@ -3,15 +3,17 @@
 // every switch at WRENCH-cache's decision (each one's paper default): fixed, no parameters of
 // its own beyond the kernel knobs every policy reads (ratios, expiry, interval).
 
-#include <pagecache/cache_policies.hpp>
+#include "cache/policy.hpp"
 
 namespace pagecache::cache {
 
-extern const PolicyDeclaration kWrenchCachePreset{
-    .name = "wrench_cache",
-    .doc = "WRENCH-cache's reading of the paper (the paper profile): the kernel policy with every switch off",
-    .parameters = {},
-    .preset_of = "kernel",
+extern const PolicyRegistration kWrenchCachePreset{
+    .declaration = {
+        .name = "wrench_cache",
+        .doc = "WRENCH-cache's reading of the paper (the paper profile): the kernel policy with every switch off",
+        .parameters = {},
+        .preset_of = "kernel",
+    },
 };
 
 }  // namespace pagecache::cache

@@ -33,8 +33,8 @@ TEST_CASE("a CacheSettings names its policy; an unknown name is refused with the
   CHECK(std::find(names.begin(), names.end(), "kernel") != names.end());
   CHECK(std::find(names.begin(), names.end(), "wrench_cache") != names.end());
   CacheSettings s;
-  s.policy = "clock";
-  CHECK_THROWS_WITH(PageCache(1000, s), Catch::Contains("unknown page-cache policy 'clock'") && Catch::Contains("kernel"));
+  s.policy = "belady";
+  CHECK_THROWS_WITH(PageCache(1000, s), Catch::Contains("unknown page-cache policy 'belady'") && Catch::Contains("kernel"));
 }
 
 TEST_CASE("a policy's parameters: defaults by profile, a preset becomes its policy when one is set, an unknown one refused",

@@ -431,3 +431,13 @@ TEST_CASE("files held by range agree with a reference of single bytes (lru polic
   CHECK(counts.writes > 15000);
   CHECK(counts.flushes > 10000);
 }
+
+TEST_CASE("files held by range agree with a reference of single bytes (clock policy)", "[page_cache][ranges][random][clock]") {
+  CacheSettings settings = CacheSettings::kernel();
+  settings.policy = "clock";
+  Counts counts;
+  for (std::uint64_t seed : {17u, 18u}) counts += run_random(settings, seed, 200000);
+  CHECK(counts.reads > 60000);
+  CHECK(counts.writes > 15000);
+  CHECK(counts.flushes > 10000);
+}

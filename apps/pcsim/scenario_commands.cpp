@@ -92,7 +92,7 @@ int run_command(const ScenarioArgs& s, const RunArgs& args) {
   pagecache::RunOutputs outputs({.report = !args.no_report, .trace = args.trace || scenario.trace});
   outputs.attach(options);
   // The outputs name the scenario (its file, title and profile); the run takes the rest and
-  // frees its applications and files once planned (at 10^5 applications, a fifth of its memory).
+  // frees its applications and files once planned (at 10^5 applications, a large share of its memory).
   pagecache::Scenario named;
   named.source = scenario.source;
   named.title = scenario.title;

@@ -111,7 +111,7 @@ struct RunOptions {
 RunResult run_scenario(const Scenario& scenario, const RunOptions& options = {});
 
 /// As above, for a caller done with the scenario: its applications and files are freed once
-/// the run is planned, before it starts (at 10^5 pipelines they take a fifth of a run's
+/// the run is planned, before it starts (at 10^5 pipelines they are a large share of a run's
 /// memory). The results are the same.
 RunResult run_scenario(Scenario&& scenario, const RunOptions& options = {});
 

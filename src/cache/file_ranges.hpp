@@ -1,18 +1,18 @@
 #pragma once
 // FileRanges: each file's cached blocks by byte offset, so that a read or write of part of a
-// file finds the blocks it touches (issue 38). The blocks themselves stay in recency order on
-// their lists; this is a second order over the same ids.
+// file finds the blocks it touches. The blocks themselves stay in recency order on their
+// lists; this is a second order over the same ids.
 //
 // A B+ tree per file, keyed by offset, of up to 32 entries per node (an offset and a BlockId
 // each; in leaves the block's end too, so that a look-up learns a block's span from the leaf it
 // reads anyway), its leaves linked both ways; each block's span also in a side array by
 // BlockId, so that offset() costs one load. A node is fetched whole on a visit (prefetches of
-// all its lines: one miss's wait, not one per line). Chosen over a treap (16 bytes per block, but some 28 levels,
-// each a cache miss, under 10^6 blocks read at random: most of the time of such a run) and a
-// std::map (a 48-byte allocation per block, as deep). A file's blocks hold disjoint ranges of
-// non-zero size, so their offsets are distinct: the index asserts it. Nodes emptied by erases
-// are freed; nodes left part-full are not merged (the depth only grows with the entries a file
-// has held at once). tests/cache/file_ranges_test.cpp checks it against std::map.
+// all its lines: one miss's wait, not one per line). A B+ tree, not a treap: a treap's 16 bytes
+// per block come with some 28 levels under 10^6 blocks, each a cache miss on a random read;
+// nor a std::map: a 48-byte allocation per block, as deep. A file's blocks hold disjoint
+// ranges of non-zero size, so their offsets are distinct: the index asserts it. Nodes emptied
+// by erases are freed; nodes left part-full are not merged (the depth only grows with the
+// entries a file has held at once). tests/cache/file_ranges_test.cpp checks it against std::map.
 
 #include "cache/block.hpp"
 

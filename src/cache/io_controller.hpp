@@ -70,9 +70,9 @@ class IoController {
   /// Reads a whole file in chunks of `chunk_size` bytes (Algorithm 2 per chunk; each chunk's
   /// copy stays in application memory until released); `direct`: bypassing the page cache
   /// (O_DIRECT: from the disk into the application's buffer).
-  /// Its result is Host::read_file's: Host hands this task out as its own, a frame fewer per
-  /// file read. Not a coroutine itself: it checks the request (ConfigError at the call) and
-  /// hands out the read.
+  /// Its result is Host::read_file's: Host hands this task out as its own, so that a file read
+  /// costs no frame of Host's. Not a coroutine itself: it checks the request (ConfigError at the
+  /// call) and hands out the read.
   /// `group`: the reader's memory group, charged with its buffers (and with the new cache data
   /// if the file is the group's, PageCache::charge_file).
   /// `node`: the reading thread's NUMA node (PageCache::touch_from).
@@ -227,9 +227,9 @@ class IoController {
     std::vector<PageCache::Flushed> parts;
     std::vector<std::pair<const Disk*, std::int64_t>> writes;
   };
-  /// Empty vectors that held others before if any are spare; each write back hands its own
-  /// back (release_scratch) once its writes end. With 10^5 writers flushing in step, vectors
-  /// made and freed per write back were malloc's most frequent call.
+  /// Spare vectors (emptied, their capacity kept) if any, else new ones; each write back hands
+  /// its own back (release_scratch) once its writes end, so that writers flushing in step reuse
+  /// vectors rather than make and free two per write back.
   FlushScratch take_scratch();
   void release_scratch(FlushScratch&& scratch);
 

@@ -69,7 +69,7 @@ struct AlignedBuffer {
 };
 
 // Whether a loop measuring until `deadline` goes on: at least one request whatever the time
-// (a deadline passed before the first, on a loaded machine, measured nothing and left a
+// (a deadline passed before the first, on a loaded machine, would measure nothing and leave a
 // required key out of the platform), unless the user stopped calibrate.
 bool go_on(std::int64_t done, const Deadline& deadline) { return done == 0 ? !g_stop.load(std::memory_order_relaxed) : !deadline.passed(); }
 

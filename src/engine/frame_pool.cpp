@@ -19,9 +19,9 @@ namespace {
 
 constexpr std::size_t kGranule = 64;
 constexpr std::size_t kLargest = 4096;
-// Frames kept per size: enough for those a run frees and makes again at once (10^4 writers
-// in step: 64 KiB sent a fifth of a run to malloc). Not each size's peak: peaks come at
-// different times (10^5 applications reading, then writing, held both).
+// Frames kept per size: enough for those a run frees and makes again at once, which with 10^4
+// writers in step is more than 64 KiB of one size. Not each size's peak: peaks come at
+// different times (10^5 applications reading, then writing), and keeping each would hold both.
 constexpr std::size_t kKeptBytes = 1024 * 1024;
 
 struct FreeFrame {

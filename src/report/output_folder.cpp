@@ -40,9 +40,9 @@ bool changed_meanwhile(int error) {
   throw ConfigError(fmt::format("--out {}: {}: {}", dir, what, std::generic_category().message(error)));
 }
 
-// Staging folders are "<stem>-<pid>-<8 hex digits>"; earlier versions named them
+// Staging folders are "<stem>-<pid>-<8 hex digits>"; staging_pid also takes the older form
 // ".<target>.tmp-<pid>-<hex>". Temporary files inside one are OutputFile's ".pcsim.tmp-...".
-// Matched by hand: std::regex took a sixth of the instructions of a small run to compile.
+// Matched by hand: compiling a std::regex is a large part of a small run's fixed cost.
 constexpr const char* kStagingStem = ".pcsim.tmp";
 
 bool all_chars(std::string_view s, bool (*is)(char)) { return std::all_of(s.begin(), s.end(), is); }

@@ -31,8 +31,8 @@ struct FairShare::Impl {
   // One resource and how the rates of the flows crossing it are found. While no multi-resource
   // flow crosses it (`coupled == 0`) its flows are held by `sharing` alone, in O(log n) per
   // change; otherwise they are Explicit, members of the classes listed in `classes`, and
-  // solved with the rest of their component. (Listing every flow, needed or not, was a cache
-  // miss per flow end at 10^5 flows: removing one moves another.)
+  // solved with the rest of their component. (Listing every flow, needed or not, would cost a
+  // cache miss per flow end at 10^5 flows: removing one moves another.)
   struct ResourceState {
     ResourceState(Impl* owner_, std::uint32_t index_, std::string name_, Simulator& sim,
                   EventCallback flow_due, EventCallback head_due)

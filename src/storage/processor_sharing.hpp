@@ -75,8 +75,8 @@ class ProcessorSharing {
   LowestThresholdFirst sharing_threshold_;  // sharing flows with a finite threshold, by threshold
   // Bounded flows by threshold. Only rebalance asks for the highest, and only while the level
   // is finite: until then they are kept unordered (see top_bounded). With 10^5 memory copies
-  // in flight, each at its own bound on a memory far from saturated, every insertion into the
-  // heap moved a path of entries and wrote where each went into its flow, long out of cache.
+  // in flight, each at its own bound on a memory far from saturated, every insertion into a
+  // heap would move a path of entries and write where each went into its flow, long out of cache.
   HighestThresholdFirst bounded_;
   bool bounded_ordered_ = false;
   double sharing_weighted_cost_ = 0.0;      // sum over sharing of cost * weight

@@ -221,7 +221,7 @@ std::string not_pcsim(const Shape& shape, std::string_view fallback) {
 
 LineCheck check_result_line(std::string_view line, std::string_view fingerprint) {
   // pcsim writes no space around a line's object, which JSON would allow, and no NUL byte,
-  // which nlohmann's parser takes for the end of the input (found by the fuzzer).
+  // which nlohmann's parser takes for the end of the input.
   if (line.empty() || line.front() != '{' || line.back() != '}' || line.find('\0') != std::string_view::npos) {
     return {{}, "not a result pcsim wrote (not one JSON object)"};
   }

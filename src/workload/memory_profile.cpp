@@ -55,7 +55,7 @@ Task<void> MemoryProfile::wait_for_change() {
 // At every tick of the interval at which some host's memory differs from its previous row.
 // Ticks after which nothing changed are skipped, not slept through one by one: the run's
 // events follow its work, not its simulated length (a "1e300 s" compute, or a "1 ns" interval
-// through an idle stretch, took one event per tick for ever).
+// through an idle stretch, would take one event per tick for ever).
 Task<void> MemoryProfile::sample(const int* running) {
   double tick = sim_.now();
   while (*running > 0) {

@@ -1,7 +1,7 @@
 #pragma once
 // Reading fio job files (fio 3.33, Debian bookworm's) into the jobs they define, for pcsim to
-// simulate (issue 39). The reader follows fio's rules where they are well defined, its quirks
-// that change numbers included (k is 1024 and KiB is 1000 under kb_base=1024; ';' and '#' start
+// simulate. The reader follows fio's rules where they are well defined, its quirks that change
+// numbers included (k is 1024 and KiB is 1000 under kb_base=1024; ';' and '#' start
 // a comment anywhere; a section named global* is global). Where fio silently reads bad input
 // as something a simulation would get wrong (whitespace around '=', runtime=10sec read as 10 us,
 // 1.5k read as 1, 150% read as a huge size) the reader refuses it with a ConfigError instead.

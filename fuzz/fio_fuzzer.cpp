@@ -1,5 +1,5 @@
 // libFuzzer target: the bytes as an fio job file, through
-// pagecache::scenario::read_fio_job_file (fuzz/fio_property.hpp states the contract). Seed it
+// pagecache::formats::fio::read_fio_job_file (fuzz/fio_property.hpp states the contract). Seed it
 // with fuzz/seeds/*.fio and fio's examples (/usr/share/doc/fio/examples/, package fio-examples)
 // and fuzz/fio.dict (fuzz/run does).
 

@@ -20,8 +20,8 @@ namespace pagecache::fuzz {
 
 /// The limits inputs are read with: smaller than pcsim's, so that one input reads in well under
 /// a second under the sanitizers.
-inline scenario::FioLimits fio_fuzz_limits() {
-  scenario::FioLimits limits;
+inline formats::fio::FioLimits fio_fuzz_limits() {
+  formats::fio::FioLimits limits;
   limits.max_jobs = 10'000;
   limits.max_files = 100'000;
   limits.max_entries = 1'000'000;
@@ -37,8 +37,8 @@ inline std::optional<std::string> fio_fuzz_env(const std::string& name) {
 }
 
 /// "" if job `i` of `f` keeps the reader's promises, else the first one broken.
-inline std::string fio_job_problem(const scenario::FioJobFile& f, std::size_t i) {
-  const scenario::FioJob& j = f.jobs[i];
+inline std::string fio_job_problem(const formats::fio::FioJobFile& f, std::size_t i) {
+  const formats::fio::FioJob& j = f.jobs[i];
   const std::string at = "job " + std::to_string(i) + ": ";
   if (j.section.empty() || j.name.empty()) return at + "an empty section or name";
   if (j.numjobs < 1 || j.jobnum < 0 || j.jobnum >= j.numjobs) return at + "jobnum out of [0, numjobs)";
@@ -63,7 +63,7 @@ inline std::string fio_job_problem(const scenario::FioJobFile& f, std::size_t i)
     if (percent < 0 || percent > 100) return at + "a percentage out of range";
   }
   if (j.size < 0 || j.filesize < 0 || j.offset < 0 || j.offset_increment < 0 || j.io_size < 0 || j.number_ios < 0) return at + "a negative size";
-  const bool random = j.rw == scenario::FioRw::RandRead || j.rw == scenario::FioRw::RandWrite || j.rw == scenario::FioRw::RandReadWrite;
+  const bool random = j.rw == formats::fio::FioRw::RandRead || j.rw == formats::fio::FioRw::RandWrite || j.rw == formats::fio::FioRw::RandReadWrite;
   if (random && j.rw_step < 1) return at + "a random mode's :N below 1";
   if (j.loops < 1 || j.iodepth < 1 || j.thinktime_blocks < 1 || j.file_service_step < 1) return at + "a count below 1";
   if (j.fsync < 0 || j.fdatasync < 0) return at + "a negative sync count";
@@ -75,7 +75,7 @@ inline std::string fio_job_problem(const scenario::FioJobFile& f, std::size_t i)
 }
 
 /// "" if `f` keeps the reader's promises, else the first one broken.
-inline std::string fio_file_problem(const scenario::FioJobFile& f, const scenario::FioLimits& limits) {
+inline std::string fio_file_problem(const formats::fio::FioJobFile& f, const formats::fio::FioLimits& limits) {
   if (f.jobs.empty()) return "no jobs";
   if (static_cast<std::int64_t>(f.jobs.size()) > limits.max_jobs) return "more jobs than the limit";
   for (std::size_t i = 0; i < f.jobs.size(); ++i) {
@@ -89,9 +89,9 @@ inline std::string fio_file_problem(const scenario::FioJobFile& f, const scenari
 /// "" if `text` read as the job file `path` either reads and keeps its promises or is refused
 /// with a ConfigError that has a message; else what broke.
 inline std::string check_fio_text(const std::string& text, const std::string& path) {
-  const scenario::FioLimits limits = fio_fuzz_limits();
+  const formats::fio::FioLimits limits = fio_fuzz_limits();
   try {
-    return fio_file_problem(scenario::read_fio_job_file(text, path, fio_fuzz_env, limits), limits);
+    return fio_file_problem(formats::fio::read_fio_job_file(text, path, fio_fuzz_env, limits), limits);
   } catch (const ConfigError& error) {
     return std::string(error.what()).empty() ? "a ConfigError without a message" : "";
   } catch (const std::exception& error) {

@@ -31,7 +31,7 @@ inline std::string import_source_name() { return (std::filesystem::temp_director
 /// True if the workflow reader accepts `text` (within the fuzz limits).
 inline bool reads_as_workflow(const std::string& text) {
   try {
-    scenario::read_workflow_json(text, "fuzz.json", kFuzzMaxTasks, kFuzzMaxFiles);
+    formats::wfformat::read_workflow_json(text, "fuzz.json", kFuzzMaxTasks, kFuzzMaxFiles);
     return true;
   } catch (const ConfigError&) {
     return false;
@@ -42,7 +42,7 @@ inline bool reads_as_workflow(const std::string& text) {
 /// 100 in all): the import then lists at most a few thousand routes.
 inline bool reads_as_small_platform(const std::string& text) {
   try {
-    scenario::read_simgrid_platform(text, "fuzz.xml", fuzz_platform_limits());
+    formats::simgrid::read_simgrid_platform(text, "fuzz.xml", fuzz_platform_limits());
     return true;
   } catch (const ConfigError&) {
     return false;

@@ -21,12 +21,12 @@ namespace pagecache::fuzz {
 /// 5 * 10^9 routes the checks below could not visit, and even SimGrid's example of 100 nodes
 /// (cluster_backbone.xml, 5050 routes) takes 15 ms under the sanitizers, 30 times a typical
 /// input. The code that enforces them is the same; a cluster of 30 has all its forms.
-inline scenario::SgLimits fuzz_platform_limits() { return {.max_cluster_hosts = 30, .max_hosts = 100}; }
+inline formats::simgrid::SgLimits fuzz_platform_limits() { return {.max_cluster_hosts = 30, .max_hosts = 100}; }
 
 /// "" if `text` keeps the contract, else what broke. Exceptions other than ConfigError are not
 /// caught: in the fuzzer they end the process where they were thrown, in a test Catch2 reports them.
 inline std::string check_platform_text(const std::string& text, const std::string& file) {
-  using namespace scenario;
+  using namespace formats::simgrid;
   SgPlatform p;
   try {
     p = read_simgrid_platform(text, file, fuzz_platform_limits());

@@ -1,5 +1,5 @@
 // libFuzzer target: the bytes as a workflow JSON file, through
-// pagecache::scenario::read_workflow_json (fuzz/workflow_property.hpp states the contract).
+// pagecache::formats::wfformat::read_workflow_json (fuzz/workflow_property.hpp states the contract).
 // Seed it with the workflows in inputs/ (wfcommons/instances/*.json, wrench-cache/*.json) and
 // fuzz/workflow.dict (fuzz/run does).
 

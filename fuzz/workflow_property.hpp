@@ -37,29 +37,29 @@ inline std::string index_problem(const std::vector<std::size_t>& list, std::size
 }
 
 /// "" if `w` keeps the reader's promises, else the first one broken.
-inline std::string workflow_problem(const scenario::WfWorkflow& w) {
+inline std::string workflow_problem(const formats::wfformat::WfWorkflow& w) {
   if (w.format != "WfFormat 1.5" && w.format != "WfFormat 1.6" && w.format != "WRENCH 2.x (schema before 1.5)") {
     return "unknown format '" + w.format + "'";
   }
   if (w.tasks.empty()) return "no tasks";
   if (w.tasks.size() > static_cast<std::size_t>(kFuzzMaxTasks)) return "more tasks than the limit";
   if (w.files.size() > static_cast<std::size_t>(kFuzzMaxFiles)) return "more files than the limit";
-  if (w.warnings.size() > scenario::kMaxWorkflowWarnings) return "more warnings than the limit";
+  if (w.warnings.size() > formats::wfformat::kMaxWorkflowWarnings) return "more warnings than the limit";
   if (!(w.makespan == -1 || (w.makespan >= 0 && w.makespan <= units::kMaxSeconds))) return "makespan out of range";
   std::set<std::string> ids;
-  for (const scenario::WfFile& f : w.files) {
+  for (const formats::wfformat::WfFile& f : w.files) {
     if (f.id.empty() || !ids.insert(f.id).second) return "file id empty or repeated: " + f.id;
     if (f.size < 0 || f.size > units::kMaxBytes) return "file size out of range: " + f.id;
   }
   const std::set<std::string> machines(w.machines.begin(), w.machines.end());
   if (machines.size() != w.machines.size()) return "a machine listed twice";
   if (w.machine_speeds.size() != w.machines.size()) return "not one speed per machine";
-  for (const scenario::WfMachineSpeed& speed : w.machine_speeds) {
+  for (const formats::wfformat::WfMachineSpeed& speed : w.machine_speeds) {
     if (speed.place.empty()) return "a machine's speed without its place";
   }
   ids.clear();
   for (std::size_t t = 0; t < w.tasks.size(); ++t) {
-    const scenario::WfTask& task = w.tasks[t];
+    const formats::wfformat::WfTask& task = w.tasks[t];
     if (task.id.empty() || !ids.insert(task.id).second) return "task id empty or repeated: " + task.id;
     if (!std::isfinite(task.runtime) || task.runtime < 0 || task.runtime > units::kMaxSeconds) return "runtime out of range: " + task.id;
     if (task.cores < 1 || task.cores > 1'000'000) return "cores out of range: " + task.id;
@@ -99,9 +99,9 @@ inline std::string workflow_problem(const scenario::WfWorkflow& w) {
 /// not caught: in the fuzzer they end the process where they were thrown, in a test Catch2
 /// reports them.
 inline std::string check_workflow_text(const std::string& text, const std::string& source_name) {
-  scenario::WfWorkflow w;
+  formats::wfformat::WfWorkflow w;
   try {
-    w = scenario::read_workflow_json(text, source_name, kFuzzMaxTasks, kFuzzMaxFiles);
+    w = formats::wfformat::read_workflow_json(text, source_name, kFuzzMaxTasks, kFuzzMaxFiles);
   } catch (const ConfigError& e) {
     if (std::string(e.what()).rfind(source_name, 0) != 0) return std::string("an error that does not name the file: ") + e.what();
     return {};

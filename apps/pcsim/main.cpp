@@ -147,7 +147,7 @@ void build_command_line(CommandLine& c) {
 int unknown_command(const std::string& typed, const std::vector<std::string>& commands) {
   std::string list;
   for (const std::string& c : commands) list += (list.empty() ? "" : ", ") + c;
-  const std::string meant = pagecache::scenario::closest(typed, {commands.begin(), commands.end()});
+  const std::string meant = pagecache::formats::closest(typed, {commands.begin(), commands.end()});
   fmt::print(stderr, "pcsim: unknown command '{}'{} (commands: {}; pcsim help lists them)\n", typed,
              meant.empty() ? std::string() : fmt::format(", did you mean '{}'?", meant), list);
   return 2;

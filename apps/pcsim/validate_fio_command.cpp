@@ -87,8 +87,8 @@ std::int64_t memory_max_of(const ValidateHereOptions& o) {
 // leave them (or write over others) where pcsim cleans nothing, and one that includes others
 // would not be whole in its copy kept beside the measurements.
 void check_kept_inside(const std::string& job) {
-  const pagecache::scenario::FioJobFile file = pagecache::scenario::read_fio_job_file(job);
-  for (const pagecache::scenario::FioJob& j : file.jobs) {
+  const pagecache::formats::fio::FioJobFile file = pagecache::formats::fio::read_fio_job_file(job);
+  for (const pagecache::formats::fio::FioJob& j : file.jobs) {
     for (const std::string& name : j.files) {
       const fs::path path(name);
       if (path.is_absolute() || std::find(path.begin(), path.end(), "..") != path.end()) {
@@ -98,7 +98,7 @@ void check_kept_inside(const std::string& job) {
       }
     }
   }
-  std::istringstream lines(pagecache::scenario::read_text_file(job, "fio job file"));
+  std::istringstream lines(pagecache::formats::read_text_file(job, "fio job file"));
   int number = 0;
   for (std::string line; std::getline(lines, line);) {
     ++number;
@@ -119,7 +119,7 @@ void check_job_files(const ValidateHereOptions& o, std::int64_t memory_max) {
     const std::string name = fs::path(job).filename().string();
     if (!names.insert(name).second) throw pagecache::ConfigError(fmt::format("--fio: two job files named {}: their measurements would share names", name));
     check_kept_inside(job);
-    const std::size_t jobs = pagecache::scenario::read_fio_job_file(job).jobs.size();
+    const std::size_t jobs = pagecache::formats::fio::read_fio_job_file(job).jobs.size();
     if (memory_max > 0 && jobs > 1) {
       throw pagecache::ConfigError(fmt::format("{}: --memory-max: {} jobs (numjobs clones count) in one memory cgroup are not modelled yet: give "
                                                "job files of one job each",

@@ -18,7 +18,7 @@
 #include <utility>
 #include <vector>
 
-namespace pagecache::scenario {
+namespace pagecache::estimate {
 
 namespace {
 
@@ -426,4 +426,4 @@ class Estimator {
 
 RunEstimate estimate_run(const Scenario& s) { return Estimator(s).run(); }
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::estimate

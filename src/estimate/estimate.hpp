@@ -11,7 +11,7 @@
 #include <optional>
 #include <string>
 
-namespace pagecache::scenario {
+namespace pagecache::estimate {
 
 /// The longest stretch of simulated time the run must cover, and what takes it.
 struct Stretch {
@@ -78,4 +78,4 @@ struct RunEstimate {
 /// The estimate for `s`, whose references are resolved (every file, host and route named exists).
 RunEstimate estimate_run(const Scenario& s);
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::estimate

@@ -6,7 +6,7 @@
 #include <map>
 #include <vector>
 
-namespace pagecache::scenario {
+namespace pagecache::estimate {
 
 // Events per chunk, as the engine counts them: a transfer is a flow, which costs about two
 // events (its completion scheduled, its process woken); a latency is a sleep, one more.
@@ -48,4 +48,4 @@ struct StreamWrites {
   std::map<std::size_t, double> ops;     // host -> chunks dirtied there
 };
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::estimate

@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-namespace pagecache::scenario {
+namespace pagecache::estimate {
 
 class RouteIndex {
  public:
@@ -43,4 +43,4 @@ class RouteIndex {
   std::map<std::pair<std::string, std::string>, std::vector<const LinkSpec*>> routes_;
 };
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::estimate

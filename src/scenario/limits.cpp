@@ -29,6 +29,8 @@ ScenarioLimits ScenarioLimits::forced() {
 
 namespace pagecache::scenario {
 
+using namespace estimate;  // the pre-run estimate the limits check
+
 std::string limits_hint(const ScenarioLimits& limits) {
   const ScenarioLimits forced = ScenarioLimits::forced();
   const bool below = limits.max_tasks < forced.max_tasks || limits.max_files < forced.max_files || limits.max_hosts < forced.max_hosts ||

@@ -111,7 +111,7 @@ Scenario scenario::resolve_document(toml::table root, const std::string& source_
 
 Scenario load_platform(const std::string& path, const std::string& profile_override) {
   // The file itself first: the document made around it is pcsim's, with no place to name.
-  scenario::check_text_file({}, path, "platform file");
+  formats::check_text_file({}, path, "platform file");
   toml::table root;
   root.insert("platform", std::filesystem::path(path).filename().string());
   return resolve(root, path, profile_override, ScenarioLimits{}, true);
@@ -119,7 +119,7 @@ Scenario load_platform(const std::string& path, const std::string& profile_overr
 
 Scenario load_scenario(const std::string& path, const Overrides& overrides, const std::string& profile_override,
                        const ScenarioLimits& limits) {
-  return parse_scenario(scenario::read_text_file(path, "scenario file"), path, overrides, profile_override, limits);
+  return parse_scenario(formats::read_text_file(path, "scenario file"), path, overrides, profile_override, limits);
 }
 
 }  // namespace pagecache

@@ -19,6 +19,8 @@
 
 namespace pagecache::scenario {
 
+using namespace formats::fio;  // the fio reader's jobs
+
 namespace {
 
 // "JOB.fio:12: job 'name'": where a job's refusals point.

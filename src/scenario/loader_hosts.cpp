@@ -389,7 +389,7 @@ std::optional<double> read_speed(TomlReader& r, const std::string& key) {
     speed = *node->value<double>();
   } else if (node->is_string()) {
     try {
-      speed = parse_sg_speed(*node->value<std::string>());
+      speed = formats::simgrid::parse_sg_speed(*node->value<std::string>());
     } catch (const ConfigError& e) {
       r.fail(key, e.what());
     }

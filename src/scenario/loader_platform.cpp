@@ -16,6 +16,8 @@
 
 namespace pagecache::scenario {
 
+using namespace formats::simgrid;  // the SimGrid reader's platform
+
 namespace {
 
 // `pcsim show` of a platform alone lists every route of a platform of at most this many hosts
@@ -83,7 +85,7 @@ void read_platform_file(TomlReader& r, const std::string& file, const Overrides&
   platform.file = relative_path(file, platform_path(r, *node, s.profile));
   std::string text;
   try {
-    text = read_text_file(platform.file, "platform file");
+    text = formats::read_text_file(platform.file, "platform file");
   } catch (const ConfigError& e) {
     r.fail("platform", e.what());
   }

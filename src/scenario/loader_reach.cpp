@@ -15,6 +15,8 @@
 
 namespace pagecache::scenario {
 
+using namespace estimate;  // the pre-run estimate's route index
+
 namespace {
 
 class ReachCheck {

@@ -54,7 +54,7 @@ inline std::string relative_path(const std::string& file, const std::string& pat
 struct PlatformFile {
   std::string file;  ///< empty: none
   toml::table root;  ///< a TOML platform's document
-  std::optional<SgPlatform> simgrid;  ///< an XML one, kept until the run's routes are known
+  std::optional<formats::simgrid::SgPlatform> simgrid;  ///< an XML one, kept until the run's routes are known
   std::set<std::size_t> from_xml;     ///< the hosts the XML file gave
 
   PlatformFile() = default;
@@ -72,7 +72,7 @@ void read_platform(TomlReader& r, Scenario& s, const std::string& file, const Sc
 /// `pcsim show` of a platform alone: the routes of its SimGrid file, up to a bound.
 void add_shown_routes(const PlatformFile& platform, Scenario& s);
 /// A run on a SimGrid platform keeps the hosts, routes and links it uses; see the definition.
-void keep_what_the_run_uses(const SgPlatform& platform, const std::set<std::size_t>& from_xml, Scenario& s, Origins& origins);
+void keep_what_the_run_uses(const formats::simgrid::SgPlatform& platform, const std::set<std::size_t>& from_xml, Scenario& s, Origins& origins);
 
 // The hosts (loader_hosts.cpp) and the network (loader_network.cpp).
 

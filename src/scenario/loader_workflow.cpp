@@ -19,6 +19,8 @@
 
 namespace pagecache::scenario {
 
+using namespace formats::wfformat;  // the WfFormat reader's workflow
+
 namespace {
 
 // A cycle of dependencies, reported with its tasks. Iterative: a workflow may be a chain of
@@ -128,7 +130,7 @@ void read_workflow_file(TomlReader& root, Scenario& s, const std::string& file, 
   };
   std::string text;
   try {
-    text = read_text_file(json, "workflow file");
+    text = formats::read_text_file(json, "workflow file");
   } catch (const ConfigError& e) {
     if (table) table->fail("file", e.what());
     root.fail("workflow", e.what());

@@ -56,8 +56,8 @@ Scenario load_fio(const std::string& path, const RunInputs& in) {
     throw ConfigError("--files-host and --hosts place a workflow file's (JSON) files and tasks; a fio job file's run on one host (--set fio.host=NAME)");
   }
   // The files named on the command line, before a document is made around them.
-  scenario::check_text_file({}, path, "fio job file");
-  scenario::check_text_file("--platform", in.workflow.platform, "platform file");
+  formats::check_text_file({}, path, "fio job file");
+  formats::check_text_file("--platform", in.workflow.platform, "platform file");
   toml::table root{{"fio", toml::table{{"file", absolute(path)}}}};
   scenario::insert_option(root, "platform", "--platform " + in.workflow.platform, toml::array{absolute(in.workflow.platform)}, false);
   Scenario s = scenario::resolve_document(std::move(root), path, in.overrides, in.profile, in.limits);

@@ -14,6 +14,8 @@
 
 namespace pagecache::scenario {
 
+using namespace formats::simgrid;  // the SimGrid reader's platform
+
 namespace {
 
 const std::string* prop(const std::vector<std::pair<std::string, std::string>>& props, std::string_view key) {
@@ -56,7 +58,7 @@ double bandwidth(SgPlatform const& p, int line, const std::string& what, double 
 // An id pcsim can use as a name (those of scenario files: printable UTF-8, no leading formula
 // character); SimGrid's XML takes any text, and pugixml does not check its encoding.
 void check_name(const SgPlatform& p, int line, const std::string& what, const std::string& id) {
-  if (const std::string problem = name_problem(id); !problem.empty()) throw ConfigError(fmt::format("{}: id: {}", where(p, line, what), problem));
+  if (const std::string problem = formats::name_problem(id); !problem.empty()) throw ConfigError(fmt::format("{}: id: {}", where(p, line, what), problem));
 }
 
 }  // namespace
@@ -133,7 +135,7 @@ void add_simgrid_platform(const SgPlatform& p, Scenario& s, Origins& origins) {
       throw ConfigError(fmt::format("{}: latency {} s is not one pcsim takes (0 to 10^9 s)", where(p, sg.line, what), sg.latency));
     }
     link.latency = sg.latency;
-    link.sharing = sg.sharing == LinkSharing::Fatpipe ? pagecache::LinkSharing::Fatpipe : pagecache::LinkSharing::Shared;
+    link.sharing = sg.sharing == formats::simgrid::LinkSharing::Fatpipe ? pagecache::LinkSharing::Fatpipe : pagecache::LinkSharing::Shared;
     origins.links.push_back(Origin::elsewhere(where(p, sg.line, what)));
     s.links.push_back(std::move(link));
   }

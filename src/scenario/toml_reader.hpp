@@ -192,7 +192,7 @@ class TomlReader {
     for (const auto& [key, node] : *table_) {
       const std::string name(key.str());
       if (read_.count(name) == 0) {
-        const std::string meant = closest(name, read_);
+        const std::string meant = formats::closest(name, read_);
         throw ConfigError(fmt::format("{}: unknown key '{}'{}", location(node.source(), *file_), full(name),
                                       meant.empty() ? std::string() : fmt::format(" (did you mean '{}'?)", full(meant))),
                           input_place(node.source(), *file_, full(name)));
@@ -211,7 +211,7 @@ class TomlReader {
   }
 
   void check_name(const std::string& key, const std::string& value) const {
-    const std::string problem = name_problem(value);
+    const std::string problem = formats::name_problem(value);
     if (!problem.empty()) fail(key, problem);
   }
 
@@ -221,7 +221,7 @@ class TomlReader {
     for (const auto& [k, node] : *table_) {
       if (read_.count(std::string(k.str())) == 0) unknown.insert(std::string(k.str()));
     }
-    const std::string typo = closest(key, unknown);
+    const std::string typo = formats::closest(key, unknown);
     if (!typo.empty()) {
       const toml::node* node = table_->get(typo);
       throw ConfigError(fmt::format("{}: unknown key '{}' (did you mean '{}'?)", location(node->source(), *file_), full(typo), full(key)),

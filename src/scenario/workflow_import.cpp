@@ -16,6 +16,8 @@
 
 namespace pagecache::scenario {
 
+using namespace formats::wfformat;  // the WfFormat reader's workflow
+
 namespace {
 
 using Fail = std::function<void(const std::string&, const std::string&)>;
@@ -74,12 +76,12 @@ std::pair<std::string, std::string> files_place(const WorkflowImport& o, const s
 // The instance's task and file ids, each able to name one (name_problem).
 void check_names(const WfWorkflow& wf) {
   for (const WfTask& t : wf.tasks) {
-    if (const std::string problem = name_problem(t.id); !problem.empty()) {
+    if (const std::string problem = formats::name_problem(t.id); !problem.empty()) {
       throw ConfigError(fmt::format("{}: task '{}': {}", wf.file, text::printable(t.id), problem));
     }
   }
   for (const WfFile& f : wf.files) {
-    if (const std::string problem = name_problem(f.id); !problem.empty()) {
+    if (const std::string problem = formats::name_problem(f.id); !problem.empty()) {
       throw ConfigError(fmt::format("{}: file '{}': {}", wf.file, text::printable(f.id), problem));
     }
   }

@@ -53,7 +53,7 @@ struct WorkflowImport {
 
 /// Adds `workflow` and its files to `s` (whose hosts are read), their origins to `origins`.
 /// `fail(key, message)` reports an option that does not fit the platform and must throw.
-void add_json_workflow(const WfWorkflow& workflow, const WorkflowImport& options, Scenario& s, Origins& origins,
+void add_json_workflow(const formats::wfformat::WfWorkflow& workflow, const WorkflowImport& options, Scenario& s, Origins& origins,
                        const std::function<void(const std::string&, const std::string&)>& fail);
 
 }  // namespace pagecache::scenario

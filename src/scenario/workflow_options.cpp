@@ -51,8 +51,8 @@ Scenario load_workflow(const std::string& workflow, const WorkflowOptions& optio
     throw ConfigError(fmt::format("{}: a workflow file runs on a platform: add --platform PLATFORM.xml (SimGrid) or .toml", workflow));
   }
   // The files named on the command line, before a document is made around them.
-  scenario::check_text_file({}, workflow, "workflow file");
-  scenario::check_text_file("--platform", options.platform, "platform file");
+  formats::check_text_file({}, workflow, "workflow file");
+  formats::check_text_file("--platform", options.platform, "platform file");
   // Absolute: the document has no folder for them to be relative to.
   toml::table table{{"file", absolute(workflow)}};
   if (!options.files_host.empty()) {

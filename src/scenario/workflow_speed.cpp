@@ -9,6 +9,8 @@
 
 namespace pagecache::scenario {
 
+using namespace formats::wfformat;  // the WfFormat reader's workflow
+
 namespace {
 
 // WRENCH's rule (WfCommonsWorkflowParser): a core of S MHz computes S x 10^6 flop/s.

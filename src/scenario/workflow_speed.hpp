@@ -27,7 +27,7 @@ namespace pagecache::scenario {
 /// machines of different speeds; a task with no machine speed and no `reference_speed`; a
 /// host without a speed (from `origins`); hosts of different speeds for an unplaced task
 /// (`fail("hosts", ...)`).
-std::vector<double> speed_ratios(const WfWorkflow& wf, const std::vector<TaskSpec>& tasks, const std::vector<std::string>& hosts,
+std::vector<double> speed_ratios(const formats::wfformat::WfWorkflow& wf, const std::vector<TaskSpec>& tasks, const std::vector<std::string>& hosts,
                                  std::optional<double> reference_speed, const Scenario& s, const Origins& origins,
                                  const std::function<void(const std::string&, const std::string&)>& fail);
 

@@ -47,7 +47,7 @@ BaseIdentity identify_base(const std::string& scenario, const std::string& workf
   std::string text;
   std::string named_in;  // the file the base's own names are relative to
   if (!scenario.empty()) {
-    text = scenario::read_text_file(scenario, "scenario file");
+    text = formats::read_text_file(scenario, "scenario file");
     id.files.push_back({"scenario", scenario, hash_of(text)});
     named_in = scenario;
   } else if (!workflow_text.empty()) {
@@ -71,11 +71,11 @@ BaseIdentity identify_base(const std::string& scenario, const std::string& workf
   if (workflow_table != nullptr) workflow = string_at(workflow_table->get("file"));
   if (platform) {
     const std::string path = beside(named_in, *platform);
-    id.files.push_back({"platform", path, hash_of(scenario::read_text_file(path, "platform file"))});
+    id.files.push_back({"platform", path, hash_of(formats::read_text_file(path, "platform file"))});
   }
   if (workflow) {
     const std::string path = beside(named_in, *workflow);
-    id.files.push_back({"workflow", path, hash_of(scenario::read_text_file(path, "workflow file"))});
+    id.files.push_back({"workflow", path, hash_of(formats::read_text_file(path, "workflow file"))});
   }
   std::vector<std::string> settings;
   if (!profile.empty()) settings.push_back(fmt::format("profile = {}", profile));

@@ -82,7 +82,7 @@ std::unordered_set<std::string> prepare_out_dir(const Plan& plan, const std::str
       throw ConfigError(fmt::format("--out {}: its sweep-plan.json {}, not the plan pcsim wrote: left as it is; give another --out", out_dir,
                                     S_ISLNK(st.st_mode) ? "is a symbolic link" : S_ISDIR(st.st_mode) ? "is a folder" : "is not a regular file"));
     }
-    there = scenario::read_text_file(path.string(), "sweep plan");
+    there = formats::read_text_file(path.string(), "sweep plan");
   }
   if (there && *there != text) {
     const Plan before = Plan::from_json(*there, path.string());

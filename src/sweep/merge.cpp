@@ -40,7 +40,7 @@ std::string some(const std::vector<std::string>& ids, std::size_t total) {
 Plan read_plan(const MergeOptions& options) {
   const fs::path plan_path = fs::path(options.dir) / "sweep-plan.json";
   if (!fs::exists(plan_path)) throw ConfigError(fmt::format("{}: no sweep-plan.json: not a folder of `pcsim sweep run --out`", options.dir));
-  return Plan::from_json(scenario::read_text_file(plan_path.string(), "sweep plan"), plan_path.string());
+  return Plan::from_json(formats::read_text_file(plan_path.string(), "sweep plan"), plan_path.string());
 }
 
 void append_header(fmt::memory_buffer& csv, const Plan& plan) {

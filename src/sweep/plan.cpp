@@ -95,7 +95,7 @@ std::string run_id(const std::vector<Override>& overrides) {
 }
 
 Plan Plan::load(const std::string& path, bool force, const std::function<void()>& checkpoint) {
-  return parse(scenario::read_text_file(path, "sweep file"), path, force, {}, checkpoint);
+  return parse(formats::read_text_file(path, "sweep file"), path, force, {}, checkpoint);
 }
 
 Plan Plan::parse(const std::string& text, const std::string& path, bool force, const PlanLimits& limits, const std::function<void()>& checkpoint) {
@@ -269,7 +269,7 @@ Plan Plan::from_json(const std::string& text, const std::string& origin) {
   Plan plan;
   try {
     const nlohmann::json doc = nlohmann::json::parse(text);
-    scenario::check_unique_keys(text, origin);
+    formats::check_unique_keys(text, origin);
     plan.file_ = doc.at("sweep").get<std::string>();
     plan.scenario_ = doc.at("scenario").get<std::string>();
     plan.workflow_text_ = doc.at("workflow").get<std::string>();

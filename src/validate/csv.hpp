@@ -203,7 +203,7 @@ inline CsvTable::CsvTable(std::string_view text, std::string file, const std::ve
 
 /// A file's bytes: a regular file of at most 64 MiB (a FIFO or /dev/zero would be read for
 /// ever); else a ConfigError naming it and why.
-inline std::string read_text_file(const std::filesystem::path& path) { return scenario::read_text_file(path.string(), "data file"); }
+inline std::string read_text_file(const std::filesystem::path& path) { return formats::read_text_file(path.string(), "data file"); }
 
 inline CsvTable CsvTable::read(const std::filesystem::path& path, const std::vector<std::string>& needed,
                                const std::vector<std::string>& optional) {

@@ -47,7 +47,7 @@ std::string plain_name(const CsvTable::Row& row, const char* column) {
 std::vector<FioMeasuredJob> parse_fio_report(std::string_view text, const std::string& file) {
   const json report = json::parse(text, nullptr, false);
   if (report.is_discarded() || !report.is_object()) throw ConfigError(fmt::format("{}: not a JSON object (fio --output-format=json's report)", file));
-  scenario::check_unique_keys(text, file);
+  formats::check_unique_keys(text, file);
   const auto jobs = report.find("jobs");
   if (jobs == report.end() || !jobs->is_array() || jobs->empty()) throw ConfigError(fmt::format("{}: no \"jobs\" array with a job", file));
   std::vector<FioMeasuredJob> out;
@@ -77,7 +77,7 @@ bool is_fio_folder(const fs::path& folder) {
 
 std::vector<FioJobFileRuns> load_fio_runs(const fs::path& folder) {
   const std::string manifest = (folder / kFioManifest).string();
-  const CsvTable table(scenario::read_text_file(manifest, "fio manifest"), manifest, {"job_file", "repetition", "json_file"},
+  const CsvTable table(formats::read_text_file(manifest, "fio manifest"), manifest, {"job_file", "repetition", "json_file"},
                        {"memory_max", "peak_memory"});
   if (table.size() == 0) throw ConfigError(fmt::format("{}:1: no runs after the header", manifest));
   std::vector<FioJobFileRuns> runs;
@@ -87,7 +87,7 @@ std::vector<FioJobFileRuns> load_fio_runs(const fs::path& folder) {
     const std::string job_file = plain_name(row, "job_file");
     const auto [at, fresh] = index.emplace(job_file, runs.size());
     if (fresh) {
-      scenario::read_text_file((folder / job_file).string(), "fio job file");  // its copy is there to simulate
+      formats::read_text_file((folder / job_file).string(), "fio job file");  // its copy is there to simulate
       runs.push_back({job_file, {}, table.has("memory_max") ? row.whole("memory_max", 0, units::kMaxBytes) : 0});
     }
     FioJobFileRuns& f = runs[at->second];
@@ -101,7 +101,7 @@ std::vector<FioJobFileRuns> load_fio_runs(const fs::path& folder) {
     const std::string json_file = plain_name(row, "json_file");
     const std::string path = (folder / json_file).string();
     const std::int64_t peak = table.has("peak_memory") ? row.whole("peak_memory", -1, INT64_MAX) : -1;
-    f.repetitions.push_back({repetition, json_file, parse_fio_report(scenario::read_text_file(path, "fio report"), path), peak});
+    f.repetitions.push_back({repetition, json_file, parse_fio_report(formats::read_text_file(path, "fio report"), path), peak});
   }
   return runs;
 }

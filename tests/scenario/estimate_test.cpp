@@ -38,7 +38,7 @@ using test::UncheckedRuns;
 // the estimate's sources for the message. False if the run failed (a scenario may be meant
 // to: file-no-longer-fits.toml under the paper profile).
 bool check_estimate(const std::string& name, const Scenario& s) {
-  const scenario::RunEstimate e = scenario::estimate_run(s);
+  const estimate::RunEstimate e = estimate::estimate_run(s);
   RunOptions options;
   options.cache_contents = false;
   const UncheckedRuns unchecked;
@@ -236,7 +236,7 @@ TEST_CASE("many writers on one host are refused before they run when their pause
     CHECK_THAT(e.what(), Catch::StartsWith("many.toml:3:1: key 'hosts[0].page_cache.dirty_throttling'") &&
                              Catch::Contains("the writers of host 'node' would pause about") && Catch::Contains("without --force"));
   }
-  const scenario::RunEstimate e = scenario::estimate_run(parse_scenario(text, "many.toml", {}, {}, ScenarioLimits::forced()));
+  const estimate::RunEstimate e = estimate::estimate_run(parse_scenario(text, "many.toml", {}, {}, ScenarioLimits::forced()));
   CHECK(e.throttle_events > ScenarioLimits{}.max_events);
   CHECK(e.transfer_events < ScenarioLimits{}.max_events / 100.0);
 }

@@ -19,6 +19,7 @@
 #include <string>
 
 namespace pagecache::scenario {
+using namespace pagecache::formats::fio;
 namespace {
 
 const std::filesystem::path kExamples = "/usr/share/doc/fio/examples";

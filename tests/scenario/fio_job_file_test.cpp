@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 
 namespace pagecache::scenario {
+using namespace pagecache::formats::fio;
 namespace {
 
 using testing::fio_error;

@@ -12,6 +12,7 @@
 #include <fstream>
 
 namespace pagecache::scenario {
+using namespace pagecache::formats::fio;
 namespace {
 
 using testing::fio_error;

@@ -10,6 +10,7 @@
 #include <string>
 
 namespace pagecache::scenario::testing {
+using namespace pagecache::formats::fio;
 
 /// The jobs of `text` read as "t.fio", ${VAR} looked up in `env`.
 inline FioJobFile fio_read(const std::string& text, const std::map<std::string, std::string>& env = {}, const FioLimits& limits = {}) {

@@ -20,7 +20,7 @@
 #include <thread>
 
 using namespace pagecache;
-using namespace pagecache::scenario;
+using namespace pagecache::formats::simgrid;
 using Catch::Contains;
 using Strings = std::vector<std::string>;
 

@@ -23,6 +23,8 @@
 #include <vector>
 
 namespace pagecache::scenario {
+using namespace pagecache::formats;
+using namespace pagecache::formats::wfformat;
 namespace {
 
 using nlohmann::json;

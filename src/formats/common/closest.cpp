@@ -4,7 +4,7 @@
 #include <numeric>
 #include <vector>
 
-namespace pagecache::scenario {
+namespace pagecache::formats {
 
 namespace {
 
@@ -42,4 +42,4 @@ std::string closest(std::string_view typed, const std::set<std::string>& candida
   return best;
 }
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats

@@ -6,10 +6,10 @@
 #include <string>
 #include <string_view>
 
-namespace pagecache::scenario {
+namespace pagecache::formats {
 
 /// The candidate closest to `typed` by edit distance (transpositions count one), if close
 /// enough to be a typo of it: at most two edits, and at most a third of the word; else "".
 std::string closest(std::string_view typed, const std::set<std::string>& candidates);
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats

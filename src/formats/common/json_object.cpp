@@ -9,7 +9,7 @@
 
 #include <cmath>
 
-namespace pagecache::scenario {
+namespace pagecache::formats {
 
 using nlohmann::json;
 
@@ -195,4 +195,4 @@ std::vector<std::string_view> JsonObject::strings(std::string_view key, std::str
   return out;
 }
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats

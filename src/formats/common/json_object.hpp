@@ -15,7 +15,7 @@
 #include <string_view>
 #include <vector>
 
-namespace pagecache::scenario {
+namespace pagecache::formats {
 
 /// `name` quoted for a message: control characters and ill-formed UTF-8 made visible, and
 /// shortened past 100 bytes (an id can be a megabyte long).
@@ -82,4 +82,4 @@ class JsonObject {
 /// "a string", "an array", "a number", "null": the JSON type of `value`, for messages.
 std::string_view a_type(const nlohmann::json& value);
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats

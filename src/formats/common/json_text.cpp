@@ -12,7 +12,7 @@
 #include <unordered_set>
 #include <vector>
 
-namespace pagecache::scenario {
+namespace pagecache::formats {
 
 namespace {
 
@@ -167,4 +167,4 @@ json parse_json_text(const std::string& text, const std::string& file) {
   throw ConfigError(fmt::format("{}:{}: malformed JSON: {}", file, line_column(text, offset), reason(what)));
 }
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats

@@ -10,7 +10,7 @@
 #include <string>
 #include <string_view>
 
-namespace pagecache::scenario {
+namespace pagecache::formats {
 
 /// The deepest nesting of arrays and objects read: WfFormat needs 6 (command.arguments), and
 /// unknown keys get room to spare.
@@ -32,4 +32,4 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& file)
 /// input calls it.
 void check_unique_keys(std::string_view text, const std::string& file);
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats

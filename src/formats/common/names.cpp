@@ -5,7 +5,7 @@
 
 #include <fmt/format.h>
 
-namespace pagecache::scenario {
+namespace pagecache::formats {
 
 std::string name_problem(std::string_view name) {
   if (name.empty()) return "a name cannot be empty";
@@ -23,4 +23,4 @@ std::string name_problem(std::string_view name) {
   return {};
 }
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats

@@ -6,10 +6,10 @@
 #include <string>
 #include <string_view>
 
-namespace pagecache::scenario {
+namespace pagecache::formats {
 
 /// Empty if `name` can name a host, disk, file, application or task; else why not (control
 /// characters, invalid UTF-8, a leading = + - @ that a spreadsheet would run as a formula).
 std::string name_problem(std::string_view name);
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats

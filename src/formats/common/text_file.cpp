@@ -12,7 +12,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-namespace pagecache::scenario {
+namespace pagecache::formats {
 
 namespace {
 
@@ -72,4 +72,4 @@ std::string read_text_file(const std::string& path, const char* what) {
   return text;
 }
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats

@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-namespace pagecache::scenario {
+namespace pagecache::formats {
 
 /// The largest scenario or platform file read: 64 MiB (the biggest shipped is a few kB; a
 /// workflow of 10^5 tasks written out in full is about 20 MB).
@@ -23,4 +23,4 @@ std::string read_text_file(const std::string& path, const char* what);
 /// "" for a positional argument, whose path is its name) and the path.
 void check_text_file(std::string_view argument, const std::string& path, const char* what);
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats

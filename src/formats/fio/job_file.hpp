@@ -19,7 +19,7 @@
 #include <utility>
 #include <vector>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::fio {
 
 enum class FioRw { Read, Write, RandRead, RandWrite, ReadWrite, RandReadWrite };
 enum class FioFileService { RoundRobin, Sequential, Random };
@@ -115,4 +115,4 @@ FioJobFile read_fio_job_file(std::string_view text, const std::string& path, con
 /// Reads the file at `path` (read_text_file's limits) with the process environment.
 FioJobFile read_fio_job_file(const std::string& path, const FioLimits& limits = {});
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::fio

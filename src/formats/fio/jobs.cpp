@@ -16,7 +16,7 @@
 #include <cctype>
 #include <cstdlib>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::fio {
 
 namespace {
 
@@ -204,4 +204,4 @@ FioJobFile read_fio_job_file(const std::string& path, const FioLimits& limits) {
       limits);
 }
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::fio

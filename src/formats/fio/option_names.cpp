@@ -4,7 +4,7 @@
 
 #include "formats/fio/options.hpp"
 
-namespace pagecache::scenario::fio {
+namespace pagecache::formats::fio {
 
 namespace {
 
@@ -156,4 +156,4 @@ const std::set<std::string>& fio_option_names() {
   return kNames;
 }
 
-}  // namespace pagecache::scenario::fio
+}  // namespace pagecache::formats::fio

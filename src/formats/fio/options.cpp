@@ -10,7 +10,7 @@
 #include <limits>
 #include <string_view>
 
-namespace pagecache::scenario::fio {
+namespace pagecache::formats::fio {
 
 namespace {
 
@@ -366,4 +366,4 @@ std::vector<std::string> supported_option_names() {
   return names;
 }
 
-}  // namespace pagecache::scenario::fio
+}  // namespace pagecache::formats::fio

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-namespace pagecache::scenario::fio {
+namespace pagecache::formats::fio {
 
 /// A job (or the global template) while its sections' options are applied: the FioJob and what
 /// fio keeps until the job is added (file naming, clones, ordering).
@@ -57,4 +57,4 @@ const std::vector<IgnoredOption>& ignored_options();
 /// Every option name fio 3.33 knows (its own, its engines', its profiles'), aliases included.
 const std::set<std::string>& fio_option_names();
 
-}  // namespace pagecache::scenario::fio
+}  // namespace pagecache::formats::fio

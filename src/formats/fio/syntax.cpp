@@ -12,7 +12,7 @@
 #include <system_error>
 #include <unistd.h>
 
-namespace pagecache::scenario::fio {
+namespace pagecache::formats::fio {
 
 namespace {
 
@@ -191,4 +191,4 @@ std::vector<RawSection> read_sections(std::string_view text, const std::string& 
   return std::move(reader.sections);
 }
 
-}  // namespace pagecache::scenario::fio
+}  // namespace pagecache::formats::fio

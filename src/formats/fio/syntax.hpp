@@ -9,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-namespace pagecache::scenario::fio {
+namespace pagecache::formats::fio {
 
 /// One option line of a section, after ${VAR} substitution.
 struct RawOption {
@@ -47,4 +47,4 @@ std::string where(const std::string& file, int line);
 /// Throws ConfigError "file:line: message" placed at the option.
 [[noreturn]] void fail(const RawOption& option, const std::string& message);
 
-}  // namespace pagecache::scenario::fio
+}  // namespace pagecache::formats::fio

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <limits>
 
-namespace pagecache::scenario::fio {
+namespace pagecache::formats::fio {
 
 namespace {
 
@@ -197,4 +197,4 @@ void require_single_value(const RawOption& option) {
   }
 }
 
-}  // namespace pagecache::scenario::fio
+}  // namespace pagecache::formats::fio

@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-namespace pagecache::scenario::fio {
+namespace pagecache::formats::fio {
 
 /// How messages name an option: "option 'KEY=VALUE'", or "option 'KEY'" for one of an included
 /// file (its values are never quoted), or "an option line" for a key that is no option's name.
@@ -62,4 +62,4 @@ std::vector<std::string> split_names(std::string_view value);
 /// and silently drop it (size=4k-8k is 4k).
 void require_single_value(const RawOption& option);
 
-}  // namespace pagecache::scenario::fio
+}  // namespace pagecache::formats::fio

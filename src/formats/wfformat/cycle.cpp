@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::wfformat {
 
 std::vector<std::size_t> find_cycle(const std::vector<WfTask>& tasks) {
   enum class Mark : std::uint8_t { Unseen, OnPath, Done };
@@ -41,4 +41,4 @@ std::vector<std::size_t> find_cycle(const std::vector<WfTask>& tasks) {
   return {};
 }
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::wfformat

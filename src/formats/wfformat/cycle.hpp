@@ -7,10 +7,10 @@
 #include <cstddef>
 #include <vector>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::wfformat {
 
 /// A cycle of `tasks` along their parents: each task lists the next among its parents, and the
 /// last lists the first. Empty if there is none.
 std::vector<std::size_t> find_cycle(const std::vector<WfTask>& tasks);
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::wfformat

@@ -7,7 +7,7 @@
 #include <iterator>
 #include <limits>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::wfformat {
 
 std::pair<std::size_t, bool> NameIndex::insert(std::string_view name) {
   const auto [it, added] = index_.try_emplace(std::string(name), index_.size());
@@ -131,4 +131,4 @@ std::vector<std::string> read_task_machines(const JsonObject& task, std::initial
   return out;
 }
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::wfformat

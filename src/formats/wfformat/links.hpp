@@ -15,7 +15,7 @@
 #include <unordered_map>
 #include <vector>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::wfformat {
 
 /// Names to indices, in the order they were first added.
 class NameIndex {
@@ -93,4 +93,4 @@ std::vector<std::string> read_task_machines(const JsonObject& task, std::initial
 /// The cores a task may ask for: beyond this a number is a typo or hostile.
 inline constexpr std::int64_t kMaxCores = 1'000'000;
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::wfformat

@@ -15,7 +15,7 @@
 #include <limits>
 #include <string_view>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::wfformat {
 
 namespace {
 
@@ -122,4 +122,4 @@ void check_wfformat_16_metrics(const JsonObject& root, const WfWorkflow& wf, War
   }
 }
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::wfformat

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <string>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::wfformat {
 
 struct WorkflowLimits {
   std::int64_t max_tasks = 0;
@@ -34,4 +34,4 @@ void check_wfformat_16_metrics(const JsonObject& root, const WfWorkflow& wf, War
 /// The percentage avgCPU may reach: 100 per core.
 inline constexpr double kMaxAvgCpu = 100.0 * static_cast<double>(kMaxCores);
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::wfformat

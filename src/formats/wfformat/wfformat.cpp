@@ -11,7 +11,7 @@
 
 #include <limits>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::wfformat {
 
 namespace {
 
@@ -126,4 +126,4 @@ std::string read_wfformat_15(const JsonObject& root, const WorkflowLimits& limit
   return spec.path_of("tasks");
 }
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::wfformat

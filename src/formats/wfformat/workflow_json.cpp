@@ -15,7 +15,7 @@
 #include <algorithm>
 #include <array>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::wfformat {
 
 namespace {
 
@@ -93,4 +93,4 @@ WfWorkflow read_workflow_json(const std::string& text, const std::string& file, 
   return out;
 }
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::wfformat

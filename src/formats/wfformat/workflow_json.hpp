@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::wfformat {
 
 struct WfFile {
   std::string id;
@@ -79,4 +79,4 @@ inline constexpr std::size_t kMaxWorkflowWarnings = 100;
 /// (a warning). Ids repeated within one list count once. Unknown keys are ignored.
 WfWorkflow read_workflow_json(const std::string& text, const std::string& file, std::int64_t max_tasks, std::int64_t max_files);
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::wfformat

@@ -12,7 +12,7 @@
 
 #include <fmt/format.h>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::wfformat {
 
 namespace {
 
@@ -134,4 +134,4 @@ std::string read_wrench_tasks(const JsonObject& root, const WorkflowLimits& limi
   return workflow.path_of("tasks");
 }
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::wfformat

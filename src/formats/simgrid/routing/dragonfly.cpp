@@ -4,7 +4,7 @@
 
 #include "formats/simgrid/routing/topology.hpp"
 
-namespace pagecache::scenario {
+namespace pagecache::formats::simgrid {
 
 namespace {
 
@@ -150,4 +150,4 @@ std::vector<std::string> sg_dragonfly_route(const SgCluster& c, const SgDragonfl
   return missing ? std::vector<std::string>{} : route;
 }
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::simgrid

@@ -4,7 +4,7 @@
 
 #include "formats/simgrid/routing/topology.hpp"
 
-namespace pagecache::scenario {
+namespace pagecache::formats::simgrid {
 
 namespace {
 
@@ -162,4 +162,4 @@ std::vector<std::string> sg_fat_tree_route(const SgCluster& c, const SgFatTree& 
   return route;
 }
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::simgrid

@@ -10,7 +10,7 @@
 #include <mutex>
 #include <unordered_map>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::simgrid {
 
 namespace {
 
@@ -341,4 +341,4 @@ void SgPlatform::visit_routes(const std::function<bool(const SgRoute&)>& visit) 
   }
 }
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::simgrid

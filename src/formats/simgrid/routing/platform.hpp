@@ -38,7 +38,7 @@
 #include <utility>
 #include <vector>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::simgrid {
 
 using SgProps = std::vector<std::pair<std::string, std::string>>;
 
@@ -245,4 +245,4 @@ struct SgLimits {
 SgPlatform read_simgrid_platform(const std::string& text, const std::string& file);
 SgPlatform read_simgrid_platform(const std::string& text, const std::string& file, const SgLimits& limits);
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::simgrid

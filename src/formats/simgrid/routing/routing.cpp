@@ -7,7 +7,7 @@
 
 #include <algorithm>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::simgrid {
 
 namespace {
 
@@ -283,4 +283,4 @@ bool SgRouteFinder::star(const SgPlatform& p, std::size_t zone, SgNetpoint src, 
   return true;
 }
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::simgrid

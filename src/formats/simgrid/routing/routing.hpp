@@ -21,7 +21,7 @@
 #include <unordered_map>
 #include <vector>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::simgrid {
 
 /// A zone's route between two of its netpoints: its links, and for a route between zones the
 /// gateways it leaves and enters by.
@@ -95,4 +95,4 @@ class SgRouteFinder {
   std::vector<std::unique_ptr<SgDragonfly>> flies_;  // per cluster, a DRAGONFLY's
 };
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::simgrid

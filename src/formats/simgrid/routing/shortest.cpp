@@ -6,7 +6,7 @@
 #include <queue>
 #include <utility>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::simgrid {
 
 namespace {
 
@@ -174,4 +174,4 @@ bool SgRouteFinder::Shortest::dijkstra(const SgPlatform& p, std::size_t zone, st
   return true;
 }
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::simgrid

@@ -14,7 +14,7 @@
 #include <mutex>
 #include <vector>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::simgrid {
 
 struct SgRouteFinder::Shortest {
   explicit Shortest(const SgRouteFinder& finder) : finder_(finder), floyd_(finder.zone_count()), dijkstra_(finder.zone_count()) {}
@@ -57,4 +57,4 @@ struct SgRouteFinder::Shortest {
   std::vector<Graph> dijkstra_;
 };
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::simgrid

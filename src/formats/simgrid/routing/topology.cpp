@@ -10,7 +10,7 @@
 #include <charconv>
 #include <string_view>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::simgrid {
 
 namespace {
 
@@ -207,4 +207,4 @@ std::vector<std::string> sg_topology_route(const SgCluster& c, const SgFatTree* 
   return {};
 }
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::simgrid

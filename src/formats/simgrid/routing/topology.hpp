@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::simgrid {
 
 /// A link a topology makes, in order of creation.
 struct SgTopologyLink {
@@ -82,4 +82,4 @@ std::vector<SgTopologyLink> sg_topology_links(const SgCluster& c);
 /// once for the cluster when it is a fat tree / dragonfly. Empty if SimGrid's rule finds none.
 std::vector<std::string> sg_topology_route(const SgCluster& c, const SgFatTree* tree, const SgDragonfly* fly, std::size_t from, std::size_t to);
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::simgrid

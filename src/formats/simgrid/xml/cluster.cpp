@@ -14,7 +14,7 @@
 
 #include <algorithm>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::simgrid {
 
 // The links of a cluster as its attributes give them. SimGrid makes a backbone, a limiter or a
 // loopback when one of its values is above 0.
@@ -212,4 +212,4 @@ void SgReader::expand_topology(const pugi::xml_node& e, SgCluster& c, std::size_
   if (c.topology == SgTopology::Dragonfly) dragonfly_links_ += serials;
 }
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::simgrid

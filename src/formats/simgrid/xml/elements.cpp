@@ -12,7 +12,7 @@
 #include <cmath>
 #include <cstring>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::simgrid {
 
 namespace {
 
@@ -168,4 +168,4 @@ long long SgXml::whole_number(const pugi::xml_node& e, const char* name, std::st
   return static_cast<long long>(value);
 }
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::simgrid

@@ -17,7 +17,7 @@
 #include <utility>
 #include <vector>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::simgrid {
 
 /// A SimGrid quantity: how to parse it, and the unit a bare number is read in.
 struct SgQuantity {
@@ -97,4 +97,4 @@ class SgXml {
   mutable int cursor_line_ = 1;
 };
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::simgrid

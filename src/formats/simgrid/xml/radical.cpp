@@ -12,7 +12,7 @@
 #include <string>
 #include <utility>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::simgrid {
 
 namespace {
 
@@ -56,4 +56,4 @@ std::vector<int> parse_sg_radical(std::string_view text, std::size_t max_count) 
   return numbers;
 }
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::simgrid

@@ -13,7 +13,7 @@
 #include <cstdint>
 #include <iterator>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::simgrid {
 
 namespace {
 
@@ -385,4 +385,4 @@ SgPlatform read_simgrid_platform(const std::string& text, const std::string& fil
 
 SgPlatform read_simgrid_platform(const std::string& text, const std::string& file) { return read_simgrid_platform(text, file, SgLimits{}); }
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::simgrid

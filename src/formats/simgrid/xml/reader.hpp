@@ -19,7 +19,7 @@
 #include <utility>
 #include <vector>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::simgrid {
 
 /// A <zone routing="Cluster">'s <host_link>s and <backbone>, made a star at the zone's end.
 struct StarDraft {
@@ -103,4 +103,4 @@ class SgReader {
   long fat_tree_positions_ = 0;       // "src\ndst" -> line of its bypass
 };
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::simgrid

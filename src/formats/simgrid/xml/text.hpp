@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::simgrid {
 
 /// `s` without the spaces, tabs and line ends around it.
 inline std::string_view sg_trim(std::string_view s) {
@@ -24,4 +24,4 @@ inline std::string sg_shown(std::string_view s) {
   return s.size() <= kLongest ? text::printable(s) : text::printable(s.substr(0, kLongest)) + "...";
 }
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::simgrid

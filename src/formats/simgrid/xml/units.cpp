@@ -12,7 +12,7 @@
 #include <string>
 #include <unordered_map>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::simgrid {
 
 namespace {
 
@@ -131,4 +131,4 @@ bool sg_lacks_unit(std::string_view text) {
   return error == std::errc() && end == s.data() + s.size() && value != 0.0;
 }
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::simgrid

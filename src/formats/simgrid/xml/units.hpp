@@ -19,7 +19,7 @@
 
 #include <string_view>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::simgrid {
 
 double parse_sg_bandwidth(std::string_view text);
 double parse_sg_time(std::string_view text);
@@ -30,4 +30,4 @@ double parse_sg_size(std::string_view text);
 /// (SimGrid reads it in the base unit and warns).
 bool sg_lacks_unit(std::string_view text);
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::simgrid

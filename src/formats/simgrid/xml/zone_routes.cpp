@@ -14,7 +14,7 @@
 
 #include <fmt/format.h>
 
-namespace pagecache::scenario {
+namespace pagecache::formats::simgrid {
 
 namespace {
 
@@ -292,4 +292,4 @@ void SgReader::cabinet(const pugi::xml_node& e, std::size_t zone, StarDraft& sta
   }
 }
 
-}  // namespace pagecache::scenario
+}  // namespace pagecache::formats::simgrid

@@ -43,8 +43,8 @@ std::int64_t PageCache::evict_clean(ListKind kind, std::int64_t budget, FileId e
   PC_ASSERT(!spare_written || index_clean_);
   std::int64_t evicted = 0;
   auto take = [&](BlockId id) { evicted += evict_front(id, budget - evicted, kind); };
-  if (spare_written && nodes_.empty()) {
-    // The same victims in the same order as the walk below, without walking past the clean
+  if (spare_written && target_node_ == kAnyNode) {
+    // The same victims in the same order as the walks below, without walking past the clean
     // blocks of the files being written (or of other groups).
     bool set_aside = false;
     while (evicted < budget) {
@@ -143,9 +143,14 @@ std::int64_t PageCache::deactivate_oldest(std::int64_t budget, FileId excluded, 
 // block is the least recently used clean block of any file not being written. Two files' first
 // clean blocks never share an order key (equal keys are pieces of one file's block).
 BlockId PageCache::next_unwritten_clean(ListKind kind, FileId excluded, bool& set_aside) {
-  // The least recently used clean block, unless spared; if it is, the first clean block of
-  // the top file of reclaimable_, once the top's key is that block's.
-  const BlockId front = list_of(kind).front(BlockState::Clean);
+  // The least recently used clean block (of any node), unless spared; if it is, the first
+  // clean block of the top file of reclaimable_, once the top's key is that block's.
+  const LruList& list = list_of(kind);
+  BlockId front = list.front(BlockState::Clean);
+  for (NodeId n = 1; n < nodes_.size(); ++n) {
+    const BlockId other = list.front(BlockState::Clean, n);
+    if (other != kNoBlock && (front == kNoBlock || blocks_[other].order < blocks_[front].order)) front = other;
+  }
   if (front == kNoBlock) return kNoBlock;
   const FileId front_file = blocks_[front].file;
   if (front_file != excluded && files_[front_file].writers == 0 && in_target(blocks_[front])) return front;

@@ -293,10 +293,14 @@ struct Counts {
   }
 };
 
-Counts run_random(const CacheSettings& settings, std::uint64_t seed, int steps) {
+// `numa_group`: two nodes, each operation from either, every file charged to one memory group
+// and every eviction that group's: the reference, which knows no nodes, holds as a group's
+// reclaim takes the host's least recently used data whatever its node.
+Counts run_random(const CacheSettings& settings, std::uint64_t seed, int steps, bool numa_group = false) {
   constexpr std::int64_t kTotal = 160;
-  PageCache cache(kTotal, settings, {.page_size = 1});  // bytes stand for pages
+  PageCache cache(kTotal, settings, {.nodes = numa_group ? 2 : 1, .page_size = 1});  // bytes stand for pages
   cache.set_checking(true);
+  const GroupId group = numa_group ? cache.add_group(kTotal) : kAnyGroup;
   Reference ref(kTotal, settings, cache.policy().read_is_first_touch());
   std::mt19937_64 rng(seed);
   auto pick = [&](std::int64_t lo, std::int64_t hi) { return std::uniform_int_distribution<std::int64_t>(lo, hi)(rng); };
@@ -305,6 +309,10 @@ Counts run_random(const CacheSettings& settings, std::uint64_t seed, int steps) 
   for (int step = 0; step < steps; ++step) {
     const auto file = static_cast<FileId>(pick(0, kFiles - 1));
     const double now = step;
+    if (numa_group) {
+      cache.touch_from(static_cast<NodeId>(pick(0, 1)));
+      cache.charge_file(file, group);
+    }
     switch (pick(0, 11)) {
       case 0:
       case 1:
@@ -319,7 +327,7 @@ Counts run_random(const CacheSettings& settings, std::uint64_t seed, int steps) 
         const FileId spared = pick(0, 1) ? file : kNoFile;
         const std::int64_t missing = bytes - cache.ranges().cached_in(file, offset, bytes);
         REQUIRE(missing == bytes - ref.cached_in(file, offset, bytes));
-        if (missing > cache.free()) REQUIRE(cache.evict(missing - cache.free(), spared) == ref.evict(missing - ref.free(), spared));
+        if (missing > cache.free()) REQUIRE(cache.evict(missing - cache.free(), spared, group) == ref.evict(missing - ref.free(), spared));
         // The eviction may have taken some of the range itself.
         if (bytes - cache.ranges().cached_in(file, offset, bytes) > cache.free()) break;
         REQUIRE(cache.read_range(file, offset, bytes, now) == ref.read(file, offset, bytes));
@@ -329,7 +337,7 @@ Counts run_random(const CacheSettings& settings, std::uint64_t seed, int steps) 
       case 4: {
         const std::int64_t amount = pick(1, 60);
         const FileId excluded = pick(0, 1) ? file : kNoFile;
-        REQUIRE(cache.evict(amount, excluded) == ref.evict(amount, excluded));
+        REQUIRE(cache.evict(amount, excluded, group) == ref.evict(amount, excluded));
         break;
       }
       case 5: {  // application memory
@@ -440,4 +448,17 @@ TEST_CASE("files held by range agree with a reference of single bytes (clock pol
   CHECK(counts.reads > 60000);
   CHECK(counts.writes > 15000);
   CHECK(counts.flushes > 10000);
+}
+
+TEST_CASE("files held by range agree with a reference of single bytes (kernel settings, two nodes, a group's reclaim)",
+          "[page_cache][ranges][random][numa][groups]") {
+  // A group's reclaim on a host of two nodes takes its files' clean data in the list's order
+  // across the nodes, through the group's heap of reclaimable files.
+  CacheSettings settings = CacheSettings::kernel();
+  settings.set("reclaim_inactive_only", false);
+  Counts counts;
+  for (std::uint64_t seed : {19u, 20u}) counts += run_random(settings, seed, 100000, true);
+  CHECK(counts.reads > 30000);
+  CHECK(counts.writes > 7000);
+  CHECK(counts.flushes > 5000);
 }

@@ -1,3 +1,5 @@
+// The names of a trace's phase kinds and flush causes, as the outputs write them.
+
 #include <pagecache/trace.hpp>
 
 namespace pagecache {

@@ -444,10 +444,10 @@ TEST_CASE("files held by range agree with a reference of single bytes (clock pol
   CacheSettings settings = CacheSettings::kernel();
   settings.policy = "clock";
   Counts counts;
-  for (std::uint64_t seed : {17u, 18u}) counts += run_random(settings, seed, 200000);
-  CHECK(counts.reads > 60000);
-  CHECK(counts.writes > 15000);
-  CHECK(counts.flushes > 10000);
+  counts += run_random(settings, 17u, 200000);
+  CHECK(counts.reads > 30000);
+  CHECK(counts.writes > 7500);
+  CHECK(counts.flushes > 5000);
 }
 
 TEST_CASE("files held by range agree with a reference of single bytes (kernel settings, two nodes, a group's reclaim)",
@@ -457,8 +457,8 @@ TEST_CASE("files held by range agree with a reference of single bytes (kernel se
   CacheSettings settings = CacheSettings::kernel();
   settings.set("reclaim_inactive_only", false);
   Counts counts;
-  for (std::uint64_t seed : {19u, 20u}) counts += run_random(settings, seed, 100000, true);
-  CHECK(counts.reads > 30000);
-  CHECK(counts.writes > 7000);
-  CHECK(counts.flushes > 5000);
+  counts += run_random(settings, 19u, 100000, true);
+  CHECK(counts.reads > 15000);
+  CHECK(counts.writes > 3500);
+  CHECK(counts.flushes > 2500);
 }

@@ -3,14 +3,14 @@
 // list, T2 (seen twice or more) the active one: any re-read activates. The policy keeps ARC's
 // ghost lists of its own, B1 and B2 (bytes of each file evicted from T1, T2), and ARC's target p
 // for T1: a miss on a file with ghost bytes in B1 raises p, in B2 lowers it; reclaim takes from
-// T1 while T1 is above p, else from T2. Writeback and dirty limits are the lru policy's.
+// T1 while T1 is above p, else from T2. Writeback and dirty limits are the kernel's
+// (KernelWriteback), as lru's.
 //
 // Where it departs from ARC: data read back after a ghost hit enters T1 (PageCache's reads add
 // to the inactive list), not T2; PageCache still balances T2 <= 2 x T1 after every read; the
 // ghost lists together hold at most the cache's size, and T1 + B1 is not capped as in ARC.
 
-#include "cache/page_cache.hpp"
-#include "cache/policy.hpp"
+#include "cache/policies/kernel_writeback.hpp"
 
 #include <pagecache/cache_policies.hpp>
 
@@ -102,16 +102,8 @@ class GhostList {
   std::int64_t bytes_ = 0;
 };
 
-// The lru policy, for the questions ARC leaves to it.
-std::unique_ptr<Policy> lru_of(CacheSettings settings) {
-  settings.policy = "lru";
-  settings.parameters.clear();
-  return make_policy(settings);
-}
-
-class ArcPolicy final : public Policy {
+class ArcPolicy final : public KernelWriteback {
  public:
-  explicit ArcPolicy(const CacheSettings& settings) : lru_(lru_of(settings)) {}
 
   std::string_view name() const noexcept override { return "arc"; }
 
@@ -134,14 +126,6 @@ class ArcPolicy final : public Policy {
   std::int64_t evictable(const PageCache& cache) const noexcept override {
     return cache.list(ListKind::Inactive).bytes(BlockState::Clean) + cache.list(ListKind::Active).bytes(BlockState::Clean);
   }
-  bool reclaim_may_take_file_being_read() const noexcept override { return true; }
-
-  // Writeback, dirty limits and the host: the lru policy's answers.
-  BlockId next_expired(PageCache& cache, double cutoff) const override { return lru_->next_expired(cache, cutoff); }
-  bool splits_flushed_block_in_place() const noexcept override { return lru_->splits_flushed_block_in_place(); }
-  bool background_writeback() const noexcept override { return lru_->background_writeback(); }
-  bool throttles_writers() const noexcept override { return lru_->throttles_writers(); }
-  std::int64_t dirtyable(const PageCache& cache) const noexcept override { return lru_->dirtyable(cache); }
 
   void evicted(const PageCache& cache, FileId file, ListKind from, std::int64_t bytes) override {
     (from == ListKind::Inactive ? b1_ : b2_).push(file, bytes, ++stamp_);
@@ -188,7 +172,6 @@ class ArcPolicy final : public Policy {
     }
   }
 
-  std::unique_ptr<Policy> lru_;  // answers the writeback and dirty-limit questions
   GhostList b1_;                 // evicted from T1
   GhostList b2_;                 // evicted from T2
   std::int64_t p_ = 0;           // the target size of T1, in [0, c]
@@ -204,7 +187,7 @@ extern const PolicyRegistration kArcPolicy{
         .parameters = {},
         .preset_of = {},
     },
-    .make = [](const CacheSettings& settings) -> std::unique_ptr<Policy> { return std::make_unique<ArcPolicy>(settings); },
+    .make = [](const CacheSettings&) -> std::unique_ptr<Policy> { return std::make_unique<ArcPolicy>(); },
 };
 
 }  // namespace pagecache::cache

@@ -6,11 +6,10 @@
 // nothing moves on a hit. Reclaim moves the hand over clean data: referenced data has its bit
 // cleared and goes behind the hand (to the back), the first unreferenced data is evicted.
 // Dirty data and data in writeback are passed over, bits kept: the flusher writes them.
-// Writeback and dirty limits are the kernel's, as lru's. FIFO with one bit of recency: a
+// Writeback and dirty limits are the kernel's (KernelWriteback), as lru's. FIFO with one bit of recency: a
 // baseline between lru and the kernel's two lists.
 
-#include "cache/page_cache.hpp"
-#include "cache/policy.hpp"
+#include "cache/policies/kernel_writeback.hpp"
 
 #include <pagecache/cache_policies.hpp>
 
@@ -18,7 +17,7 @@ namespace pagecache::cache {
 
 namespace {
 
-class ClockPolicy final : public Policy {
+class ClockPolicy final : public KernelWriteback {
  public:
   std::string_view name() const noexcept override { return "clock"; }
 
@@ -47,17 +46,6 @@ class ClockPolicy final : public Policy {
   }
   std::int64_t evictable(const PageCache& cache) const noexcept override {
     return cache.list(ListKind::Inactive).bytes(BlockState::Clean);
-  }
-  bool reclaim_may_take_file_being_read() const noexcept override { return true; }
-
-  BlockId next_expired(PageCache& cache, double) const override { return cache.walks().oldest_dirty(); }
-  bool splits_flushed_block_in_place() const noexcept override { return true; }
-  bool background_writeback() const noexcept override { return true; }
-  bool throttles_writers() const noexcept override { return true; }
-
-  std::int64_t dirtyable(const PageCache& cache) const noexcept override {
-    const MemoryState memory = cache.memory();
-    return memory.free + memory.cached + memory.reserved;
   }
 };
 

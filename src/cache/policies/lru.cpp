@@ -1,10 +1,9 @@
 // The lru policy: one least-recently-used list, no activation. A re-read moves data to the
 // most recently used end; reclaim takes the least recently used clean data, any file's.
-// Writeback and dirty limits are the kernel's. A baseline for what the kernel's two lists
+// Writeback and dirty limits are the kernel's (KernelWriteback). A baseline for what the kernel's two lists
 // (and two-touch activation) buy.
 
-#include "cache/page_cache.hpp"
-#include "cache/policy.hpp"
+#include "cache/policies/kernel_writeback.hpp"
 
 #include <pagecache/cache_policies.hpp>
 
@@ -12,7 +11,7 @@ namespace pagecache::cache {
 
 namespace {
 
-class LruPolicy final : public Policy {
+class LruPolicy final : public KernelWriteback {
  public:
   std::string_view name() const noexcept override { return "lru"; }
 
@@ -27,17 +26,6 @@ class LruPolicy final : public Policy {
   }
   std::int64_t evictable(const PageCache& cache) const noexcept override {
     return cache.list(ListKind::Inactive).bytes(BlockState::Clean);
-  }
-  bool reclaim_may_take_file_being_read() const noexcept override { return true; }
-
-  BlockId next_expired(PageCache& cache, double) const override { return cache.walks().oldest_dirty(); }
-  bool splits_flushed_block_in_place() const noexcept override { return true; }
-  bool background_writeback() const noexcept override { return true; }
-  bool throttles_writers() const noexcept override { return true; }
-
-  std::int64_t dirtyable(const PageCache& cache) const noexcept override {
-    const MemoryState memory = cache.memory();
-    return memory.free + memory.cached + memory.reserved;
   }
 };
 

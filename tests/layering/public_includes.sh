@@ -90,6 +90,10 @@ check() {
   return $bad
 }
 
+if [ $# -eq 0 ]; then
+  echo "usage: public_includes.sh [--self-test] SOURCE_DIR" >&2
+  exit 2
+fi
 if [ "$1" = --self-test ]; then
   root=$2
   check "$root"

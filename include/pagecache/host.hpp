@@ -45,7 +45,7 @@ struct HostSpec {
   /// (read_ranges, write_ranges) besides its transfers: the system call and the page cache's
   /// look-up. 0: none.
   double request_time = 0.0;
-  NumaSpec numa;
+  NumaSpec numa{};
 };
 
 /// A disk of a host (index in the order of add_disk).

@@ -37,6 +37,16 @@ inline constexpr std::int64_t kPageSize = 4096;
 
 enum class BlockState : std::uint8_t { Clean, Dirty, Writeback };
 enum class ListKind : std::uint8_t { Inactive, Active };
+/// The largest value Block::policy_bits holds.
+inline constexpr std::uint8_t kMaxPolicyBits = 63;
+
+/// Where new data goes and how it is marked: the MRU end of `list`, with `referenced` and the
+/// policy's bits (Policy::arriving).
+struct Placement {
+  ListKind list = ListKind::Inactive;
+  bool referenced = false;
+  std::uint8_t bits = 0;
+};
 
 /// A block's neighbours on one of its lists (kNoBlock: none; both kNoBlock while unlinked,
 /// or while the only member).
@@ -61,10 +71,14 @@ struct alignas(64) Block {
   FileId file = 0;
   BlockState state = BlockState::Clean;
   ListKind list = ListKind::Inactive;
-  bool referenced : 1 = false;  // touched once while inactive (two-touch activation)
-  bool ranged : 1 = false;      // of a file held by byte range: indexed in PageCache's FileRanges
+  bool referenced : 1 = false;    // touched once while inactive (two-touch activation)
+  bool ranged : 1 = false;        // of a file held by byte range: indexed in PageCache's FileRanges
+  std::uint8_t policy_bits : 6 = 0;  // the policy's own marks (Placement::bits): split with the block, merged only if equal
   std::uint8_t node = 0;        // the NUMA node its memory is on (docs/model.md §6.20)
 };
 static_assert(sizeof(Block) == 64, "a block fills one cache line");
+
+/// Sets a block's policy bits (the low six bits of `bits`).
+inline void set_policy_bits(Block& block, std::uint8_t bits) noexcept { block.policy_bits = bits & kMaxPolicyBits; }
 
 }  // namespace pagecache::cache

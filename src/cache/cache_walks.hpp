@@ -1,8 +1,8 @@
 #pragma once
 // CacheWalks: what a policy may do to the page cache's lists (Policy::reclaim,
 // Policy::next_expired). Whole walks the kernel's reclaim takes (evict_clean,
-// deactivate_oldest, balance), and the steps a policy's own walk is made of (scan_clean, evict,
-// move_to_back), so that a policy with a walk of its own, such as CLOCK's second chance, is
+// deactivate_oldest, balance), and the steps a policy's own walk is made of (scan_clean or
+// first/next, evict, move_to_back, set_bits), so that a policy with a walk of its own, such as CLOCK's second chance, is
 // written in its own file. The walks change the lists and leave settling to the operation that
 // called the policy; each block they evict is reported to the policy (Policy::evicted). They
 // take only the target's data (a memory group's, a NUMA node's) when PageCache::evict has one.
@@ -56,11 +56,18 @@ class CacheWalks {
     std::array<BlockId, kMaxNodes> at_{};  // by node: the next clean block of its sub-list
   };
   CleanScan scan_clean(ListKind kind) const noexcept;
+  /// The target's first block of `kind` in LRU order, whatever its state, and the target's
+  /// next after `block` (read it before moving or evicting `block`); kNoBlock at the end.
+  BlockId first(ListKind kind) const noexcept;
+  BlockId next(BlockId block) const noexcept;
   const Block& block(BlockId block) const noexcept;
+  /// Sets the policy's bits of `block` (at most kMaxPolicyBits); nothing moves.
+  void set_bits(BlockId block, std::uint8_t bits) noexcept;
   /// Evicts the first `bytes` (> 0) of clean `block`, up to a page boundary of a file held by
   /// range, or all of it if it is smaller; returns the bytes evicted.
   std::int64_t evict(BlockId block, std::int64_t bytes);
-  /// Moves `block` to the most recently used end of `to`, its referenced mark set as given.
+  /// Moves `block` to the most recently used end of `to`, its referenced mark set as given
+  /// (its policy bits kept).
   void move_to_back(BlockId block, ListKind to, bool referenced);
 
  private:

@@ -27,6 +27,17 @@ void LruList::push_back(BlockId id) {
   state_bytes_[index(block.state)] += block.size;
 }
 
+void LruList::push_front(BlockId id) {
+  Block& block = (*pool_)[id];
+  PC_ASSERT(block.size > 0);
+  block.list = kind_;
+  block.order = --first_order_;
+  blocks_.push_front(*pool_, id);
+  link_state(id);
+  bytes_ += block.size;
+  state_bytes_[index(block.state)] += block.size;
+}
+
 void LruList::insert_after(BlockId position, BlockId id) {
   Block& block = (*pool_)[id];
   const Block& at = (*pool_)[position];
@@ -85,7 +96,7 @@ void LruList::check() const {
     PC_ASSERT_MSG(seen < blocks_.size(), "the list holds more blocks than it counts (a cycle?)");
     PC_ASSERT(b.size > 0 && b.list == kind_);
     // Order keys never decrease along the list; equal keys are pieces of one file's block.
-    PC_ASSERT_MSG(b.order > 0 && b.order <= last_order_, "order key never given");
+    PC_ASSERT_MSG(b.order >= first_order_ && b.order <= last_order_, "order key never given");
     if (previous != nullptr) {
       PC_ASSERT_MSG(b.order >= previous->order, "order keys out of LRU order");
       PC_ASSERT_MSG(b.order != previous->order || b.file == previous->file, "two files' blocks share an order key");

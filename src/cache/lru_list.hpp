@@ -34,6 +34,8 @@ class LruList {
 
   /// Appends at the most-recently-used end, with an order key above every other's here.
   void push_back(BlockId block);
+  /// Inserts at the least-recently-used end, with an order key below every other's here.
+  void push_front(BlockId block);
   /// Inserts `block` right after `position` (a block of this list), with its order key: used
   /// when splitting.
   void insert_after(BlockId position, BlockId block);
@@ -76,7 +78,10 @@ class LruList {
   std::array<StateOrder, kSubLists> by_state_;
   std::int64_t bytes_ = 0;
   std::array<std::int64_t, 3> state_bytes_{};
-  std::uint64_t last_order_ = 0;  // the order key of the last block appended
+  // The order keys of the last block appended and of the last put at the front: keys start in
+  // the middle of their range, so that either end has room.
+  std::uint64_t last_order_ = std::uint64_t{1} << 62;
+  std::uint64_t first_order_ = std::uint64_t{1} << 62;
 };
 
 }  // namespace pagecache::cache

@@ -25,7 +25,11 @@ PageCache::PageCache(std::int64_t total_memory, const CacheSettings& settings, M
       policy_(policy ? std::move(policy) : make_policy(settings)),
       index_clean_(policy_->spares_files_being_written()),
       first_touch_(policy_->read_is_first_touch()),
-      balance_always_(policy_->balances_after_every_change()),
+      balance_always_(policy_->balance() == Policy::Balance::AfterEveryChange),
+      balance_reads_(policy_->balance() != Policy::Balance::Never),
+      in_place_(policy_->rereads_in_place()),
+      arrivals_(policy_->places_arrivals()),
+      rotates_(policy_->rotates_written_back()),
       total_(total_memory),
       ranges_(layout.page_size) {
   if (total_memory <= 0) throw ConfigError(fmt::format("memory size must be > 0, got {} bytes", total_memory));
@@ -123,12 +127,17 @@ BlockId PageCache::new_block(FileId file, std::int64_t size, BlockState state, d
   return id;
 }
 
-void PageCache::append(BlockId id, ListKind kind) {
+void PageCache::append(BlockId id, ListKind kind, bool front) {
   const Block& block = blocks_[id];
   FileEntry& entry = file_entry(block.file);
-  list_of(kind).push_back(id);
+  if (front) {
+    list_of(kind).push_front(id);
+    file_list(entry, kind).push_front(blocks_, id);
+  } else {
+    list_of(kind).push_back(id);
+    file_list(entry, kind).push_back(blocks_, id);
+  }
   on_dirty_linked(id);
-  file_list(entry, kind).push_back(blocks_, id);
   ++entry.blocks;
   (kind == ListKind::Inactive ? entry.inactive_bytes : entry.active_bytes) += block.size;
   charge(block.file, block.node, block.size);
@@ -151,7 +160,8 @@ void PageCache::unlink(BlockId id) {
   if (block.state != BlockState::Clean) groups_.charge_dirty(block.file, -block.size);
 }
 
-bool PageCache::extend_tail(ListKind kind, FileId file, std::int64_t bytes, bool referenced, NodeId node) {
+bool PageCache::extend_tail(FileId file, std::int64_t bytes, Placement at, NodeId node) {
+  const ListKind kind = at.list;
   // New clean data of the file at the most recently used end, right behind a clean block of
   // the same file in the same state: one block, not two. The bytes are in the same place on
   // the lists either way; a file read chunk by chunk then holds a block per run, not per
@@ -160,7 +170,10 @@ bool PageCache::extend_tail(ListKind kind, FileId file, std::int64_t bytes, bool
   const BlockId tail_id = list.back();
   if (tail_id == kNoBlock) return false;
   const Block& tail = blocks_[tail_id];
-  if (tail.file != file || tail.state != BlockState::Clean || tail.referenced != referenced || tail.ranged || tail.node != node) return false;
+  if (tail.file != file || tail.state != BlockState::Clean || tail.referenced != at.referenced || tail.policy_bits != at.bits || tail.ranged ||
+      tail.node != node) {
+    return false;
+  }
   list.resize(tail_id, tail.size + bytes);
   FileEntry& entry = files_[file];
   (kind == ListKind::Inactive ? entry.inactive_bytes : entry.active_bytes) += bytes;
@@ -235,6 +248,7 @@ BlockId PageCache::split_front(BlockId id, std::int64_t head_size) {
   if (block.state == BlockState::Writeback) tail.writeback_batch = block.writeback_batch;
   else tail.entry_time = block.entry_time;
   tail.referenced = block.referenced;
+  tail.policy_bits = block.policy_bits;
   tail.node = block.node;
   if (block.ranged) {
     tail.ranged = true;
@@ -266,32 +280,34 @@ void PageCache::settle() {
 
 // --- Cache contents -------------------------------------------------------------------------
 
-void PageCache::add_new(FileId file, std::int64_t bytes, BlockState state, double now, bool referenced) {
+void PageCache::add_new(FileId file, std::int64_t bytes, BlockState state, double now, Placement at) {
   PC_ASSERT(bytes >= 0);
   if (bytes == 0) return;
   if (bytes > free()) {
     throw SimulationError(fmt::format("cannot cache {} bytes: only {} free", bytes, free()));
   }
   if (nodes_.empty()) {
-    add_new_on(0, file, bytes, state, now, referenced);
+    add_new_on(0, file, bytes, state, now, at);
   } else {
     nodes_.place(bytes, nodes_.toucher(), [&](NodeId node, std::int64_t part) {
       if (node != nodes_.toucher()) nodes_.remote().cache += part;
-      add_new_on(node, file, part, state, now, referenced);
+      add_new_on(node, file, part, state, now, at);
     });
   }
   settle();
 }
 
 // Inlined: on a one-node host it is add_new itself, the cache's most frequent mutation.
-[[gnu::always_inline]] inline void PageCache::add_new_on(NodeId node, FileId file, std::int64_t bytes, BlockState state, double now, bool referenced) {
-  if (state == BlockState::Clean && extend_tail(ListKind::Inactive, file, bytes, referenced, node)) return;
+[[gnu::always_inline]] inline void PageCache::add_new_on(NodeId node, FileId file, std::int64_t bytes, BlockState state, double now, Placement at) {
+  PC_ASSERT(state == BlockState::Clean || at.list == ListKind::Inactive);
+  if (state == BlockState::Clean && extend_tail(file, bytes, at, node)) return;
   // A ranged file's data written whole goes after its last cached byte (ranged writes place
   // their own).
   const BlockId id =
       ranged(file) ? new_ranged_block(file, ranges_.file_end(file), bytes, state, now, node) : new_block(file, bytes, state, now, node);
-  blocks_[id].referenced = referenced;
-  append(id, ListKind::Inactive);
+  blocks_[id].referenced = at.referenced;
+  set_policy_bits(blocks_[id], at.bits);
+  append(id, at.list);
   if (state == BlockState::Dirty) {
     // Its place by age: the newest in a simulation, where time only goes forward; callers
     // that pass earlier times (tests) get it sorted in.
@@ -305,9 +321,27 @@ void PageCache::add_new(FileId file, std::int64_t bytes, BlockState state, doubl
 void PageCache::add_clean(FileId file, std::int64_t bytes, double now) { add_new(file, bytes, BlockState::Clean, now); }
 
 void PageCache::add_read(FileId file, std::int64_t bytes, double now) {
-  // The read that brought the data in is its first touch.
-  add_new(file, bytes, BlockState::Clean, now, first_touch_);
+  add_arriving(file, kNoOffset, bytes, now, true);
   if (bytes > 0) policy_->missed(*this, file, bytes);
+}
+
+void PageCache::add_arriving(FileId file, std::int64_t offset, std::int64_t bytes, double now, bool demand) {
+  // The read that brought the data in is its first touch.
+  if (!arrivals_) {
+    const Placement at{.referenced = demand && first_touch_};
+    return offset == kNoOffset ? add_new(file, bytes, BlockState::Clean, now, at) : place_ranged(file, offset, bytes, BlockState::Clean, now, at);
+  }
+  while (bytes > 0) {
+    const Policy::Arrival part = policy_->arriving(*this, file, offset, bytes, demand);
+    PC_ASSERT(part.bytes > 0 && part.bytes <= bytes);
+    if (offset == kNoOffset) {
+      add_new(file, part.bytes, BlockState::Clean, now, part.at);
+    } else {
+      place_ranged(file, offset, part.bytes, BlockState::Clean, now, part.at);
+      offset += part.bytes;
+    }
+    bytes -= part.bytes;
+  }
 }
 
 void PageCache::add_dirty(FileId file, std::int64_t bytes, double now) {
@@ -341,90 +375,11 @@ void PageCache::commit_dirty(FileId file, std::int64_t bytes, double now, std::i
   } else {
     // The pages the copy filled: its reservation's, on their nodes.
     nodes_.release(bytes, nodes_.toucher(), &NodeUse::reserved,
-                   [&](NodeId node, std::int64_t part) { add_new_on(node, file, part, BlockState::Dirty, now, false); });
+                   [&](NodeId node, std::int64_t part) { add_new_on(node, file, part, BlockState::Dirty, now, {}); });
     totals_.peak_dirty = std::max(totals_.peak_dirty, dirty());
     settle();
   }
   if (listeners_.progress) listeners_.progress();
-}
-
-ReadCursor PageCache::reaccess(FileId file, std::int64_t bytes, double now, ReadCursor from) {
-  PC_ASSERT(bytes >= 0 && bytes <= cached(file));
-  PC_ASSERT_MSG(!ranged(file), "a file held by range is re-accessed by range (read_range)");
-  FileEntry& entry = file_entry(file);
-  std::int64_t left = bytes;
-  std::int64_t merged_clean[2][kMaxNodes] = {};  // by the list it goes to and the node it is on
-  // A block read moves to the MRU end of `to`: clean data read is merged into one new block
-  // there; dirty (or writeback) data moves on its own, keeping its entry time.
-  auto move = [&](BlockId id, ListKind to) {
-    Block& block = blocks_[id];
-    if (block.state == BlockState::Clean) {
-      merged_clean[static_cast<int>(to)][block.node] += block.size;
-      destroy(id);
-    } else {
-      unlink(id);
-      block.referenced = false;
-      append(id, to);
-    }
-  };
-  // Inactive blocks, least recently used first, from `start`; each as the policy says.
-  // Returns where a next chunk of the same read starts.
-  auto touch_inactive = [&](BlockId start) {
-    const BlockId last = entry.inactive.back();
-    BlockId at = start;
-    while (left > 0 && at != kNoBlock) {
-      const BlockId id = blocks_[at].size > left ? split_front(at, left) : at;
-      at = FileOrder::next(blocks_, id);
-      Block& block = blocks_[id];
-      left -= block.size;
-      if (block.node != nodes_.toucher()) nodes_.remote().reread += block.size;
-      const Policy::Reread what = policy_->reread(block);
-      switch (what) {
-        case Policy::Reread::Mark: block.referenced = true; break;
-        case Policy::Reread::Activate: move(id, ListKind::Active); break;
-        case Policy::Reread::Refresh: move(id, ListKind::Inactive); break;
-      }
-      if (id == last) {
-        // The blocks refreshed are behind it; data added later comes after it, if it stayed.
-        return what == Policy::Reread::Mark ? ReadCursor{.block = id, .after = true, .order = block.order} : ReadCursor{};
-      }
-    }
-    return at != kNoBlock ? ReadCursor{.block = at, .after = false, .order = blocks_[at].order} : ReadCursor{};
-  };
-  // Where this read left off, if that block is still there, unmoved.
-  BlockId start = entry.inactive.front();
-  if (from.block != kNoBlock) {
-    const Block& b = blocks_[from.block];
-    if (b.size > 0 && b.file == file && b.list == ListKind::Inactive && b.order == from.order) {
-      start = from.after ? FileOrder::next(blocks_, from.block) : from.block;
-    }
-  }
-  ReadCursor cursor = touch_inactive(start);
-  // Active blocks: taken from the front of the file's active list and moved to the back, so
-  // that none is met twice.
-  while (left > 0 && !entry.active.empty()) {
-    const BlockId front = entry.active.front();
-    const BlockId id = blocks_[front].size > left ? split_front(front, left) : front;
-    left -= blocks_[id].size;
-    if (blocks_[id].node != nodes_.toucher()) nodes_.remote().reread += blocks_[id].size;
-    move(id, ListKind::Active);
-  }
-  // More than this read left untouched (others read or evicted meanwhile): the blocks it
-  // touched before, again.
-  if (left > 0) {
-    touch_inactive(entry.inactive.front());
-    cursor = {};
-  }
-  PC_ASSERT(left == 0);
-  for (ListKind to : {ListKind::Active, ListKind::Inactive}) {
-    for (NodeId node = 0; node < kMaxNodes; ++node) {
-      const std::int64_t merged = merged_clean[static_cast<int>(to)][node];
-      if (merged > 0 && !extend_tail(to, file, merged, false, node)) append(new_block(file, merged, BlockState::Clean, now, node), to);
-    }
-  }
-  balance();  // after every read, under every policy
-  settle();
-  return cursor;
 }
 
 }  // namespace pagecache::cache

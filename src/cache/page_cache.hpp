@@ -294,9 +294,9 @@ class PageCache {
   void mark_reclaimable(ListKind kind, FileId file, std::uint64_t key);
 
   BlockId new_block(FileId file, std::int64_t size, BlockState state, double now, NodeId node);
-  /// Adds `bytes` to the clean block at the MRU end of `kind` if it is the file's with the
-  /// same referenced mark; false if there is no such block.
-  bool extend_tail(ListKind kind, FileId file, std::int64_t bytes, bool referenced, NodeId node);
+  /// Adds `bytes` to the clean block at the MRU end of `at.list` if it is the file's with the
+  /// same marks; false if there is no such block.
+  bool extend_tail(FileId file, std::int64_t bytes, Placement at, NodeId node);
   /// A block of a ranged file holding [offset, offset + size), indexed, on no list yet.
   BlockId new_ranged_block(FileId file, std::int64_t offset, std::int64_t size, BlockState state, double now, NodeId node);
   using Located = FileRanges::Located;
@@ -309,25 +309,34 @@ class PageCache {
   /// The holes of [offset, end) of a ranged file as new clean data (add_ranged), by offset;
   /// throws SimulationError if one does not fit in free memory. Returns the bytes added.
   /// `first`, if given: FileRanges::at_or_after(file, offset), already looked up.
-  std::int64_t fill_holes(FileId file, std::int64_t offset, std::int64_t end, double now, bool referenced, const Located* first = nullptr);
-  /// New data of a ranged file, [offset, offset + bytes), at the MRU end of the inactive list:
-  /// clean (marked `referenced`) or dirty (entered at `now`). Merged into the tail there if
-  /// that is the file's data ending at `offset` in the same state, mark and entry time.
-  void add_ranged(FileId file, std::int64_t offset, std::int64_t bytes, BlockState state, double now, bool referenced, NodeId node);
+  /// `demand`: data a read asked for, else data read ahead (Policy::arriving).
+  std::int64_t fill_holes(FileId file, std::int64_t offset, std::int64_t end, double now, bool demand, const Located* first = nullptr);
+  /// New data of a ranged file, [offset, offset + bytes), at the MRU end of `at.list`: clean
+  /// (marked as `at` says) or dirty (entered at `now`). Merged into the tail there if that is
+  /// the file's data ending at `offset` in the same state, marks and entry time.
+  void add_ranged(FileId file, std::int64_t offset, std::int64_t bytes, BlockState state, double now, Placement at, NodeId node);
   /// add_ranged for new memory: on the nodes NumaNodes::place gives, by offset.
-  void place_ranged(FileId file, std::int64_t offset, std::int64_t bytes, BlockState state, double now, bool referenced);
+  void place_ranged(FileId file, std::int64_t offset, std::int64_t bytes, BlockState state, double now, Placement at);
+  /// Data read from a device, at `offset` of a ranged file (else kNoOffset): where the policy
+  /// says (Policy::arriving) if it places arrivals, else inactive, marked if a first touch.
+  void add_arriving(FileId file, std::int64_t offset, std::int64_t bytes, double now, bool demand);
   /// Puts one dirty block in writeback under a new token.
   Flushed take_for_writeback(BlockId block);
   /// A dirty block goes into writeback as part of the write `token` (held in its entry time's
   /// place), on its file's list of blocks in writeback.
   void start_writeback(BlockId block, std::uint64_t token);
-  /// New data of `file` at the MRU end of the inactive list, taken from free memory.
-  void add_new(FileId file, std::int64_t bytes, BlockState state, double now, bool referenced = false);
+  /// New data of `file` at the MRU end of `at.list` (dirty data: the inactive list), taken from free memory.
+  void add_new(FileId file, std::int64_t bytes, BlockState state, double now, Placement at = {});
   /// add_new's data on one node (its memory already counted as free there, or reserved).
-  void add_new_on(NodeId node, FileId file, std::int64_t bytes, BlockState state, double now, bool referenced);
+  void add_new_on(NodeId node, FileId file, std::int64_t bytes, BlockState state, double now, Placement at);
+  /// reaccess under a policy that rereads in place: each block's bits updated, nothing moved.
+  ReadCursor reaccess_in_place(FileId file, std::int64_t bytes, ReadCursor from);
+  /// end_writeback's blocks the policy sends to the inactive list's front, in their order.
+  void rotate(std::vector<BlockId>& blocks);
   /// evict() by node: each node an equal share of its own data, then the others what it could not.
   std::int64_t evict_by_node(std::int64_t amount, FileId excluded);
-  void append(BlockId block, ListKind kind);
+  /// Links `block` at the MRU end of `kind` (`front`: at the LRU end) in every list.
+  void append(BlockId block, ListKind kind, bool front = false);
   void unlink(BlockId block);
   void destroy(BlockId block);
   void set_state(BlockId block, BlockState state);
@@ -365,7 +374,12 @@ class PageCache {
   // The policy's constant answers, asked once.
   bool index_clean_;     // spares_files_being_written()
   bool first_touch_;     // read_is_first_touch()
-  bool balance_always_;  // balances_after_every_change()
+  bool balance_always_;  // balance() == AfterEveryChange
+  bool balance_reads_;   // balance() != Never
+  bool in_place_;        // rereads_in_place()
+  bool arrivals_;        // places_arrivals()
+  bool rotates_;         // rotates_written_back()
+  std::vector<BlockId> rotating_;  // end_writeback's scratch
   std::int64_t total_;
   std::int64_t anonymous_ = 0;
   std::int64_t reserved_ = 0;

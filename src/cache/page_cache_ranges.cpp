@@ -54,7 +54,8 @@ void PageCache::move_ranged(BlockId id, std::int64_t offset, ListKind to) {
   const BlockId tail_id = list_of(to).back();
   if (block.state == BlockState::Clean && tail_id != kNoBlock) {
     const Block& tail = blocks_[tail_id];
-    if (tail.file == block.file && tail.ranged && tail.state == BlockState::Clean && !tail.referenced && tail.node == block.node &&
+    if (tail.file == block.file && tail.ranged && tail.state == BlockState::Clean && !tail.referenced && tail.policy_bits == block.policy_bits &&
+        tail.node == block.node &&
         ranges_.end(tail_id) == offset) {
       // Contiguous clean data of the file, one after the other at the MRU end: one block.
       const std::int64_t size = block.size;
@@ -72,26 +73,28 @@ void PageCache::move_ranged(BlockId id, std::int64_t offset, ListKind to) {
   append(id, to);
 }
 
-void PageCache::place_ranged(FileId file, std::int64_t offset, std::int64_t bytes, BlockState state, double now, bool referenced) {
-  if (nodes_.empty()) return add_ranged(file, offset, bytes, state, now, referenced, 0);
+void PageCache::place_ranged(FileId file, std::int64_t offset, std::int64_t bytes, BlockState state, double now, Placement at) {
+  if (nodes_.empty()) return add_ranged(file, offset, bytes, state, now, at, 0);
   nodes_.place(bytes, nodes_.toucher(), [&](NodeId node, std::int64_t part) {
     if (node != nodes_.toucher()) nodes_.remote().cache += part;
-    add_ranged(file, offset, part, state, now, referenced, node);
+    add_ranged(file, offset, part, state, now, at, node);
     offset += part;
   });
 }
 
-void PageCache::add_ranged(FileId file, std::int64_t offset, std::int64_t bytes, BlockState state, double now, bool referenced, NodeId node) {
-  LruList& list = list_of(ListKind::Inactive);
+void PageCache::add_ranged(FileId file, std::int64_t offset, std::int64_t bytes, BlockState state, double now, Placement at, NodeId node) {
+  PC_ASSERT(state == BlockState::Clean || at.list == ListKind::Inactive);
+  LruList& list = list_of(at.list);
   const BlockId tail_id = list.back();
   if (tail_id != kNoBlock) {
     const Block& tail = blocks_[tail_id];
-    if (tail.file == file && tail.ranged && tail.state == state && tail.referenced == referenced && tail.node == node &&
+    if (tail.file == file && tail.ranged && tail.state == state && tail.referenced == at.referenced && tail.policy_bits == at.bits &&
+        tail.node == node &&
         (state == BlockState::Clean || tail.entry_time == now) && ranges_.offset(tail_id) + tail.size == offset) {
       list.resize(tail_id, tail.size + bytes);
       ranges_.resize(file, tail_id, tail.size);
       FileEntry& entry = files_[file];
-      entry.inactive_bytes += bytes;
+      (at.list == ListKind::Inactive ? entry.inactive_bytes : entry.active_bytes) += bytes;
       charge(file, node, bytes);
       if (state == BlockState::Dirty) {
         entry.dirty_bytes += bytes;
@@ -101,8 +104,9 @@ void PageCache::add_ranged(FileId file, std::int64_t offset, std::int64_t bytes,
     }
   }
   const BlockId id = new_ranged_block(file, offset, bytes, state, now, node);
-  blocks_[id].referenced = referenced;
-  append(id, ListKind::Inactive);
+  blocks_[id].referenced = at.referenced;
+  set_policy_bits(blocks_[id], at.bits);
+  append(id, at.list);
   if (state == BlockState::Dirty) dirty_by_age_.push_back(blocks_, id);  // time only goes forward: the newest
 }
 
@@ -120,7 +124,9 @@ std::int64_t PageCache::read_range(FileId file, std::int64_t offset, std::int64_
     at = part.end < end ? ranges_.at_or_after(file, part.end) : Located{};
     Block& block = blocks_[part.id];
     if (block.node != nodes_.toucher()) nodes_.remote().reread += block.size;
-    if (block.list == ListKind::Active) {
+    if (in_place_) {
+      set_policy_bits(block, policy_->reread_bits(block));
+    } else if (block.list == ListKind::Active) {
       move_ranged(part.id, part.offset, ListKind::Active);
     } else {
       switch (policy_->reread(block)) {
@@ -131,21 +137,21 @@ std::int64_t PageCache::read_range(FileId file, std::int64_t offset, std::int64_
     }
   }
   // The holes after the cached prefix; with nothing cached, from the first look-up's answer.
-  const std::int64_t missing = fill_holes(file, held_to, end, now, first_touch_, none_cached ? &first : nullptr);
+  const std::int64_t missing = fill_holes(file, held_to, end, now, true, none_cached ? &first : nullptr);
   if (missing > 0) policy_->missed(*this, file, missing);
-  balance();  // after every read, under every policy
+  if (balance_reads_) balance();  // after every read, under every policy that balances
   settle();
   return missing;
 }
 
-std::int64_t PageCache::fill_holes(FileId file, std::int64_t offset, std::int64_t end, double now, bool referenced, const Located* first) {
+std::int64_t PageCache::fill_holes(FileId file, std::int64_t offset, std::int64_t end, double now, bool demand, const Located* first) {
   std::int64_t added = 0;
   for (std::int64_t at = offset; at < end; first = nullptr) {
     const Located next = first != nullptr ? *first : ranges_.at_or_after(file, at);
     const std::int64_t hole_end = next.id == kNoBlock ? end : std::min(end, next.offset);
     if (hole_end > at) {
       if (hole_end - at > free()) throw SimulationError(fmt::format("cannot cache {} bytes: only {} free", hole_end - at, free()));
-      place_ranged(file, at, hole_end - at, BlockState::Clean, now, referenced);
+      add_arriving(file, at, hole_end - at, now, demand);
       added += hole_end - at;
     }
     at = next.id == kNoBlock ? end : next.end;
@@ -186,7 +192,7 @@ std::int64_t PageCache::write_range(FileId file, std::int64_t offset, std::int64
     const std::int64_t hole_end = next.id == kNoBlock ? end : std::min(end, next.offset);
     if (hole_end > at) {
       if (hole_end - at > free()) throw SimulationError(fmt::format("cannot cache {} bytes: only {} free", hole_end - at, free()));
-      place_ranged(file, at, hole_end - at, BlockState::Dirty, now, false);
+      place_ranged(file, at, hole_end - at, BlockState::Dirty, now, {});
       missing += hole_end - at;
       at = hole_end;
       continue;
@@ -197,7 +203,7 @@ std::int64_t PageCache::write_range(FileId file, std::int64_t offset, std::int64
       // Its pages are written anew: the same memory, now dirty data entered now.
       const NodeId node = blocks_[part.id].node;
       destroy(part.id);
-      add_ranged(file, at, part.end - part.offset, BlockState::Dirty, now, false, node);
+      add_ranged(file, at, part.end - part.offset, BlockState::Dirty, now, {}, node);
     }
     at = part.end;
   }

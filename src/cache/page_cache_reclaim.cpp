@@ -92,12 +92,16 @@ std::int64_t PageCache::evict_clean(ListKind kind, std::int64_t budget, FileId e
 
 std::int64_t PageCache::evict_front(BlockId id, std::int64_t bytes, ListKind from) {
   const BlockId victim = front_part(id, bytes);
-  const FileId file = blocks_[victim].file;
-  const std::int64_t size = blocks_[victim].size;
-  totals_.evicted += size;
+  const Block& block = blocks_[victim];
+  const Policy::Evicted gone{.file = block.file,
+                             .from = from,
+                             .bytes = block.size,
+                             .offset = block.ranged ? ranges_.offset(victim) : kNoOffset,
+                             .bits = block.policy_bits};
+  totals_.evicted += gone.bytes;
   destroy(victim);
-  policy_->evicted(*this, file, from, size);
-  return size;
+  policy_->evicted(*this, gone);
+  return gone.bytes;
 }
 
 void PageCache::move_to_back(BlockId id, ListKind to, bool referenced) {

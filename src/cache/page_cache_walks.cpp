@@ -55,7 +55,24 @@ void CacheWalks::CleanScan::moved(BlockId block) noexcept {
   if (at_[b.node] == kNoBlock) at_[b.node] = block;
 }
 
+BlockId CacheWalks::first(ListKind kind) const noexcept {
+  const BlockId front = cache_->list(kind).front();
+  return front == kNoBlock || cache_->in_target(cache_->blocks_[front]) ? front : next(front);
+}
+
+BlockId CacheWalks::next(BlockId block) const noexcept {
+  const LruList& list = cache_->list(cache_->blocks_[block].list);
+  BlockId id = list.next(block);
+  while (id != kNoBlock && !cache_->in_target(cache_->blocks_[id])) id = list.next(id);
+  return id;
+}
+
 const Block& CacheWalks::block(BlockId block) const noexcept { return cache_->blocks_[block]; }
+
+void CacheWalks::set_bits(BlockId block, std::uint8_t bits) noexcept {
+  PC_ASSERT(bits <= kMaxPolicyBits);
+  set_policy_bits(cache_->blocks_[block], bits);
+}
 
 std::int64_t CacheWalks::evict(BlockId block, std::int64_t bytes) {
   PC_ASSERT(bytes > 0 && cache_->blocks_[block].state == BlockState::Clean && cache_->in_target(cache_->blocks_[block]));

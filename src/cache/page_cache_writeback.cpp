@@ -145,9 +145,18 @@ void PageCache::end_writeback(const Flushed& taken) {
   FileWriteback& in_writeback = writeback_[taken.file];
   for (BlockId id = in_writeback.front(); id != kNoBlock;) {
     const BlockId next = FileWriteback::next(blocks_, id);
-    if (blocks_[id].writeback_batch == taken.token) set_state(id, BlockState::Clean);
+    if (blocks_[id].writeback_batch == taken.token) {
+      set_state(id, BlockState::Clean);
+      if (rotates_) {
+        if (const std::optional<std::uint8_t> bits = policy_->written_back(blocks_[id])) {
+          set_policy_bits(blocks_[id], *bits);
+          rotating_.push_back(id);
+        }
+      }
+    }
     id = next;
   }
+  if (!rotating_.empty()) rotate(rotating_);
   settle();
   if (listeners_.progress) listeners_.progress();
 }

@@ -25,6 +25,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -50,9 +51,31 @@ class Policy {
     Refresh,   ///< to the most recently used end of the inactive list
   };
   virtual Reread reread(const Block& inactive_block) const noexcept = 0;
-  /// Whether the lists are balanced (active <= 2 x inactive) after every change, or only
-  /// after chunk reads (every policy balances after those).
-  virtual bool balances_after_every_change() const noexcept = 0;
+  /// Whether a read of cached data leaves it where it is on either list, only changing its
+  /// block's policy bits to reread_bits (asked once; reread is then never asked).
+  virtual bool rereads_in_place() const noexcept { return false; }
+  /// The policy bits of a block read again in place.
+  virtual std::uint8_t reread_bits(const Block& block) const noexcept { return block.policy_bits; }
+  /// When the lists are balanced (active <= 2 x inactive).
+  enum class Balance : std::uint8_t {
+    AfterEveryChange,  ///< after every change of the cache
+    AfterReads,        ///< after each read of a chunk
+    Never,             ///< never by PageCache: the lists mean what the policy says
+  };
+  virtual Balance balance() const noexcept = 0;
+  /// Whether arriving decides where data read from a device goes (asked once); else it goes
+  /// to the inactive list, referenced if read_is_first_touch.
+  virtual bool places_arrivals() const noexcept { return false; }
+  /// Where the first bytes (the answer's, > 0, at most `bytes`) of `file`'s data arriving from
+  /// a device go: at `offset` for a file held by range, else kNoOffset; `demand` for data a
+  /// read asked for, not for data read ahead. Called before they are added.
+  struct Arrival {
+    std::int64_t bytes = 0;
+    Placement at;
+  };
+  virtual Arrival arriving(const PageCache& /*cache*/, FileId /*file*/, std::int64_t /*offset*/, std::int64_t bytes, bool demand) {
+    return {bytes, Placement{.list = ListKind::Inactive, .referenced = demand && read_is_first_touch(), .bits = 0}};
+  }
 
   // --- Reclaim (mm/vmscan.c) --------------------------------------------------------------
   /// Whether reclaim spares the files being written; PageCache then keeps each file's clean
@@ -86,10 +109,18 @@ class Policy {
 
   // --- Notifications, for a policy with state of its own (nothing by default) -------------
   // Once per block or per read chunk, never per page: the stateless policies pay a call each.
-  /// `bytes` of `file` were evicted from the list `from` by a reclaim walk (evict_clean's
-  /// list; deactivate_oldest's victims come from the active list). Called once per block
-  /// evicted, after it is gone from `cache`.
-  virtual void evicted(const PageCache& /*cache*/, FileId /*file*/, ListKind /*from*/, std::int64_t /*bytes*/) {}
+  /// Data evicted by a reclaim walk: its file, the list it left (evict_clean's list;
+  /// deactivate_oldest's victims come from the active list), its bytes, its offset (a file
+  /// held by range; else kNoOffset) and its block's policy bits.
+  struct Evicted {
+    FileId file = 0;
+    ListKind from = ListKind::Inactive;
+    std::int64_t bytes = 0;
+    std::int64_t offset = 0;
+    std::uint8_t bits = 0;
+  };
+  /// Called once per block evicted, after it is gone from `cache`.
+  virtual void evicted(const PageCache& /*cache*/, const Evicted& /*data*/) {}
   /// `bytes` of `file` not in the cache were read from a device (a miss: PageCache::add_read),
   /// once per read chunk, after they are cached. Not called for data written or cached from
   /// the start (add_clean, add_dirty).
@@ -97,6 +128,11 @@ class Policy {
   /// `file` was deleted (PageCache::drop_file): its data left the cache without eviction, and
   /// a policy forgets what it remembers of it. Called after its blocks are gone.
   virtual void dropped(const PageCache& /*cache*/, FileId /*file*/) {}
+  /// Whether written_back is asked when a block's writeback ends (asked once).
+  virtual bool rotates_written_back() const noexcept { return false; }
+  /// A block's writeback just ended (it is clean): its new policy bits, if it goes to the
+  /// front of the inactive list (the next data reclaim meets), else nothing.
+  virtual std::optional<std::uint8_t> written_back(const Block& /*block*/) const noexcept { return std::nullopt; }
 };
 
 /// A policy as its file defines it for the registry (policies/registry.cpp): its declaration

@@ -110,7 +110,7 @@ class ArcPolicy final : public KernelWriteback {
   // A hit in T1 or T2 moves the data to T2's most recently used end; no referenced marks.
   bool read_is_first_touch() const noexcept override { return false; }
   Reread reread(const Block&) const noexcept override { return Reread::Activate; }
-  bool balances_after_every_change() const noexcept override { return false; }
+  Balance balance() const noexcept override { return Balance::AfterReads; }
 
   bool spares_files_being_written() const noexcept override { return false; }
   std::int64_t reclaim(PageCache& cache, std::int64_t amount, FileId excluded) override {
@@ -127,8 +127,8 @@ class ArcPolicy final : public KernelWriteback {
     return cache.list(ListKind::Inactive).bytes(BlockState::Clean) + cache.list(ListKind::Active).bytes(BlockState::Clean);
   }
 
-  void evicted(const PageCache& cache, FileId file, ListKind from, std::int64_t bytes) override {
-    (from == ListKind::Inactive ? b1_ : b2_).push(file, bytes, ++stamp_);
+  void evicted(const PageCache& cache, const Evicted& data) override {
+    (data.from == ListKind::Inactive ? b1_ : b2_).push(data.file, data.bytes, ++stamp_);
     trim(capacity(cache));
   }
   void missed(const PageCache& cache, FileId file, std::int64_t bytes) override {

@@ -83,7 +83,7 @@ class KernelPolicy final : public Policy {
   Reread reread(const Block& block) const noexcept override {
     return s_.two_touch_activation && !block.referenced ? Reread::Mark : Reread::Activate;
   }
-  bool balances_after_every_change() const noexcept override { return s_.balance_after_every_change; }
+  Balance balance() const noexcept override { return s_.balance_after_every_change ? Balance::AfterEveryChange : Balance::AfterReads; }
 
   bool spares_files_being_written() const noexcept override { return s_.protect_files_being_written; }
   std::int64_t reclaim(PageCache& cache, std::int64_t amount, FileId excluded) override {

@@ -18,7 +18,7 @@ class LruPolicy final : public KernelWriteback {
   // Nothing is ever activated: the inactive list is the one list, the active one stays empty.
   bool read_is_first_touch() const noexcept override { return false; }
   Reread reread(const Block&) const noexcept override { return Reread::Refresh; }
-  bool balances_after_every_change() const noexcept override { return false; }
+  Balance balance() const noexcept override { return Balance::AfterReads; }
 
   bool spares_files_being_written() const noexcept override { return false; }
   std::int64_t reclaim(PageCache& cache, std::int64_t amount, FileId excluded) override {

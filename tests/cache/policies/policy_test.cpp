@@ -164,7 +164,7 @@ class CountingPolicy final : public Policy {
     ++rereads;
     return on_reread;
   }
-  bool balances_after_every_change() const noexcept override { return false; }
+  Balance balance() const noexcept override { return Balance::AfterReads; }
   bool spares_files_being_written() const noexcept override { return false; }
   std::int64_t reclaim(PageCache& cache, std::int64_t amount, FileId excluded) override {
     ++reclaims;
@@ -183,7 +183,7 @@ class CountingPolicy final : public Policy {
     ++dirtyables;
     return 1234;
   }
-  void evicted(const PageCache&, FileId file, ListKind from, std::int64_t bytes) override { evictions.push_back({file, from, bytes}); }
+  void evicted(const PageCache&, const Evicted& data) override { evictions.push_back({data.file, data.from, data.bytes}); }
   void missed(const PageCache&, FileId file, std::int64_t bytes) override { misses.emplace_back(file, bytes); }
   void dropped(const PageCache&, FileId file) override { drops.push_back(file); }
 };

@@ -14,7 +14,7 @@ namespace pagecache::cache {
 
 // The registered policies, in the order `pcsim show` and the docs list them: each one a
 // registration (PolicyRegistration) its file defines.
-#define PAGECACHE_CACHE_POLICIES(X) X(kKernelPolicy) X(kWrenchCachePreset) X(kLruPolicy) X(kArcPolicy) X(kClockPolicy)
+#define PAGECACHE_CACHE_POLICIES(X) X(kKernelPolicy) X(kWrenchCachePreset) X(kLruPolicy) X(kArcPolicy) X(kClockPolicy) X(kMglruPolicy)
 
 #define PAGECACHE_DECLARE(policy) extern const PolicyRegistration policy;
 PAGECACHE_CACHE_POLICIES(PAGECACHE_DECLARE)

@@ -15,8 +15,9 @@
 // kernel's behaviour; its switches are the `linux` profile's ablations), the `wrench_cache`
 // preset (the kernel policy with every switch at WRENCH-cache's reading of the paper, the
 // `paper` profile; docs/wrench-cache.md), `lru` (one LRU list, no activation: a plain
-// baseline) and `arc` (ARC over the two lists, with ghost lists of its own: a policy with
-// state).
+// baseline), `clock` (second chance), `arc` (ARC over the two lists, with ghost lists of its
+// own: a policy with state) and `mglru` (the kernel's generations: the lists are its two
+// oldest, reads only mark, data arriving is placed by it).
 
 #include "cache/block.hpp"
 

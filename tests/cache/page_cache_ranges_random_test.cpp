@@ -20,6 +20,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
+#include <map>
+#include <optional>
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -39,6 +42,7 @@ struct Unit {
   BlockState state = BlockState::Clean;
   double entry = 0.0;         // dirty: when it became dirty
   std::uint64_t token = 0;    // in writeback: the flush writing it
+  std::uint8_t bits = 0;      // the policy's marks (mglru: refs, working set, reclaim)
   friend bool operator==(const Unit&, const Unit&) = default;
 };
 
@@ -48,7 +52,7 @@ struct Unit {
 template <>
 struct Catch::StringMaker<Unit> {
   static std::string convert(const Unit& u) {
-    return fmt::format("{}:{}{}{}@{}#{}", u.file, u.offset, "cdw"[static_cast<int>(u.state)], u.referenced ? "*" : "", u.entry, u.token);
+    return fmt::format("{}:{}{}{}@{}#{}b{}", u.file, u.offset, "cdw"[static_cast<int>(u.state)], u.referenced ? "*" : "", u.entry, u.token, u.bits);
   }
 };
 
@@ -60,9 +64,10 @@ class Reference {
       : total_(total),
         lru_(s.policy == "lru"),
         clock_(s.policy == "clock"),
-        two_touch_(!lru_ && !clock_ && s.get("two_touch_activation")),
-        splits_in_place_(lru_ || clock_ || s.get("flush_splits_in_place")),
-        balance_always_(!lru_ && !clock_ && s.get("balance_after_every_change")),
+        mglru_(s.policy == "mglru"),
+        two_touch_(!lru_ && !clock_ && !mglru_ && s.get("two_touch_activation")),
+        splits_in_place_(lru_ || clock_ || mglru_ || s.get("flush_splits_in_place")),
+        balance_always_(!lru_ && !clock_ && !mglru_ && s.get("balance_after_every_change")),
         first_touch_(first_touch) {}
 
   std::vector<Unit> inactive, active;
@@ -89,7 +94,10 @@ class Reference {
 
   // Whole-file data read before the file is held by range.
   void add_whole(FileId f, std::int64_t bytes) {
-    for (std::int64_t i = 0; i < bytes; ++i) inactive.push_back({f, -1, first_touch_});
+    for (std::int64_t i = 0; i < bytes; ++i) {
+      if (mglru_) arrive(f, -1, true);
+      else inactive.push_back({f, -1, first_touch_});
+    }
     settle();
   }
 
@@ -113,7 +121,12 @@ class Reference {
 
   // The cached bytes of the range in offset order, each as the policy says; then the holes.
   std::int64_t read(FileId f, std::int64_t offset, std::int64_t bytes) {
-    for (std::int64_t o = offset; o < offset + bytes; ++o) {
+    for (std::int64_t o = offset; o < offset + bytes && mglru_; ++o) {
+      for (auto* list : {&inactive, &active})
+        for (Unit& u : *list)
+          if (u.file == f && u.offset == o) u.bits = (u.bits & 7) < 4 ? static_cast<std::uint8_t>(u.bits + 1) : u.bits | kWs;
+    }
+    for (std::int64_t o = offset; o < offset + bytes && !mglru_; ++o) {
       auto in = [&](std::vector<Unit>& list) {
         return std::find_if(list.begin(), list.end(), [&](const Unit& u) { return u.file == f && u.offset == o; });
       };
@@ -136,11 +149,12 @@ class Reference {
     std::int64_t missing = 0;
     for (std::int64_t o = offset; o < offset + bytes; ++o) {
       if (cached_in(f, o, 1) == 0) {
-        inactive.push_back({f, o, first_touch_});
+        if (mglru_) arrive(f, o, true);
+        else inactive.push_back({f, o, first_touch_});
         ++missing;
       }
     }
-    balance();
+    if (!mglru_) balance();
     settle();
     return missing;
   }
@@ -148,6 +162,7 @@ class Reference {
   // Clean data least recently used first, skipping `excluded`: the inactive list, then (the
   // kernel policy without reclaim_inactive_only) the active list.
   std::int64_t evict(std::int64_t amount, FileId excluded) {
+    if (mglru_) return evict_generations(amount, excluded);
     std::int64_t evicted = 0;
     if (clock_) {
       // The hand at the front: a referenced byte loses its bit and goes to the back (met again
@@ -231,26 +246,133 @@ class Reference {
   }
 
   void end_writeback(std::uint64_t token) {
-    for (auto* list : {&inactive, &active})
-      for (Unit& u : *list)
-        if (u.state == BlockState::Writeback && u.token == token) {
-          u.state = BlockState::Clean;
-          u.token = 0;
-          u.entry = 0.0;
+    std::vector<Unit> rotated;  // mglru: marked for reclaim, to the oldest generation's tail
+    for (auto* list : {&inactive, &active}) {
+      for (auto it = list->begin(); it != list->end();) {
+        if (it->state == BlockState::Writeback && it->token == token) {
+          it->state = BlockState::Clean;
+          it->token = 0;
+          it->entry = 0.0;
+          if (mglru_ && (it->bits & kReclaim)) {
+            it->bits &= static_cast<std::uint8_t>(~kReclaim);
+            rotated.push_back(*it);
+            it = list->erase(it);
+            continue;
+          }
         }
+        ++it;
+      }
+    }
+    inactive.insert(inactive.begin(), rotated.begin(), rotated.end());
     settle();
   }
 
   void drop(FileId f) {
     for (auto* list : {&inactive, &active}) std::erase_if(*list, [&](const Unit& u) { return u.file == f; });
+    std::erase_if(shadows_, [&](const auto& entry) { return entry.first.first == f; });
+    whole_shadows_[f].clear();
     settle();
+  }
+
+  // --- mglru: each rule as the kernel states it, byte by byte ---------------------------------
+  static constexpr std::uint8_t kWs = 8, kReclaim = 16;
+  struct Shadow {
+    std::uint8_t refs;  // refs less one
+    bool ws;
+  };
+  static int tier(int refs, bool ws) { return ws ? 3 : refs <= 1 ? 0 : refs == 2 ? 1 : 2; }
+  // A byte read from the device: a recent shadow counts its tier's refault; the working set
+  // comes back in the next generation.
+  void arrive(FileId f, std::int64_t o, bool demand) {
+    Unit u{f, o, false};
+    u.bits = demand ? 1 : 0;
+    std::optional<Shadow> shadow;
+    if (o < 0) {
+      if (!whole_shadows_[f].empty()) {
+        shadow = whole_shadows_[f].front();
+        whole_shadows_[f].erase(whole_shadows_[f].begin());
+      }
+    } else if (auto it = shadows_.find({f, o}); it != shadows_.end()) {
+      shadow = it->second;
+      shadows_.erase(it);
+    }
+    if (shadow) refaulted_[tier(shadow->refs + 1, shadow->ws)] += 1;
+    if (shadow && shadow->ws) {
+      u.bits |= kWs;
+      active.push_back(u);
+    } else {
+      inactive.push_back(u);
+    }
+  }
+  int tier_index() const {
+    auto at_or_below = [&](int t) {
+      const std::int64_t sp_ref = avg_refaulted_[0] + refaulted_[0], sp_total = avg_total_[0] + protected_[0] + evicted_[0];
+      const std::int64_t pv_ref = avg_refaulted_[t] + refaulted_[t], pv_total = avg_total_[t] + protected_[t] + evicted_[t];
+      return pv_ref < 64 || pv_ref * (sp_total + 64) * 2 <= (sp_ref + 1) * pv_total * 3;
+    };
+    for (int t = 1; t < 4; ++t)
+      if (!at_or_below(t)) return t - 1;
+    return 3;
+  }
+  std::int64_t evict_generations(std::int64_t amount, FileId excluded) {
+    int protect_above = tier_index();
+    std::int64_t evicted = 0;
+    int idle = 0;
+    while (evicted < amount) {
+      const std::int64_t before = evicted;
+      for (std::size_t i = 0; i < inactive.size() && evicted < amount;) {
+        Unit u = inactive[i];
+        const int refs = u.bits & 7;
+        const bool ws = (u.bits & kWs) != 0;
+        const int t = tier(refs, ws);
+        if (u.file == excluded) {
+          ++i;
+          continue;
+        }
+        inactive.erase(inactive.begin() + static_cast<std::ptrdiff_t>(i));
+        if ((refs == 4 && ws) || t > protect_above) {
+          if (!(refs == 4 && ws)) protected_[t] += 1;
+          u.bits &= kWs;
+          active.push_back(u);
+        } else if (u.state != BlockState::Clean) {
+          u.bits = static_cast<std::uint8_t>((u.bits & kWs) | kReclaim);
+          active.push_back(u);
+        } else {
+          evicted_[t] += 1;
+          const Shadow shadow{static_cast<std::uint8_t>(std::max(refs - 1, 0)), ws};
+          if (u.offset < 0) whole_shadows_[u.file].push_back(shadow);
+          else shadows_[{u.file, u.offset}] = shadow;
+          ++evicted;
+        }
+      }
+      if (evicted >= amount || active.empty()) break;
+      idle = evicted > before ? 0 : idle + 1;
+      if (idle == 2) break;
+      // The oldest generation retired: the next one is the oldest, the counters folded.
+      inactive.insert(inactive.end(), active.begin(), active.end());
+      active.clear();
+      for (int t = 0; t < 4; ++t) {
+        avg_refaulted_[t] = (avg_refaulted_[t] + refaulted_[t]) / 2;
+        avg_total_[t] = (avg_total_[t] + evicted_[t] + protected_[t]) / 2;
+        refaulted_[t] = evicted_[t] = protected_[t] = 0;
+      }
+      shadows_.clear();
+      for (auto& w : whole_shadows_) w.clear();
+      protect_above = tier_index();
+    }
+    settle();
+    return evicted;
   }
 
  private:
   std::int64_t total_;
   bool lru_;
   bool clock_;
+  bool mglru_;
   bool two_touch_;
+  std::map<std::pair<FileId, std::int64_t>, Shadow> shadows_;
+  std::vector<std::vector<Shadow>> whole_shadows_ = std::vector<std::vector<Shadow>>(kFiles);
+  std::array<std::int64_t, 4> refaulted_{}, evicted_{}, protected_{}, avg_refaulted_{}, avg_total_{};
  public:
   bool splits_in_place_;
  private:
@@ -266,7 +388,8 @@ std::vector<Unit> expand(const PageCache& cache, ListKind kind) {
     const bool dirty = b.state == BlockState::Dirty;  // in writeback its token holds the entry time's place
     const std::uint64_t token = b.state == BlockState::Writeback ? b.writeback_batch : 0;
     for (std::int64_t i = 0; i < b.size; ++i)
-      units.push_back({b.file, b.ranged ? cache.ranges().offset(id) + i : -1, b.referenced, b.state, dirty ? b.entry_time : 0.0, token});
+      units.push_back({b.file, b.ranged ? cache.ranges().offset(id) + i : -1, b.referenced, b.state, dirty ? b.entry_time : 0.0, token,
+                       static_cast<std::uint8_t>(b.policy_bits)});
   }
   return units;
 }
@@ -461,4 +584,24 @@ TEST_CASE("files held by range agree with a reference of single bytes (kernel se
   CHECK(counts.reads > 15000);
   CHECK(counts.writes > 3500);
   CHECK(counts.flushes > 2500);
+}
+
+TEST_CASE("files held by range agree with a reference of single bytes (mglru policy)", "[page_cache][ranges][random][mglru]") {
+  CacheSettings settings = CacheSettings::kernel();
+  settings.policy = "mglru";
+  Counts counts;
+  counts += run_random(settings, 23u, 200000);
+  CHECK(counts.reads > 30000);
+  CHECK(counts.writes > 7500);
+  CHECK(counts.flushes > 5000);
+}
+
+TEST_CASE("files held by range agree with a reference of single bytes (mglru policy, two nodes, a group's reclaim)",
+          "[page_cache][ranges][random][mglru][numa][groups]") {
+  CacheSettings settings = CacheSettings::kernel();
+  settings.policy = "mglru";
+  Counts counts;
+  counts += run_random(settings, 29u, 100000, true);
+  CHECK(counts.reads > 15000);
+  CHECK(counts.writes > 3500);
 }

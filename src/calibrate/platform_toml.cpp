@@ -79,6 +79,11 @@ std::string page_cache_toml(const SystemInfo& s) {
   out += fmt::format("dirty_ratio = {:.4g}\ndirty_background_ratio = {:.4g}\n", ratio, background);
   out += fmt::format("# dirty_expire_centisecs, dirty_writeback_centisecs\ndirty_expire = \"{:g} s\"\nwriteback_interval = \"{:g} s\"\n", s.dirty_expire,
                      s.writeback_interval);
+  if (lru_gen_enabled(s.lru_gen)) {
+    out += fmt::format("# /sys/kernel/mm/lru_gen/enabled {}: the kernel reclaims by generations\npolicy = \"mglru\"\n", s.lru_gen);
+  } else {
+    out += fmt::format("# /sys/kernel/mm/lru_gen/enabled {}: the two-list LRU, the profile's policy\n", s.lru_gen.empty() ? "absent" : s.lru_gen);
+  }
   return out;
 }
 

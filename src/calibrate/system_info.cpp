@@ -4,6 +4,7 @@
 #include <chrono>
 #include <fstream>
 #include <sstream>
+#include <cstdlib>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -181,6 +182,13 @@ std::string selected_choice(std::string_view text) {
   return std::string(text.substr(open + 1, close - open - 1));
 }
 
+bool lru_gen_enabled(std::string_view enabled) {
+  const std::string text = trim(enabled);
+  if (text.empty()) return false;
+  const unsigned long mask = std::strtoul(text.c_str(), nullptr, 16);  // "0x0007"; strtoul takes the prefix
+  return (mask & 0x1UL) != 0;
+}
+
 std::string cpuinfo_model(std::string_view cpuinfo) {
   const auto at = cpuinfo.find("model name");
   if (at == std::string_view::npos) return {};
@@ -215,6 +223,7 @@ SystemInfo read_system_info(const std::filesystem::path& dir) {
   s.memory_free = meminfo_bytes(meminfo, "MemFree");
   s.page_size = ::sysconf(_SC_PAGESIZE);
   s.transparent_hugepages = selected_choice(read_text("/sys/kernel/mm/transparent_hugepage/enabled"));
+  s.lru_gen = trim(read_text("/sys/kernel/mm/lru_gen/enabled"));
   const std::filesystem::path vm = "/proc/sys/vm";
   s.min_free = read_number(vm / "min_free_kbytes", 0) * 1024;
   s.dirty_ratio = static_cast<double>(read_number(vm / "dirty_ratio", 20)) / 100.0;

@@ -27,6 +27,7 @@ struct SystemInfo {
   std::int64_t page_size = 4096;
   std::int64_t min_free = 0;  ///< /proc/sys/vm/min_free_kbytes, bytes: the kernel's watermarks follow it
   std::string transparent_hugepages;  ///< the selected mode: always, madvise, never (empty: absent)
+  std::string lru_gen;  ///< /sys/kernel/mm/lru_gen/enabled as read, e.g. 0x0007 (empty: absent, no multi-generation LRU)
   // /proc/sys/vm: a ratio is 0 when its _bytes setting is used instead.
   double dirty_ratio = 0.2;
   double dirty_background_ratio = 0.1;
@@ -97,6 +98,9 @@ SystemInfo read_system_info(const std::filesystem::path& dir);
 std::int64_t meminfo_bytes(std::string_view meminfo, std::string_view key);
 /// The bracketed word of a sysfs choice ("always [madvise] never" -> "madvise").
 std::string selected_choice(std::string_view text);
+/// Whether /sys/kernel/mm/lru_gen/enabled's capability mask has its main switch (0x0001,
+/// LRU_GEN_CORE; mm/vmscan.c, enabled_show): the kernel reclaims by generations.
+bool lru_gen_enabled(std::string_view enabled);
 /// The first "model name" of /proc/cpuinfo, and whether its flags name a hypervisor.
 std::string cpuinfo_model(std::string_view cpuinfo);
 bool cpuinfo_hypervisor(std::string_view cpuinfo);

@@ -121,6 +121,19 @@ TEST_CASE("the calibrated platform file is one pcsim loads, each value as measur
   const Scenario b = parse_scenario(platform_toml(c) + "\n[pipelines]\nfile_size = \"1 GB\"\n", "<calibrated>");
   CHECK(b.hosts[0].cache.dirty_ratio == Approx(0.25));
   CHECK(b.hosts[0].cache.dirty_background_ratio == Approx(0.0625));
+
+  // The multi-generation LRU's main switch on: the platform says mglru; off or absent: the
+  // profile's policy stays.
+  CHECK(b.hosts[0].cache.policy == CacheSettings::kernel().policy);
+  CHECK_THAT(platform_toml(c), Catch::Contains("lru_gen/enabled absent") && !Catch::Contains("policy ="));
+  for (const char* on : {"0x0007", "0x0001", "0x0003"}) {
+    c.system.lru_gen = on;
+    CHECK(parse_scenario(platform_toml(c) + "\n[pipelines]\nfile_size = \"1 GB\"\n", "<calibrated>").hosts[0].cache.policy == "mglru");
+  }
+  for (const char* off : {"0x0000", "0x0006", ""}) {
+    c.system.lru_gen = off;
+    CHECK(parse_scenario(platform_toml(c) + "\n[pipelines]\nfile_size = \"1 GB\"\n", "<calibrated>").hosts[0].cache.policy != "mglru");
+  }
 }
 
 TEST_CASE("a measurement whose deadline passed before it began still times one request", "[calibrate]") {

@@ -1,23 +1,45 @@
 #pragma once
 // The page-cache policies, as each declares itself (src/cache/policies/, one file each): its
-// name, what it is, and its parameters, the [hosts.page_cache] switches, with their defaults
+// name, what it is, and its parameters, [hosts.page_cache] keys of four kinds, with their defaults
 // under each profile; and the host model's switches, which every policy keeps. The scenario reader, `pcsim show`, `pcsim validate --switch` and the
 // docs' tests read these declarations rather than naming policies or switches.
 
+#include <cstdint>
 #include <span>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 namespace pagecache {
 
-/// A switch of a policy: one of its behaviours, on or off.
+/// What a policy's parameter holds, which says how a scenario writes it: a switch (true or
+/// false), an integer, a size ("64 KiB") or a ratio (a number from 0 to 1).
+enum class ParameterKind : std::uint8_t { Switch, Integer, Size, Ratio };
+
+/// A parameter's value: a switch's bool, an integer's or a size's (bytes) std::int64_t, a
+/// ratio's double.
+using ParameterValue = std::variant<bool, std::int64_t, double>;
+
+/// A parameter of a policy: one of its behaviours on or off, or a number it decides by.
 struct PolicyParameter {
-  std::string_view key;  ///< its [hosts.page_cache] key
-  bool linux_default;    ///< its value under the linux profile
-  bool paper_default;    ///< under the paper profile: WRENCH-cache's decision
-  std::string_view doc;  ///< what it turns on, in a line
+  std::string_view key;          ///< its [hosts.page_cache] key
+  ParameterValue linux_default;  ///< its value under the linux profile
+  ParameterValue paper_default;  ///< under the paper profile: WRENCH-cache's decision
+  std::string_view doc;          ///< what it turns on or sets, in a line
+  ParameterKind kind = ParameterKind::Switch;
+  /// The values an integer, size or ratio may take, inclusive.
+  double lowest = 0.0;
+  double highest = 0.0;
+
+  /// Whether `value` is of this parameter's kind and within its bounds.
+  bool accepts(const ParameterValue& value) const noexcept;
 };
+
+/// `value` as a scenario writes it for a parameter of `kind`: true, 64, "64 KiB", 0.25.
+std::string format_parameter(ParameterKind kind, const ParameterValue& value);
+/// The name of a kind, for messages: "a switch", "an integer", "a size", "a ratio".
+std::string_view kind_name(ParameterKind kind) noexcept;
 
 /// A registered policy. A preset (`preset_of` not empty) owns no parameters: it is that policy
 /// with every parameter at its paper default; setting one makes it that policy.

@@ -9,6 +9,9 @@
 // the kernel (the `linux` profile; not named linux(), which GNU dialects of C++ predefine as
 // a macro).
 
+#include <pagecache/cache_policies.hpp>
+
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <string>
@@ -44,15 +47,22 @@ struct CacheSettings {
   std::string policy = "kernel";
   /// The policy's parameters given a value, by key; the others keep their defaults (under
   /// the linux profile; a preset's, the paper profile's). Set them with set().
-  std::map<std::string, bool, std::less<>> parameters;
+  std::map<std::string, ParameterValue, std::less<>> parameters;
 
   /// Sets the host model's switch or the policy's parameter `key`. On a preset (wrench_cache),
   /// the policy it presets takes its place with the preset's values, so that the other
-  /// parameters keep them. Throws ConfigError if neither has such a key.
-  void set(std::string_view key, bool value);
+  /// parameters keep them. Throws ConfigError if neither has such a key, or if `value` is not
+  /// of its kind or out of its bounds.
+  void set(std::string_view key, ParameterValue value);
   /// The value of the host model's switch or the policy's parameter `key` (given, or its
   /// default). Throws ConfigError if neither has such a key.
+  ParameterValue value(std::string_view key) const;
+  /// value(key) of a switch; throws ConfigError if `key` is not one.
   bool get(std::string_view key) const;
+  /// value(key) of an integer or a size; throws ConfigError if `key` is neither.
+  std::int64_t integer(std::string_view key) const;
+  /// value(key) of a ratio; throws ConfigError if `key` is not one.
+  double ratio(std::string_view key) const;
 
   /// The paper's model as WRENCH-cache implements it: dirty ratio 0.4, 5 s interval, 30 s
   /// expiry, and WRENCH-cache's reading of the paper where the paper is ambiguous.

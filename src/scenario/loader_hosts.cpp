@@ -24,6 +24,27 @@ namespace pagecache::scenario {
 
 namespace {
 
+// A policy's parameter as its kind is written: true/false, an integer, a size ("64 KiB"), a
+// number for a ratio; its bounds are CacheSettings::set's to check.
+std::optional<ParameterValue> read_parameter(TomlReader& r, const PolicyParameter& p) {
+  const std::string key(p.key);
+  switch (p.kind) {
+    case ParameterKind::Switch:
+      if (const auto v = r.optional_bool(key)) return *v;
+      return std::nullopt;
+    case ParameterKind::Integer:
+      if (const auto v = r.optional_integer(key)) return *v;
+      return std::nullopt;
+    case ParameterKind::Size:
+      if (const auto v = r.optional_size(key)) return *v;
+      return std::nullopt;
+    case ParameterKind::Ratio:
+      if (const auto v = r.optional_number(key)) return *v;
+      return std::nullopt;
+  }
+  return std::nullopt;
+}
+
 CacheSettings read_page_cache(const toml::table* table, const TomlReader& parent, CacheSettings s, const std::string& file) {
   if (table == nullptr) return s;
   TomlReader r(*table, parent.child_path("page_cache"), file);
@@ -68,14 +89,32 @@ CacheSettings read_page_cache(const toml::table* table, const TomlReader& parent
   }
   // A policy's parameters: setting one chooses that policy, the others keeping the profile's
   // values (CacheSettings::set: under the paper profile, WRENCH-cache's).
+  const PolicyParameter* first_set = nullptr;  // and its policy's name
+  std::string_view first_owner;
   for (const PolicyDeclaration& owner : cache_policies()) {
     for (const PolicyParameter& parameter : owner.parameters) {
-      const auto v = r.optional_bool(std::string(parameter.key));
+      const std::optional<ParameterValue> v = read_parameter(r, parameter);
       if (!v) continue;
       if (policy && *policy != owner.name) {
         r.fail(std::string(parameter.key), fmt::format("a parameter of the {} policy, and this host's policy is '{}'", owner.name, *policy));
       }
-      s.set(parameter.key, *v);
+      if (first_set != nullptr && first_owner != owner.name) {
+        r.fail(std::string(parameter.key), fmt::format("a parameter of the {} policy, and {} (also set) is one of the {} policy's", owner.name,
+                                                       first_set->key, first_owner));
+      }
+      first_set = &parameter;
+      first_owner = owner.name;
+      // Set alone, it chooses its policy (the profile's, or a preset of it, keeps its values).
+      if (const PolicyDeclaration* own = find_cache_policy(s.policy); own != nullptr && own->parameter(parameter.key) == nullptr &&
+                                                                        own->preset_of != owner.name) {
+        s.policy = std::string(owner.name);
+        s.parameters.clear();
+      }
+      try {
+        s.set(parameter.key, *v);
+      } catch (const ConfigError& e) {
+        r.fail(std::string(parameter.key), e.what());  // out of its bounds
+      }
     }
   }
   r.finish();

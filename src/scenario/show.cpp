@@ -120,7 +120,7 @@ void write_page_cache(std::string& out, const CacheSettings& cache) {
   // The policy's own parameters, as its declaration lists them (a preset has none), then the
   // host model's switches.
   if (const PolicyDeclaration* policy = find_cache_policy(cache.policy)) {
-    for (const PolicyParameter& p : policy->parameters) out += fmt::format("{} = {}\n", p.key, cache.get(p.key));
+    for (const PolicyParameter& p : policy->parameters) out += fmt::format("{} = {}\n", p.key, format_parameter(p.kind, cache.value(p.key)));
   }
   for (const PolicyParameter& p : host_model_switches()) out += fmt::format("{} = {}\n", p.key, cache.get(p.key));
 }

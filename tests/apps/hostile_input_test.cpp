@@ -242,6 +242,25 @@ TEST_CASE("a page-cache policy is one of those registered, and the switches are 
                                Catch::Contains("reclaim_inactive_only = false\n"));
 }
 
+TEST_CASE("a policy's integer parameter is written as an integer, within its bounds, and shown as given", "[cli][hostile]") {
+  refused(run_edited("batch_zero", "[pipelines]", "[hosts.page_cache]\npolicy = \"mglru\"\nrefault_batch = 0\n[pipelines]"),
+          {"key 'hosts[0].page_cache.refault_batch'", "an integer from 1 to 4096, got 0"});
+  refused(run_edited("batch_bool", "[pipelines]", "[hosts.page_cache]\npolicy = \"mglru\"\nrefault_batch = true\n[pipelines]"),
+          {"key 'hosts[0].page_cache.refault_batch'"});
+  refused(run_edited("batch_kernel", "[pipelines]", "[hosts.page_cache]\npolicy = \"kernel\"\nrefault_batch = 32\n[pipelines]"),
+          {"key 'hosts[0].page_cache.refault_batch'", "a parameter of the mglru policy", "'kernel'"});
+  refused(run_edited("batch_and_switch", "[pipelines]", "[hosts.page_cache]\ntwo_touch_activation = true\nrefault_batch = 32\n[pipelines]"),
+          {"key 'hosts[0].page_cache.refault_batch'", "a parameter of the mglru policy", "two_touch_activation (also set)"});
+  // Alone it chooses mglru; `pcsim show` writes it back as it is read.
+  const fs::path dir = scratch("batch_alone");
+  std::string text = kBase;
+  text.replace(text.find("[pipelines]"), 11, "[hosts.page_cache]\nrefault_batch = 32\n[pipelines]");
+  std::ofstream(dir / "s.toml") << text;
+  const ChildResult shown = pcsim({"show", (dir / "s.toml").string()});
+  REQUIRE(shown.status == 0);
+  CHECK_THAT(shown.output, Catch::Contains("policy = \"mglru\"\nrefault_batch = 32\n"));
+}
+
 TEST_CASE("a bare fractional size rounds as the same size with units does", "[cli][hostile]") {
   for (const char* size : {"3.7", "\"3.7\"", "\"3.7 B\""}) {
     const fs::path dir = scratch("round");

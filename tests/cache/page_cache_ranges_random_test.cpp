@@ -65,6 +65,7 @@ class Reference {
         lru_(s.policy == "lru"),
         clock_(s.policy == "clock"),
         mglru_(s.policy == "mglru"),
+        batch_(mglru_ ? s.integer("refault_batch") : 0),
         two_touch_(!lru_ && !clock_ && !mglru_ && s.get("two_touch_activation")),
         splits_in_place_(lru_ || clock_ || mglru_ || s.get("flush_splits_in_place")),
         balance_always_(!lru_ && !clock_ && !mglru_ && s.get("balance_after_every_change")),
@@ -308,7 +309,7 @@ class Reference {
     auto at_or_below = [&](int t) {
       const std::int64_t sp_ref = avg_refaulted_[0] + refaulted_[0], sp_total = avg_total_[0] + protected_[0] + evicted_[0];
       const std::int64_t pv_ref = avg_refaulted_[t] + refaulted_[t], pv_total = avg_total_[t] + protected_[t] + evicted_[t];
-      return pv_ref < 64 || pv_ref * (sp_total + 64) * 2 <= (sp_ref + 1) * pv_total * 3;
+      return pv_ref < batch_ || pv_ref * (sp_total + batch_) * 2 <= (sp_ref + 1) * pv_total * 3;
     };
     for (int t = 1; t < 4; ++t)
       if (!at_or_below(t)) return t - 1;
@@ -369,6 +370,7 @@ class Reference {
   bool lru_;
   bool clock_;
   bool mglru_;
+  std::int64_t batch_;
   bool two_touch_;
   std::map<std::pair<FileId, std::int64_t>, Shadow> shadows_;
   std::vector<std::vector<Shadow>> whole_shadows_ = std::vector<std::vector<Shadow>>(kFiles);
@@ -594,6 +596,18 @@ TEST_CASE("files held by range agree with a reference of single bytes (mglru pol
   CHECK(counts.reads > 30000);
   CHECK(counts.writes > 7500);
   CHECK(counts.flushes > 5000);
+}
+
+TEST_CASE("files held by range agree with a reference of single bytes (mglru policy, refaults counted from the first)",
+          "[page_cache][ranges][random][mglru]") {
+  // A batch of one page: the refault feedback protects tiers often even in a cache this small.
+  CacheSettings settings = CacheSettings::kernel();
+  settings.policy = "mglru";
+  settings.set("refault_batch", std::int64_t{1});
+  Counts counts;
+  counts += run_random(settings, 31u, 100000);
+  CHECK(counts.reads > 15000);
+  CHECK(counts.writes > 3500);
 }
 
 TEST_CASE("files held by range agree with a reference of single bytes (mglru policy, two nodes, a group's reclaim)",

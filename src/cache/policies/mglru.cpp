@@ -36,8 +36,14 @@ constexpr std::uint8_t kRefs = 0x7;
 constexpr std::uint8_t kWorkingset = 0x8;
 constexpr std::uint8_t kReclaim = 0x10;
 constexpr int kMaxRefs = 4;
-constexpr int kTiers = 4;              // MAX_NR_TIERS
-constexpr std::int64_t kMinBatch = 64;  // MIN_LRU_BATCH: refaulted pages before a tier's ratio counts
+constexpr int kTiers = 4;  // MAX_NR_TIERS
+
+constexpr PolicyParameter kParameters[] = {
+    {"refault_batch", std::int64_t{64}, std::int64_t{64},
+     "pages a tier must have refaulted before its refault ratio may protect the tiers above it (MIN_LRU_BATCH, "
+     "BITS_PER_LONG: 64 on 64-bit machines, 32 on 32-bit ones)",
+     ParameterKind::Integer, 1, 4096},
+};
 
 constexpr int refs(std::uint8_t bits) noexcept { return bits & kRefs; }
 constexpr bool workingset(std::uint8_t bits) noexcept { return (bits & kWorkingset) != 0; }
@@ -70,16 +76,17 @@ struct Ctrl {
 };
 
 // positive_ctrl_err: the process variable's refault ratio is not above the set point's (scaled
-// by the gains), or it has too few refaults to tell.
+// by the gains), or it has fewer than `batch` refaults to tell.
 __extension__ using Wide = __int128;  // page counts times page counts times a gain
-bool at_or_below(const Ctrl& sp, const Ctrl& pv) noexcept {
-  if (pv.refaulted < kMinBatch) return true;
-  return static_cast<Wide>(pv.refaulted) * (sp.total + kMinBatch) * sp.gain <=
-         static_cast<Wide>(sp.refaulted + 1) * pv.total * pv.gain;
+bool at_or_below(const Ctrl& sp, const Ctrl& pv, std::int64_t batch) noexcept {
+  if (pv.refaulted < batch) return true;
+  return static_cast<Wide>(pv.refaulted) * (sp.total + batch) * sp.gain <= static_cast<Wide>(sp.refaulted + 1) * pv.total * pv.gain;
 }
 
 class MglruPolicy final : public KernelWriteback {
  public:
+  explicit MglruPolicy(const CacheSettings& settings) : batch_(settings.integer("refault_batch")) {}
+
   std::string_view name() const noexcept override { return "mglru"; }
 
   // mm/swap.c, folio_mark_accessed -> lru_gen_inc_refs: a read counts, nothing moves.
@@ -237,7 +244,7 @@ class MglruPolicy final : public KernelWriteback {
     };
     const Ctrl set_point = ctrl(0, 2);
     for (int t = 1; t < kTiers; ++t) {
-      if (!at_or_below(set_point, ctrl(t, 3))) return t - 1;
+      if (!at_or_below(set_point, ctrl(t, 3), batch_)) return t - 1;
     }
     return kTiers - 1;
   }
@@ -268,6 +275,7 @@ class MglruPolicy final : public KernelWriteback {
     }
   }
 
+  std::int64_t batch_;  // refault_batch
   std::array<TierCounts, kTiers> tiers_{};
   std::unordered_map<FileId, FileShadows> shadows_;
 };
@@ -279,10 +287,10 @@ extern const PolicyRegistration kMglruPolicy{
         .name = "mglru",
         .doc = "the kernel's multi-generation LRU (lru_gen): reads counted into tiers, refault feedback protects hot tiers, "
                "shadows bring the working set back a generation younger; the kernel's writeback",
-        .parameters = {},
+        .parameters = kParameters,
         .preset_of = {},
     },
-    .make = [](const CacheSettings&) -> std::unique_ptr<Policy> { return std::make_unique<MglruPolicy>(); },
+    .make = [](const CacheSettings& settings) -> std::unique_ptr<Policy> { return std::make_unique<MglruPolicy>(settings); },
 };
 
 }  // namespace pagecache::cache

@@ -7,6 +7,8 @@
 #include <pagecache/cache_policies.hpp>
 #include <pagecache/error.hpp>
 
+#include <pagecache/units.hpp>
+
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -45,8 +47,8 @@ TEST_CASE("a policy's parameters: defaults by profile, a preset becomes its poli
   for (const PolicyParameter& p : kernel->parameters) {
     INFO(p.key);
     CHECK(cache_policy_with(p.key) == kernel);  // one owner per key
-    CHECK(CacheSettings::kernel().get(p.key) == p.linux_default);
-    CHECK(CacheSettings::paper().get(p.key) == p.paper_default);
+    CHECK(CacheSettings::kernel().value(p.key) == p.linux_default);
+    CHECK(CacheSettings::paper().value(p.key) == p.paper_default);
     CHECK(!p.doc.empty());
   }
   // The paper profile's preset, one switch set: the kernel policy, the others still the preset's.
@@ -68,15 +70,16 @@ TEST_CASE("the host model's switches: defaults by profile, owned by no policy, k
     INFO(p.key);
     CHECK(cache_policy_with(p.key) == nullptr);
     CHECK(find_host_model_switch(p.key) == &p);
-    CHECK(CacheSettings::kernel().get(p.key) == p.linux_default);
-    CHECK(CacheSettings::paper().get(p.key) == p.paper_default);
+    CHECK(CacheSettings::kernel().value(p.key) == p.linux_default);
+    CHECK(CacheSettings::paper().value(p.key) == p.paper_default);
     CHECK(!p.doc.empty());
     for (const PolicyDeclaration& policy : cache_policies()) {
       CacheSettings s = CacheSettings::kernel();
       s.policy = std::string(policy.name);
-      s.set(p.key, !p.linux_default);  // every policy, a preset too, takes it and stays itself
+      const bool flipped = !std::get<bool>(p.linux_default);
+      s.set(p.key, flipped);  // every policy, a preset too, takes it and stays itself
       CHECK(s.policy == policy.name);
-      CHECK(s.get(p.key) == !p.linux_default);
+      CHECK(s.get(p.key) == flipped);
     }
   }
   CHECK(find_host_model_switch("two_touch_activation") == nullptr);
@@ -275,4 +278,35 @@ TEST_CASE("every parameter a policy declares is documented: docs/linux-profile.m
       CHECK(model.find(key) != std::string::npos);
     }
   }
+}
+
+TEST_CASE("a policy's parameters are typed: a value of another kind or out of bounds is refused, and each kind is written as read",
+          "[policy]") {
+  CacheSettings s = CacheSettings::kernel();
+  s.policy = "mglru";
+  CHECK(s.integer("refault_batch") == 64);
+  s.set("refault_batch", std::int64_t{32});
+  CHECK(s.integer("refault_batch") == 32);
+  CHECK_THROWS_WITH(s.set("refault_batch", true), Catch::Contains("'refault_batch' is an integer from 1 to 4096, got true"));
+  CHECK_THROWS_WITH(s.set("refault_batch", std::int64_t{0}), Catch::Contains("from 1 to 4096, got 0"));
+  CHECK_THROWS_WITH(s.set("refault_batch", 0.5), Catch::Contains("an integer"));
+  CHECK_THROWS_WITH(s.get("refault_batch"), Catch::Contains("not a switch"));
+  CHECK_THROWS_WITH(CacheSettings::kernel().integer("two_touch_activation"), Catch::Contains("not an integer"));
+  CHECK_THROWS_WITH(CacheSettings::kernel().set("two_touch_activation", std::int64_t{1}), Catch::Contains("is a switch"));
+  CHECK(s.integer("refault_batch") == 32);  // a refused value leaves the parameter as it was
+
+  // Sizes and ratios, as a declaration would give them.
+  constexpr PolicyParameter size{"window", std::int64_t{128 << 10}, std::int64_t{128 << 10}, "a size", ParameterKind::Size, 4096, 1 << 30};
+  constexpr PolicyParameter ratio{"share", 0.5, 0.5, "a ratio", ParameterKind::Ratio, 0.0, 1.0};
+  CHECK(size.accepts(std::int64_t{4096}));
+  CHECK(!size.accepts(std::int64_t{4095}));
+  CHECK(!size.accepts(0.5));
+  CHECK(ratio.accepts(1.0));
+  CHECK(!ratio.accepts(1.5));
+  CHECK(!ratio.accepts(std::int64_t{1}));
+  CHECK(format_parameter(ParameterKind::Size, std::int64_t{128 << 10}) == "\"128 KiB\"");
+  CHECK(units::parse_size("128 KiB") == 128 << 10);
+  CHECK(format_parameter(ParameterKind::Ratio, 0.25) == "0.25");
+  CHECK(format_parameter(ParameterKind::Integer, std::int64_t{64}) == "64");
+  CHECK(format_parameter(ParameterKind::Switch, false) == "false");
 }

@@ -15,6 +15,7 @@
 // Data whose writeback ends with the reclaim mark goes to the oldest generation's tail.
 // Writeback and dirty limits are the kernel's (KernelWriteback).
 
+#include "cache/file_ranges.hpp"
 #include "cache/policies/kernel_writeback.hpp"
 
 #include <pagecache/cache_policies.hpp>
@@ -23,8 +24,9 @@
 #include <array>
 #include <deque>
 #include <iterator>
-#include <map>
+#include <limits>
 #include <unordered_map>
+#include <vector>
 
 namespace pagecache::cache {
 
@@ -58,14 +60,9 @@ struct Shadow {
   std::uint8_t refs = 0;
   bool workingset = false;
 };
-struct RangedShadow {
-  std::int64_t end = 0;
+struct Mark {
   std::uint8_t refs = 0;
   bool workingset = false;
-};
-struct FileShadows {
-  std::deque<Shadow> whole;                     // a file held whole: in eviction order, oldest first
-  std::map<std::int64_t, RangedShadow> ranged;  // by offset, disjoint
 };
 
 // A tier's feedback (vmscan.c, read_ctrl_pos): refaults against what left the oldest generation.
@@ -104,27 +101,23 @@ class MglruPolicy final : public KernelWriteback {
   bool places_arrivals() const noexcept override { return true; }
   Arrival arriving(const PageCache& cache, FileId file, std::int64_t offset, std::int64_t bytes, bool demand) override {
     const Placement cold{.list = ListKind::Inactive, .referenced = false, .bits = demand ? std::uint8_t{1} : std::uint8_t{0}};
-    const auto found = shadows_.find(file);
-    if (found == shadows_.end()) return {bytes, cold};
-    FileShadows& shadows = found->second;
     Shadow hit;
     if (offset == kNoOffset) {
-      if (shadows.whole.empty()) return {bytes, cold};
-      Shadow& oldest = shadows.whole.front();
+      const auto found = whole_.find(file);
+      if (found == whole_.end() || found->second.empty()) return {bytes, cold};
+      Shadow& oldest = found->second.front();
       hit = {std::min(bytes, oldest.bytes), oldest.refs, oldest.workingset};
-      if ((oldest.bytes -= hit.bytes) == 0) shadows.whole.pop_front();
+      if ((oldest.bytes -= hit.bytes) == 0) found->second.pop_front();
     } else {
-      auto at = shadows.ranged.upper_bound(offset);
-      if (at != shadows.ranged.begin() && std::prev(at)->second.end > offset) {
-        --at;
-      } else {
+      if (!ranged_.tracked(file)) return {bytes, cold};
+      const FileRanges::Located at = ranged_.at_or_after(file, offset);
+      if (at.id == kNoBlock || at.offset > offset) {
         // No shadow at `offset`: cold up to the next one.
-        const std::int64_t cold_bytes = at == shadows.ranged.end() ? bytes : std::min(bytes, at->first - offset);
-        return {cold_bytes, cold};
+        return {at.id == kNoBlock ? bytes : std::min(bytes, at.offset - offset), cold};
       }
-      const RangedShadow shadow = at->second;
-      hit = {std::min(offset + bytes, shadow.end) - offset, shadow.refs, shadow.workingset};
-      forget(shadows.ranged, offset, offset + hit.bytes);
+      const Mark mark = marks_[at.id];
+      hit = {std::min(offset + bytes, at.end) - offset, mark.refs, mark.workingset};
+      forget(file, at, offset, offset + hit.bytes);
     }
     // A recent refault (lru_gen_test_recent: shadows live one generation, see retire) counts
     // for the tier it had; working-set data keeps its mark and lands one generation younger.
@@ -177,19 +170,26 @@ class MglruPolicy final : public KernelWriteback {
   void evicted(const PageCache& cache, const Evicted& data) override {
     tiers_[static_cast<std::size_t>(tier(data.bits))].evicted += pages(cache, data.bytes);
     const auto kept = static_cast<std::uint8_t>(std::max(refs(data.bits) - 1, 0));
-    FileShadows& shadows = shadows_[data.file];
     if (data.offset == kNoOffset) {
-      if (!shadows.whole.empty() && shadows.whole.back().refs == kept && shadows.whole.back().workingset == workingset(data.bits)) {
-        shadows.whole.back().bytes += data.bytes;
+      std::deque<Shadow>& shadows = whole_[data.file];
+      if (!shadows.empty() && shadows.back().refs == kept && shadows.back().workingset == workingset(data.bits)) {
+        shadows.back().bytes += data.bytes;
       } else {
-        shadows.whole.push_back({data.bytes, kept, workingset(data.bits)});
+        shadows.push_back({data.bytes, kept, workingset(data.bits)});
       }
     } else {
-      forget(shadows.ranged, data.offset, data.offset + data.bytes);
-      shadows.ranged.emplace(data.offset, RangedShadow{data.offset + data.bytes, kept, workingset(data.bits)});
+      if (!ranged_.tracked(data.file)) {
+        ranged_.track(data.file);
+        ranged_files_.push_back(data.file);
+      }
+      forget(data.file, ranged_.at_or_after(data.file, data.offset), data.offset, data.offset + data.bytes);
+      add(data.file, data.offset, data.offset + data.bytes, Mark{kept, workingset(data.bits)});
     }
   }
-  void dropped(const PageCache&, FileId file) override { shadows_.erase(file); }
+  void dropped(const PageCache&, FileId file) override {
+    whole_.erase(file);
+    if (ranged_.tracked(file)) forget(file, ranged_.at_or_after(file, 0), 0, std::numeric_limits<std::int64_t>::max());
+  }
 
   // folio_end_writeback -> folio_rotate_reclaimable: the reclaim mark cleared, to the oldest tail.
   bool rotates_written_back() const noexcept override { return true; }
@@ -233,7 +233,8 @@ class MglruPolicy final : public KernelWriteback {
       t.avg_total = (t.avg_total + t.evicted + t.protected_pages) / 2;
       t.refaulted = t.evicted = t.protected_pages = 0;
     }
-    shadows_.clear();
+    whole_.clear();
+    for (FileId file : ranged_files_) forget(file, ranged_.at_or_after(file, 0), 0, std::numeric_limits<std::int64_t>::max());
   }
 
   // get_tier_idx: tiers above the first whose refault ratio exceeds tier 0's are protected.
@@ -249,35 +250,49 @@ class MglruPolicy final : public KernelWriteback {
     return kTiers - 1;
   }
 
-  // Forgets the shadows of [from, to), cutting those that stick out.
-  static void forget(std::map<std::int64_t, RangedShadow>& ranged, std::int64_t from, std::int64_t to) {
-    auto at = ranged.upper_bound(from);
-    if (at != ranged.begin() && std::prev(at)->second.end > from) {
-      --at;
-      if (at->first < from) {
-        const RangedShadow whole = at->second;
-        at->second.end = from;
-        if (whole.end > to) {
-          ranged.emplace(to, RangedShadow{whole.end, whole.refs, whole.workingset});
-          return;
-        }
-        ++at;
-      }
+  // A shadow of [from, to) of a file held by range.
+  void add(FileId file, std::int64_t from, std::int64_t to, Mark mark) {
+    BlockId id = static_cast<BlockId>(marks_.size());
+    if (free_.empty()) {
+      marks_.push_back(mark);
+    } else {
+      id = free_.back();
+      free_.pop_back();
+      marks_[id] = mark;
     }
-    while (at != ranged.end() && at->first < to) {
-      if (at->second.end > to) {
-        const RangedShadow rest = at->second;
-        ranged.erase(at);
-        ranged.emplace(to, rest);
-        return;
+    ranged_.insert(file, id, from, to - from);
+  }
+  // Forgets the shadows of [from, to) of `file`, cutting those that stick out; `at` is
+  // ranged_.at_or_after(file, from).
+  void forget(FileId file, FileRanges::Located at, std::int64_t from, std::int64_t to) {
+    while (at.id != kNoBlock && at.offset < to) {
+      const FileRanges::Located next = at.end < to ? ranged_.at_or_after(file, at.end) : FileRanges::Located{};
+      if (at.offset < from) {
+        ranged_.resize(file, at.id, from - at.offset);
+        if (at.end > to) add(file, to, at.end, marks_[at.id]);
+      } else if (at.end > to) {
+        const Mark mark = marks_[at.id];
+        ranged_.erase(file, at.id);
+        free_.push_back(at.id);
+        add(file, to, at.end, mark);
+      } else {
+        ranged_.erase(file, at.id);
+        free_.push_back(at.id);
       }
-      at = ranged.erase(at);
+      at = next;
     }
   }
 
   std::int64_t batch_;  // refault_batch
   std::array<TierCounts, kTiers> tiers_{};
-  std::unordered_map<FileId, FileShadows> shadows_;
+  // Shadows (lru_gen_eviction): of files held whole, by file in eviction order, oldest first;
+  // of files held by range, disjoint byte ranges in a B+ tree per file, as the page cache's
+  // blocks are (a std::map cost a cache miss a level under random reads), marks by id.
+  std::unordered_map<FileId, std::deque<Shadow>> whole_;
+  FileRanges ranged_;
+  std::vector<Mark> marks_;
+  std::vector<BlockId> free_;
+  std::vector<FileId> ranged_files_;  // tracked in ranged_
 };
 
 }  // namespace

@@ -12,7 +12,7 @@
 // Any other exception, a crash, a hang, unbounded memory or a sanitizer report is a bug.
 
 #include "sweep/hash.hpp"
-#include "sweep/plan.hpp"
+#include "sweep/sweep.hpp"
 #include "sweep/result_line.hpp"
 #include "sweep/results_file.hpp"
 
@@ -34,8 +34,8 @@ inline constexpr std::string_view kFuzzResultsBase = "0123456789abcdef";
 /// The limits sweep files are read with: a grid's size is only computed, but every axis
 /// value is made and up to 64 of each are tried on the base, so axes are kept short; the base
 /// is read with the scenario fuzzer's limits.
-inline sweep::PlanLimits sweep_fuzz_limits() {
-  sweep::PlanLimits limits;
+inline sweep::SweepLimits sweep_fuzz_limits() {
+  sweep::SweepLimits limits;
   limits.runs = 1e6;
   limits.axis_values = 1e4;
   limits.scenario.max_tasks = 10'000;
@@ -46,10 +46,10 @@ inline sweep::PlanLimits sweep_fuzz_limits() {
 /// "" if the sweep file `text` (read as if it were `source_name`) keeps the contract, else
 /// what broke.
 inline std::string check_sweep_text(const std::string& text, const std::string& source_name) {
-  const sweep::PlanLimits limits = sweep_fuzz_limits();
-  sweep::Plan plan;
+  const sweep::SweepLimits limits = sweep_fuzz_limits();
+  sweep::Sweep plan;
   try {
-    plan = sweep::Plan::parse(text, source_name, false, limits);
+    plan = sweep::Sweep::parse(text, source_name, false, limits);
   } catch (const ConfigError&) {
     return {};
   }
@@ -64,9 +64,9 @@ inline std::string check_sweep_text(const std::string& text, const std::string& 
   if (!sweep::is_hex16(plan.fingerprint()) || plan.fingerprint() != plan.base().fingerprint()) return "a fingerprint that is not its base's";
   const sweep::Run first = plan.run(0), last = plan.run(plan.size() - 1);
   if (!sweep::is_hex16(first.id) || !sweep::is_hex16(last.id)) return "a run id that is not 16 hex digits";
-  sweep::Plan again;
+  sweep::Sweep again;
   try {
-    again = sweep::Plan::from_json(plan.json(), "sweep-plan.json");
+    again = sweep::Sweep::from_json(plan.json(), "sweep-plan.json");
   } catch (const ConfigError& e) {
     return std::string("json() does not read back: ") + e.what();
   }

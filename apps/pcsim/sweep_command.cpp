@@ -5,7 +5,7 @@
 #include "report/output_file.hpp"
 #include "sweep/executor.hpp"
 #include "sweep/merge.hpp"
-#include "sweep/plan.hpp"
+#include "sweep/sweep.hpp"
 #include "sweep/slurm.hpp"
 
 #include <pagecache/error.hpp>
@@ -97,7 +97,7 @@ int run_sweep_command(const SweepCommand& c) {
                m.missing ? fmt::format(", {} missing", m.missing) : "");
     return 0;
   }
-  const sweep::Plan plan = sweep::Plan::load(c.file, c.force);
+  const sweep::Sweep plan = sweep::Sweep::load(c.file, c.force);
   if (c.plan->parsed()) {
     if (c.commands) {
       if (c.out.empty()) throw ConfigError("sweep plan --commands: --out DIR names where the commands write their results");

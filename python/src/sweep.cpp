@@ -2,7 +2,7 @@
 
 #include "sweep/executor.hpp"
 #include "sweep/merge.hpp"
-#include "sweep/plan.hpp"
+#include "sweep/sweep.hpp"
 
 #include <pagecache/run.hpp>
 
@@ -76,7 +76,7 @@ void run_watched(unsigned threads, std::atomic<bool>& stop, const std::function<
 }
 
 // The plan's runs on `jobs` threads, each line in its run's place.
-std::vector<std::string> run_all(const pagecache::sweep::Plan& plan, unsigned jobs, std::atomic<bool>& stop) {
+std::vector<std::string> run_all(const pagecache::sweep::Sweep& plan, unsigned jobs, std::atomic<bool>& stop) {
   std::vector<std::string> lines(plan.size());
   std::atomic<std::size_t> next{0};
   pagecache::RunOptions options;
@@ -96,13 +96,13 @@ std::string sweep_csv(const std::string& path, const std::string& text, const st
   py::gil_scoped_release released;
   std::atomic<bool> stop{false};
   // Making the plan tries every axis value on the base: with a large base that takes seconds.
-  std::optional<pagecache::sweep::Plan> plan;
+  std::optional<pagecache::sweep::Sweep> plan;
   const auto checkpoint = [&stop] {
     if (stop) throw Stopped{};
   };
   run_watched(1, stop, [&] {
-    plan.emplace(path.empty() ? pagecache::sweep::Plan::parse(text, origin, force, {}, checkpoint)
-                              : pagecache::sweep::Plan::load(path, force, checkpoint));
+    plan.emplace(path.empty() ? pagecache::sweep::Sweep::parse(text, origin, force, {}, checkpoint)
+                              : pagecache::sweep::Sweep::load(path, force, checkpoint));
   });
   return pagecache::sweep::results_csv(*plan, run_all(*plan, jobs, stop));
 }

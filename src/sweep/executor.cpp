@@ -40,7 +40,7 @@ std::optional<std::size_t> whole_number(const std::string& text) {
 }  // namespace
 
 // One run, start to end; any failure is its result, with pcsim run's exit code for it.
-RunRecord execute_run(const Plan& plan, const Run& run, RunOptions run_options, const std::string& outputs_dir) {
+RunRecord execute_run(const Sweep& plan, const Run& run, RunOptions run_options, const std::string& outputs_dir) {
   const auto start = std::chrono::steady_clock::now();
   const auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   int code = 1;
@@ -70,7 +70,7 @@ RunRecord execute_run(const Plan& plan, const Run& run, RunOptions run_options, 
 
 // out_dir/sweep-plan.json: written by the first shard, the same for every other. Everything
 // in the folder is read and checked before the plan is written.
-std::unordered_set<std::string> prepare_out_dir(const Plan& plan, const std::string& out_dir) {
+std::unordered_set<std::string> prepare_out_dir(const Sweep& plan, const std::string& out_dir) {
   std::error_code ec;
   if (fs::exists(out_dir, ec) && !fs::is_directory(out_dir, ec)) throw ConfigError(fmt::format("--out {}: is not a folder", out_dir));
   fs::create_directories(out_dir);
@@ -85,7 +85,7 @@ std::unordered_set<std::string> prepare_out_dir(const Plan& plan, const std::str
     there = formats::read_text_file(path.string(), "sweep plan");
   }
   if (there && *there != text) {
-    const Plan before = Plan::from_json(*there, path.string());
+    const Sweep before = Sweep::from_json(*there, path.string());
     // The runs there are this sweep's only if they ran on the same base: a scenario edited
     // since, or another one, would mix two bases in one results.csv.
     if (const std::string changes = base_changes(before.base(), plan.base()); !changes.empty()) {
@@ -138,7 +138,7 @@ std::string results_path(const std::string& out_dir, const Shard& shard) {
   return (fs::path(out_dir) / fmt::format("results-{}-of-{}.jsonl", shard.index, shard.count)).string();
 }
 
-SweepOutcome run_sweep(const Plan& plan, const SweepOptions& options) {
+SweepOutcome run_sweep(const Sweep& plan, const SweepOptions& options) {
   if (options.out_dir.empty()) throw ConfigError("sweep run: --out DIR is needed");
   const std::unordered_set<std::string> done = prepare_out_dir(plan, options.out_dir);
   SweepOutcome outcome;

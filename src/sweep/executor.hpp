@@ -5,7 +5,7 @@
 // skipped, whatever shard split wrote them (a rerun resumes, a grown sweep runs only its new
 // runs); a run that fails is recorded with its error and exit code, and the shard goes on.
 
-#include "sweep/plan.hpp"
+#include "sweep/sweep.hpp"
 
 #include <pagecache/run.hpp>
 
@@ -59,7 +59,7 @@ struct RunRecord {
 /// exit code `pcsim run` would give; an exception `run_options.progress` throws passes through
 /// (a caller's way to stop a run). `outputs_dir`: also writes the run's outputs there, as
 /// `--keep-outputs` does (and records the cache contents they hold).
-RunRecord execute_run(const Plan& plan, const Run& run, RunOptions run_options, const std::string& outputs_dir = {});
+RunRecord execute_run(const Sweep& plan, const Run& run, RunOptions run_options, const std::string& outputs_dir = {});
 
 /// The file a shard writes: out_dir/results-I-of-N.jsonl.
 std::string results_path(const std::string& out_dir, const Shard& shard);
@@ -71,10 +71,10 @@ std::string results_path(const std::string& out_dir, const Shard& shard);
 /// valid). Throws ConfigError, changing nothing, naming what differs in the base (a file
 /// edited since, another file, another profile) or a run the plan would lose, or naming the
 /// file and line of a results line that is not a result of this sweep (results_folder.hpp).
-std::unordered_set<std::string> prepare_out_dir(const Plan& plan, const std::string& out_dir);
+std::unordered_set<std::string> prepare_out_dir(const Sweep& plan, const std::string& out_dir);
 
 /// prepare_out_dir, then runs the shard's runs that no results file of out_dir holds. Throws
 /// ConfigError as prepare_out_dir and ResultsFile do; Error if the results cannot be written.
-SweepOutcome run_sweep(const Plan& plan, const SweepOptions& options);
+SweepOutcome run_sweep(const Sweep& plan, const SweepOptions& options);
 
 }  // namespace pagecache::sweep

@@ -3,7 +3,7 @@
 #include "report/csv_field.hpp"
 #include "report/output_file.hpp"
 #include "formats/common/text_file.hpp"
-#include "sweep/plan.hpp"
+#include "sweep/sweep.hpp"
 #include "sweep/result_line.hpp"
 #include "sweep/results_folder.hpp"
 
@@ -37,13 +37,13 @@ std::string some(const std::vector<std::string>& ids, std::size_t total) {
   return total > 10 ? out + fmt::format(" and {} more", total - 10) : out;
 }
 
-Plan read_plan(const MergeOptions& options) {
+Sweep read_plan(const MergeOptions& options) {
   const fs::path plan_path = fs::path(options.dir) / "sweep-plan.json";
   if (!fs::exists(plan_path)) throw ConfigError(fmt::format("{}: no sweep-plan.json: not a folder of `pcsim sweep run --out`", options.dir));
-  return Plan::from_json(formats::read_text_file(plan_path.string(), "sweep plan"), plan_path.string());
+  return Sweep::from_json(formats::read_text_file(plan_path.string(), "sweep plan"), plan_path.string());
 }
 
-void append_header(fmt::memory_buffer& csv, const Plan& plan) {
+void append_header(fmt::memory_buffer& csv, const Sweep& plan) {
   report::append_csv_field(csv, "id");
   for (const std::string& key : plan.keys()) {
     csv.push_back(',');
@@ -76,7 +76,7 @@ std::string append_row(fmt::memory_buffer& csv, const Run& run, const nlohmann::
 
 // The run a result is of: the index it was recorded under, if the plan's run there has its id
 // (the same plan), else found by its overrides (a plan grown since).
-std::optional<Run> run_of(const Plan& plan, const std::string& id, const nlohmann::json& result) {
+std::optional<Run> run_of(const Sweep& plan, const std::string& id, const nlohmann::json& result) {
   const nlohmann::json& index = result["run"];
   if (index.is_number_unsigned() && index.get<std::uint64_t>() < plan.size()) {
     Run run = plan.run(static_cast<std::size_t>(index.get<std::uint64_t>()));
@@ -96,7 +96,7 @@ std::optional<Run> run_of(const Plan& plan, const std::string& id, const nlohman
 // parsed lines; the plan itself is never walked, so a plan of 10^9 runs merges its results in
 // the time they take. A last line cut short (a shard still running, or killed mid-line) is
 // not a result: its run is not done.
-std::vector<Placed> read_results(const MergeOptions& options, const Plan& plan, MergeOutcome& outcome) {
+std::vector<Placed> read_results(const MergeOptions& options, const Sweep& plan, MergeOutcome& outcome) {
   std::vector<Placed> placed;
   std::unordered_map<std::string, std::string> seen;  // id -> where
   std::vector<std::string> duplicated, strangers;
@@ -139,7 +139,7 @@ std::string missing_run(const Run& run) {
 }
 
 // The first ten runs without a result, in the plan's order: `placed` holds the others' indices.
-std::vector<std::string> first_missing(const Plan& plan, const std::vector<Placed>& placed) {
+std::vector<std::string> first_missing(const Sweep& plan, const std::vector<Placed>& placed) {
   std::vector<std::string> missing;
   auto next = placed.begin();
   for (std::size_t i = 0; i < plan.size() && missing.size() < 10; ++i) {
@@ -162,7 +162,7 @@ MergeOutcome merge(const MergeOptions& options) {
   std::vector<std::string> inputs = results_files(options.dir);
   inputs.push_back((fs::path(options.dir) / "sweep-plan.json").string());
   report::check_not_an_input(outcome.csv, option, inputs);
-  const Plan plan = read_plan(options);
+  const Sweep plan = read_plan(options);
   const std::vector<Placed> placed = read_results(options, plan, outcome);
   outcome.runs = placed.size();
   outcome.missing = plan.size() - placed.size();
@@ -186,7 +186,7 @@ MergeOutcome merge(const MergeOptions& options) {
   return outcome;
 }
 
-std::string results_csv(const Plan& plan, const std::vector<std::string>& lines) {
+std::string results_csv(const Sweep& plan, const std::vector<std::string>& lines) {
   if (lines.size() != plan.size()) throw Error(fmt::format("results_csv: {} lines for a plan of {} runs", lines.size(), plan.size()));
   fmt::memory_buffer csv;
   append_header(csv, plan);

@@ -9,7 +9,7 @@
 
 namespace pagecache::sweep {
 
-class Plan;
+class Sweep;
 
 struct MergeOptions {
   std::string dir;
@@ -34,6 +34,6 @@ MergeOutcome merge(const MergeOptions& options);
 
 /// results.csv's text for runs made in memory: `lines[i]` is run i's results line (one per
 /// run of `plan`, in its order), as execute_run made it. The rows merge would write for them.
-std::string results_csv(const Plan& plan, const std::vector<std::string>& lines);
+std::string results_csv(const Sweep& plan, const std::vector<std::string>& lines);
 
 }  // namespace pagecache::sweep

@@ -3,7 +3,7 @@
 // computed before any value is made, so that a range of a billion values (a factor of
 // 1.0000001, a step of 1e-9) is refused at once instead of after filling the memory.
 
-#include "sweep/plan.hpp"
+#include "sweep/sweep.hpp"
 
 #include <toml++/toml.h>
 

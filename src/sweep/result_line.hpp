@@ -6,7 +6,7 @@
 // its newline may be dropped only if it is the beginning of such a line (a shard killed
 // while writing it).
 
-#include "sweep/plan.hpp"
+#include "sweep/sweep.hpp"
 
 #include <pagecache/run.hpp>
 

@@ -18,11 +18,11 @@ std::string shell_word(const std::string& text) {
   return out + "'";
 }
 
-std::string shard_command(const std::string& pcsim, const Plan& plan, const std::string& out_dir, std::size_t index, std::size_t shards) {
+std::string shard_command(const std::string& pcsim, const Sweep& plan, const std::string& out_dir, std::size_t index, std::size_t shards) {
   return fmt::format("{} sweep run {} --out {} --shard {}/{} --jobs 1", shell_word(pcsim), shell_word(plan.file()), shell_word(out_dir), index, shards);
 }
 
-std::string sbatch_script(const Plan& plan, const SlurmOptions& o) {
+std::string sbatch_script(const Sweep& plan, const SlurmOptions& o) {
   if (o.shards == 0) throw ConfigError("--shards must be at least 1");
   const auto directive = [](const char* option, const std::string& value) {
     if (value.find_first_of(" \t\r\n") != std::string::npos) throw ConfigError(fmt::format("--{} '{}': no spaces or line breaks", option, value));

@@ -3,7 +3,7 @@
 // parallel, xargs -P or any scheduler) and `pcsim sweep slurm` (an sbatch script running the
 // shards as a job array; each task finds its shard in Slurm's environment).
 
-#include "sweep/plan.hpp"
+#include "sweep/sweep.hpp"
 
 #include <cstddef>
 #include <string>
@@ -14,7 +14,7 @@ namespace pagecache::sweep {
 std::string shell_word(const std::string& text);
 
 /// The `pcsim sweep run` command line of shard `index` of `shards`, one job in it.
-std::string shard_command(const std::string& pcsim, const Plan& plan, const std::string& out_dir, std::size_t index, std::size_t shards);
+std::string shard_command(const std::string& pcsim, const Sweep& plan, const std::string& out_dir, std::size_t index, std::size_t shards);
 
 struct SlurmOptions {
   std::string pcsim;  ///< the pcsim to run, an absolute path
@@ -30,6 +30,6 @@ struct SlurmOptions {
 /// The script: `#SBATCH` directives for a job array of `shards` tasks, each running its shard
 /// of the plan into out_dir (its log beside: slurm-JOB_TASK.out). Throws ConfigError for 0 shards
 /// or a value that would break a directive (a line break, a space).
-std::string sbatch_script(const Plan& plan, const SlurmOptions& options);
+std::string sbatch_script(const Sweep& plan, const SlurmOptions& options);
 
 }  // namespace pagecache::sweep

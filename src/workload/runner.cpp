@@ -62,7 +62,7 @@ std::vector<std::vector<Event*>> prerequisites_of(const WorkflowSpec& w, std::de
   return waits;
 }
 
-Task<IoResult> transfer(Host& host, FileRef file, const TaskPlan& plan, Thread thread, bool reading) {
+Task<IoResult> transfer(Host& host, FileRef file, const PreparedTask& plan, Thread thread, bool reading) {
   return reading ? host.read_file(file, plan.chunk_size, plan.direct_io, thread)
                  : host.write_file(file, plan.chunk_size, plan.direct_io, thread);
 }
@@ -87,7 +87,7 @@ Runner::Runner(const Scenario& scenario, const RunOptions& options, Scenario* ow
       options_(options),
       share_(sim_),
       platform_(sim_, share_, scenario, files),
-      plans_(scenario, platform_, files),
+      prepared_(scenario, platform_, files),
       memory_(sim_, platform_.hosts(), scenario.memory_sample_interval),
       deleted_(platform_) {
   if (owned != nullptr) {
@@ -98,7 +98,7 @@ Runner::Runner(const Scenario& scenario, const RunOptions& options, Scenario* ow
 }
 
 RunResult Runner::run() {
-  trace_.emplace(options_, share_, platform_, plans_.timeline_rows(), plans_.io_phases());
+  trace_.emplace(options_, share_, platform_, prepared_.timeline_rows(), prepared_.io_phases());
   const auto wall_start = std::chrono::steady_clock::now();
   start_applications();
   start_workflows();
@@ -114,8 +114,8 @@ RunResult Runner::run() {
 }
 
 void Runner::start_applications() {
-  const std::vector<AppPlan>& apps = plans_.apps();
-  const std::vector<AppWait>& waits = plans_.app_waits();
+  const std::vector<PreparedApp>& apps = prepared_.apps();
+  const std::vector<AppWait>& waits = prepared_.app_waits();
   if (!waits.empty()) {
     for (std::size_t i = 0; i < apps.size(); ++i) app_done_.emplace_back(sim_);
   }
@@ -123,7 +123,7 @@ void Runner::start_applications() {
   for (std::size_t i = 0; i < apps.size(); ++i) {
     ++running_;
     if (waits.empty()) {
-      sim_.spawn(run_tasks(apps[i].name, plans_.tasks_of(apps[i]), *apps[i].host, true));
+      sim_.spawn(run_tasks(apps[i].name, prepared_.tasks_of(apps[i]), *apps[i].host, true));
       continue;
     }
     std::vector<Event*> before;
@@ -137,13 +137,13 @@ void Runner::start_applications() {
 
 Task<void> Runner::run_app_in_order(std::size_t index, std::vector<Event*> before) {
   for (Event* event : before) co_await event->wait();
-  const AppPlan& app = plans_.apps()[index];
-  co_await run_tasks(app.name, plans_.tasks_of(app), *app.host, true);
+  const PreparedApp& app = prepared_.apps()[index];
+  co_await run_tasks(app.name, prepared_.tasks_of(app), *app.host, true);
   app_done_[index].trigger();
 }
 
 void Runner::start_workflows() {
-  const TaskPlan* plan = plans_.workflow_tasks();
+  const PreparedTask* plan = prepared_.workflow_tasks();
   for (const WorkflowSpec& w : scenario_.workflows) {
     WorkflowHosts& hosts = workflow_hosts_.emplace_back(place_workflow(w, platform_, sim_));
     std::deque<Event>& done = workflow_done_.emplace_back();
@@ -210,8 +210,8 @@ void Runner::summarize(std::chrono::steady_clock::time_point wall_start) {
 // each local of a coroutine in its frame, and frames are recycled per size), so the phases
 // share one loop and one co_await serves reads and writes. `ends_app`: the last task of an
 // application ends it (finish_one).
-Task<void> Runner::run_tasks(const std::string& app, std::span<const TaskPlan> plans, Host& host, bool ends_app) {
-  for (const TaskPlan& plan : plans) {
+Task<void> Runner::run_tasks(const std::string& app, std::span<const PreparedTask> plans, Host& host, bool ends_app) {
+  for (const PreparedTask& plan : plans) {
     const Thread thread = host.start_thread(plan.group);
     if (plan.memory > 0) co_await host.hold_memory(plan.memory, thread);
     std::int64_t read_bytes = 0;
@@ -224,24 +224,24 @@ Task<void> Runner::run_tasks(const std::string& app, std::span<const TaskPlan> p
       } else {
         const bool reading = kind == PhaseKind::Read;
         for (std::uint32_t f = reading ? plan.reads : plan.writes; f < (reading ? plan.writes : plan.deletes); ++f) {
-          if (!deleted_.empty()) deleted_.note_access(plans_.file(f), reading, app, plans_.task_name(plan), ends_app);
-          const FileRef file = platform_.file_on(host, planned(f));
+          if (!deleted_.empty()) deleted_.note_access(prepared_.file(f), reading, app, prepared_.task_name(plan), ends_app);
+          const FileRef file = platform_.file_on(host, task_file(f));
           add_moved(sum, co_await transfer(host, file, plan, thread, reading));
           if (!reading && plan.fsync) co_await host.fsync(file);
         }
         if (reading) read_bytes = sum.bytes;
       }
-      const std::uint32_t row = trace_->report_phase(app, plans_.task_name(plan), host, kind, start, sim_.now(), sum);
+      const std::uint32_t row = trace_->report_phase(app, prepared_.task_name(plan), host, kind, start, sim_.now(), sum);
       if (kind != PhaseKind::Compute) trace_->record_cache(row);
       if (kind == PhaseKind::Read && plan.accesses != plan.accesses_end) co_await run_accesses(app, plan, host, thread, ends_app);
     }
     host.release_memory(read_bytes + plan.memory, thread);  // the task's memory is freed when it ends
     host.end_thread(thread);
     for (std::uint32_t f = plan.deletes; f < plan.end; ++f) {
-      const PlacedFile& stored = planned(f);
+      const PlacedFile& stored = task_file(f);
       co_await host.delete_file(platform_.file_on(host, stored));
       if (stored.host != &host) co_await stored.host->delete_file(stored.ref);  // on the server too
-      deleted_.note_deleted(plans_.file(f), app, plans_.task_name(plan), ends_app, sim_.now());
+      deleted_.note_deleted(prepared_.file(f), app, prepared_.task_name(plan), ends_app, sim_.now());
     }
   }
   if (ends_app) finish_one();
@@ -249,9 +249,9 @@ Task<void> Runner::run_tasks(const std::string& app, std::span<const TaskPlan> p
 
 // A task's accesses, after its reads, in order. A frame of its own, made only for the tasks
 // that have accesses.
-Task<void> Runner::run_accesses(const std::string& app, const TaskPlan& plan, Host& host, Thread thread, bool ends_app) {
+Task<void> Runner::run_accesses(const std::string& app, const PreparedTask& plan, Host& host, Thread thread, bool ends_app) {
   for (std::uint32_t a = plan.accesses; a < plan.accesses_end; ++a) {
-    const AccessPlan& access = plans_.access(a);
+    const PreparedAccess& access = prepared_.access(a);
     if (access.of_file) co_await access_file(app, plan, access, host, thread, ends_app);
     else co_await read_file_set(app, plan, access, host, thread);
   }
@@ -259,7 +259,7 @@ Task<void> Runner::run_accesses(const std::string& app, const TaskPlan& plan, Ho
 
 // Each epoch reads its files whole, one after the other, freeing each file's buffer once read,
 // and is reported as a read row of its own, its task named "TASK:SET[epoch N]".
-Task<void> Runner::read_file_set(const std::string& app, const TaskPlan& plan, const AccessPlan& access, Host& host, Thread thread) {
+Task<void> Runner::read_file_set(const std::string& app, const PreparedTask& plan, const PreparedAccess& access, Host& host, Thread thread) {
   SampleOrder order(access.set.count, access.order, access.seed);
   for (std::int64_t epoch = 1; epoch <= access.repeat; ++epoch) {
     const double start = sim_.now();
@@ -271,27 +271,27 @@ Task<void> Runner::read_file_set(const std::string& app, const TaskPlan& plan, c
       host.release_memory(read.bytes, thread);  // a data loader keeps no sample
       add_moved(sum, read);
     }
-    const std::string label = fmt::format("{}:{}[epoch {}]", plans_.task_name(plan), plans_.set_name(access), epoch);
+    const std::string label = fmt::format("{}:{}[epoch {}]", prepared_.task_name(plan), prepared_.set_name(access), epoch);
     trace_->record_cache(trace_->report_phase(app, label, host, PhaseKind::Read, start, sim_.now(), sum));
   }
 }
 
 // Each epoch one read_ranges or write_ranges of the pattern's requests (the read holds a
 // request's buffer while it runs), reported as a read or write row, "TASK:FILE[epoch N]".
-Task<void> Runner::access_file(const std::string& app, const TaskPlan& plan, const AccessPlan& access, Host& host, Thread thread, bool ends_app) {
+Task<void> Runner::access_file(const std::string& app, const PreparedTask& plan, const PreparedAccess& access, Host& host, Thread thread, bool ends_app) {
   const PlacedFile& stored = platform_.files()[access.file];
   const std::string& name = stored.host->file_name(stored.ref);
   // The loader refuses these; a scenario built in code is told here.
   if (stored.host != &host) {
     throw ConfigError(fmt::format("task '{}': file '{}' is on host '{}': accesses by part are of files of the task's host ('{}') only",
-                                  plans_.task_name(plan), name, stored.host->name(), host.name()));
+                                  prepared_.task_name(plan), name, stored.host->name(), host.name()));
   }
   RequestStream stream(access.requests);
   // fio's runtime: checked before each request, over all epochs.
   const double deadline = access.runtime > 0.0 ? sim_.now() + access.runtime : std::numeric_limits<double>::infinity();
   std::function<bool(ByteRange&)> next = [&stream, this, deadline](ByteRange& r) { return sim_.now() < deadline && stream.next(r); };
   for (std::int64_t epoch = 1; epoch <= access.repeat && sim_.now() < deadline; ++epoch) {
-    if (!deleted_.empty()) deleted_.note_access(access.file, !access.writing, app, plans_.task_name(plan), ends_app);
+    if (!deleted_.empty()) deleted_.note_access(access.file, !access.writing, app, prepared_.task_name(plan), ends_app);
     if (access.invalidate) drop_region(host, stored.ref, access.requests);
     const double start = sim_.now();
     stream.start_epoch(access.reshuffle ? epoch - 1 : 0);
@@ -303,19 +303,19 @@ Task<void> Runner::access_file(const std::string& app, const TaskPlan& plan, con
       add_moved(sum, co_await host.read_ranges(stored.ref, next, access.requests.request, thread, access.advice, plan.direct_io));
     }
     if (access.drop_after) drop_region(host, stored.ref, access.requests);
-    const std::string label = fmt::format("{}:{}[epoch {}]", plans_.task_name(plan), name, epoch);
+    const std::string label = fmt::format("{}:{}[epoch {}]", prepared_.task_name(plan), name, epoch);
     const PhaseKind kind = access.writing ? PhaseKind::Write : PhaseKind::Read;
     trace_->record_cache(trace_->report_phase(app, label, host, kind, start, sim_.now(), sum));
   }
 }
 
-Task<void> Runner::run_workflow_task(const WorkflowSpec& w, const TaskSpec& task, const TaskPlan& plan, WorkflowHosts& hosts, std::size_t index,
+Task<void> Runner::run_workflow_task(const WorkflowSpec& w, const TaskSpec& task, const PreparedTask& plan, WorkflowHosts& hosts, std::size_t index,
                                      std::vector<Event*> prerequisites, Event& done) {
   for (Event* prerequisite : prerequisites) co_await prerequisite->wait();
   const std::size_t host = co_await hosts.cores->acquire(hosts.own[index], task.cores);
   if (task.memory_limits.max > 0) {
     // Its own memory group, on the host it got (a pod's or job's cgroup).
-    TaskPlan in_group = plan;
+    PreparedTask in_group = plan;
     in_group.group = hosts.hosts[host]->add_memory_group(task.memory_limits.max, task.memory_limits.high);
     co_await run_tasks(w.name, {&in_group, 1}, *hosts.hosts[host], false);
   } else {

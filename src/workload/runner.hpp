@@ -1,11 +1,11 @@
 #pragma once
 // Runner: the run of a scenario (run_scenario, pagecache/run.hpp). It builds the scenario's
-// Platform and Plans, runs each application and each workflow task as a process to the end,
+// Platform and PreparedRun, runs each application and each workflow task as a process to the end,
 // and reports what happens through a RunTrace and the hosts' memory through a MemoryProfile.
 
 #include "workload/deleted_files.hpp"
 #include "workload/memory_profile.hpp"
-#include "workload/plans.hpp"
+#include "workload/prepared_run.hpp"
 #include "workload/platform.hpp"
 #include "workload/run_trace.hpp"
 
@@ -47,25 +47,25 @@ class Runner {
   void simulate();
   void summarize(std::chrono::steady_clock::time_point wall_start);
 
-  Task<void> run_tasks(const std::string& app, std::span<const TaskPlan> plans, Host& host, bool ends_app);
+  Task<void> run_tasks(const std::string& app, std::span<const PreparedTask> plans, Host& host, bool ends_app);
   /// Application `index` once `before` have ended; then its end is app_done_[index].
   Task<void> run_app_in_order(std::size_t index, std::vector<Event*> before);
-  Task<void> run_accesses(const std::string& app, const TaskPlan& plan, Host& host, Thread thread, bool ends_app);
-  Task<void> read_file_set(const std::string& app, const TaskPlan& plan, const AccessPlan& access, Host& host, Thread thread);
-  Task<void> access_file(const std::string& app, const TaskPlan& plan, const AccessPlan& access, Host& host, Thread thread, bool ends_app);
-  Task<void> run_workflow_task(const WorkflowSpec& w, const TaskSpec& task, const TaskPlan& plan, WorkflowHosts& hosts, std::size_t index,
+  Task<void> run_accesses(const std::string& app, const PreparedTask& plan, Host& host, Thread thread, bool ends_app);
+  Task<void> read_file_set(const std::string& app, const PreparedTask& plan, const PreparedAccess& access, Host& host, Thread thread);
+  Task<void> access_file(const std::string& app, const PreparedTask& plan, const PreparedAccess& access, Host& host, Thread thread, bool ends_app);
+  Task<void> run_workflow_task(const WorkflowSpec& w, const TaskSpec& task, const PreparedTask& plan, WorkflowHosts& hosts, std::size_t index,
                                std::vector<Event*> prerequisites, Event& done);
   void finish_one();
 
   // The file of a task's list: `f` in [reads, end) of its plan.
-  const PlacedFile& planned(std::uint32_t f) const { return platform_.files()[plans_.file(f)]; }
+  const PlacedFile& task_file(std::uint32_t f) const { return platform_.files()[prepared_.file(f)]; }
 
   const Scenario& scenario_;
   const RunOptions& options_;
   Simulator sim_;
   FairShare share_;
   Platform platform_;
-  Plans plans_;
+  PreparedRun prepared_;
   MemoryProfile memory_;
   DeletedFiles deleted_;
   std::optional<RunTrace> trace_;                // from the run's start

@@ -5,7 +5,7 @@
 #include "sweep_property.hpp"
 #include "sweep/executor.hpp"
 #include "sweep/merge.hpp"
-#include "sweep/plan.hpp"
+#include "sweep/sweep.hpp"
 #include "sweep/result_line.hpp"
 #include "sweep/results_file.hpp"
 
@@ -25,7 +25,7 @@
 
 namespace fs = std::filesystem;
 using pagecache::ConfigError;
-using pagecache::sweep::Plan;
+using pagecache::sweep::Sweep;
 using pagecache::testing::scratch;
 using pagecache::testing::slurp;
 
@@ -105,7 +105,7 @@ pagecache::sweep::SweepOutcome run(const std::string& sweep, const std::string& 
   pagecache::sweep::SweepOptions options;
   options.out_dir = out;
   options.shard = pagecache::sweep::parse_shard(shard);
-  return pagecache::sweep::run_sweep(Plan::load(sweep), options);
+  return pagecache::sweep::run_sweep(Sweep::load(sweep), options);
 }
 
 // Every file of a folder and its bytes.
@@ -253,7 +253,7 @@ TEST_CASE("the same base moved elsewhere is the same base", "[sweep]") {
   for (const char* f : {"base.toml", "wrench-cache.toml", "paper-cluster.toml", "a.toml"}) fs::copy_file(base.dir / f, moved / f);
   pagecache::sweep::SweepOptions options;
   options.out_dir = base.out("D");
-  const auto outcome = pagecache::sweep::run_sweep(Plan::load((moved / "a.toml").string()), options);
+  const auto outcome = pagecache::sweep::run_sweep(Sweep::load((moved / "a.toml").string()), options);
   CHECK(outcome.ran == 0);
   CHECK(outcome.skipped == 2);
 }
@@ -325,7 +325,7 @@ TEST_CASE("the sweep fuzzer's seeds keep the sweep readers' contracts", "[sweep]
     INFO(file);
     const std::string text = slurp(file);
     CHECK(pagecache::fuzz::check_sweep_text(text, source_name) == "");
-    CHECK_NOTHROW(Plan::parse(text, source_name, false, pagecache::fuzz::sweep_fuzz_limits()));  // a plan, not a refusal
+    CHECK_NOTHROW(Sweep::parse(text, source_name, false, pagecache::fuzz::sweep_fuzz_limits()));  // a plan, not a refusal
   }
   for (const fs::path& file : results) {
     INFO(file);
@@ -348,6 +348,6 @@ TEST_CASE("the sweep fuzzer's seeds keep the sweep readers' contracts", "[sweep]
   // The fuzzer's limits hold: an axis beyond them is refused, not made.
   const std::string long_axis = slurp(std::string(PCSIM_SOURCE_DIR) + "/scenarios/sweeps/exp2.toml") +
                                 "[[axes]]\nkey = \"pipelines.cpu_time\"\nrange = { from = 1, to = 100000, step = 1 }\n";
-  CHECK_THROWS_WITH(Plan::parse(long_axis, source_name, false, pagecache::fuzz::sweep_fuzz_limits()),
+  CHECK_THROWS_WITH(Sweep::parse(long_axis, source_name, false, pagecache::fuzz::sweep_fuzz_limits()),
                     Catch::Contains("makes 100000 values, more than an axis may have (10000)"));
 }

@@ -1,10 +1,10 @@
-#include "sweep/plan.hpp"
+#include "sweep/sweep.hpp"
 
 #include "formats/common/json_text.hpp"
 #include "formats/common/text_file.hpp"
 #include "scenario/toml_reader.hpp"
 #include "sweep/hash.hpp"
-#include "sweep/plan_values.hpp"
+#include "sweep/sweep_values.hpp"
 #include "text/json_string.hpp"
 
 #include <pagecache/error.hpp>
@@ -94,12 +94,12 @@ std::string run_id(const std::vector<Override>& overrides) {
   return hex16(h);
 }
 
-Plan Plan::load(const std::string& path, bool force, const std::function<void()>& checkpoint) {
+Sweep Sweep::load(const std::string& path, bool force, const std::function<void()>& checkpoint) {
   return parse(formats::read_text_file(path, "sweep file"), path, force, {}, checkpoint);
 }
 
-Plan Plan::parse(const std::string& text, const std::string& path, bool force, const PlanLimits& limits, const std::function<void()>& checkpoint) {
-  Plan plan;
+Sweep Sweep::parse(const std::string& text, const std::string& path, bool force, const SweepLimits& limits, const std::function<void()>& checkpoint) {
+  Sweep plan;
   plan.file_ = fs::absolute(path).lexically_normal().string();
   const toml::table root = parse_toml(text, path);
   scenario::TomlReader r(root, "", path);
@@ -143,7 +143,7 @@ Plan Plan::parse(const std::string& text, const std::string& path, bool force, c
   return plan;
 }
 
-std::size_t Plan::values_held() const noexcept {
+std::size_t Sweep::values_held() const noexcept {
   std::size_t n = 0;
   for (const auto& values : axes_) n += values.size();
   for (const auto& point : points_) n += point.size();
@@ -153,7 +153,7 @@ std::size_t Plan::values_held() const noexcept {
 // Each value of each axis on the base alone, so that a value of the wrong type for its key is
 // refused before any run, naming its axis. A range's values share one type: its ends stand
 // for it.
-void Plan::check_values(const std::vector<std::pair<std::size_t, std::string>>& where, const ScenarioLimits& limits,
+void Sweep::check_values(const std::vector<std::pair<std::size_t, std::string>>& where, const ScenarioLimits& limits,
                         const std::function<void()>& checkpoint) const {
   for (const auto& [axis, name] : where) {
     const std::vector<Override>& values = axes_[axis];
@@ -174,7 +174,7 @@ void Plan::check_values(const std::vector<std::pair<std::size_t, std::string>>& 
   }
 }
 
-Run Plan::run(std::size_t index) const {
+Run Sweep::run(std::size_t index) const {
   Run run;
   run.index = index;
   if (!points_.empty()) {
@@ -192,7 +192,7 @@ Run Plan::run(std::size_t index) const {
   return run;
 }
 
-std::optional<std::size_t> Plan::index_of(const std::vector<std::pair<std::string, std::string>>& overrides) const {
+std::optional<std::size_t> Sweep::index_of(const std::vector<std::pair<std::string, std::string>>& overrides) const {
   const auto value_of = [&](const std::string& key) -> std::string {
     for (const auto& [k, v] : overrides)
       if (k == key) return v;
@@ -220,26 +220,26 @@ std::optional<std::size_t> Plan::index_of(const std::vector<std::pair<std::strin
   return index;
 }
 
-Scenario Plan::load_base(const std::vector<std::pair<std::string, std::string>>& overrides, const ScenarioLimits& limits) const {
+Scenario Sweep::load_base(const std::vector<std::pair<std::string, std::string>>& overrides, const ScenarioLimits& limits) const {
   if (!scenario_.empty()) return load_scenario(scenario_, overrides, profile_, limits);
   if (!workflow_text_.empty()) return parse_scenario(workflow_text_, file_, overrides, profile_, limits);
   return parse_scenario(default_scenario_text(), "<embedded default>", overrides, profile_, limits);
 }
 
-Scenario Plan::scenario(const Run& run) const {
+Scenario Sweep::scenario(const Run& run) const {
   std::vector<std::pair<std::string, std::string>> overrides;
   for (const Override& o : run.overrides)
     if (!o.toml.empty()) overrides.emplace_back(o.key, o.toml);
   return load_base(overrides);
 }
 
-std::string Plan::base_description() const {
+std::string Sweep::base_description() const {
   if (!scenario_.empty()) return scenario_;
   if (!workflow_text_.empty()) return "the workflow of " + file_;
   return "<embedded default>";
 }
 
-std::string Plan::json() const {
+std::string Sweep::json() const {
   std::string out = fmt::format("{{\"sweep\": {}, \"scenario\": {}, \"workflow\": {}, \"profile\": {},\n \"base\": {{\"fingerprint\": \"{}\", \"settings\": {}, \"files\": [",
                                 text::json_string(file_), text::json_string(scenario_), text::json_string(workflow_text_), text::json_string(profile_),
                                 fingerprint_, text::json_string(base_.settings));
@@ -265,8 +265,8 @@ std::string Plan::json() const {
   return out + "]}\n";
 }
 
-Plan Plan::from_json(const std::string& text, const std::string& origin) {
-  Plan plan;
+Sweep Sweep::from_json(const std::string& text, const std::string& origin) {
+  Sweep plan;
   try {
     const nlohmann::json doc = nlohmann::json::parse(text);
     formats::check_unique_keys(text, origin);

@@ -1,5 +1,5 @@
-// The axes and points of a sweep file, read into overrides (plan_values.hpp).
-#include "sweep/plan_values.hpp"
+// The axes and points of a sweep file, read into overrides (sweep_values.hpp).
+#include "sweep/sweep_values.hpp"
 
 #include "scenario/toml_reader.hpp"
 
@@ -46,7 +46,7 @@ Override override_of(const std::string& key, const toml::node& value, const std:
 }
 
 AxisShape read_axis(const toml::table& table, std::size_t index, const std::vector<AxisShape>& earlier, const std::string& path,
-                    const PlanLimits& limits) {
+                    const SweepLimits& limits) {
   scenario::TomlReader a(table, fmt::format("axes[{}]", index), path);
   AxisShape axis;
   axis.key = a.required_string("key");
@@ -78,13 +78,13 @@ void fail_at(const toml::node& node, const std::string& file, const std::string&
   throw ConfigError(fmt::format("{}: {}", location(node.source(), file), what));
 }
 
-std::vector<AxisShape> read_axes(const std::vector<const toml::table*>& axes, const std::string& path, const PlanLimits& limits) {
+std::vector<AxisShape> read_axes(const std::vector<const toml::table*>& axes, const std::string& path, const SweepLimits& limits) {
   std::vector<AxisShape> grid;
   for (std::size_t i = 0; i < axes.size(); ++i) grid.push_back(read_axis(*axes[i], i, grid, path, limits));
   return grid;
 }
 
-void check_run_count(const std::vector<AxisShape>& grid, std::size_t points, bool force, const PlanLimits& limits, const std::string& path) {
+void check_run_count(const std::vector<AxisShape>& grid, std::size_t points, bool force, const SweepLimits& limits, const std::string& path) {
   double runs = 1.0;
   for (const AxisShape& axis : grid) runs *= axis.length;
   if (points > 0) runs = static_cast<double>(points);

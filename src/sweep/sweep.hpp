@@ -43,7 +43,7 @@ struct Override {
 struct Run {
   std::size_t index = 0;  ///< in the plan's order
   std::string id;
-  std::vector<Override> overrides;  ///< in the order of Plan::keys
+  std::vector<Override> overrides;  ///< in the order of Sweep::keys
 };
 
 /// Above this many runs a sweep needs --force (ten million: a day of small runs on 100 cores).
@@ -54,14 +54,14 @@ inline constexpr double kMaxAxisValues = 1e7;
 inline constexpr double kMaxNumberedRuns = 1e12;
 
 /// How much a sweep file may ask for before any value is made.
-struct PlanLimits {
+struct SweepLimits {
   double runs = kMaxRuns;  ///< without --force
   double axis_values = kMaxAxisValues;
   /// What the base, tried with each axis value, may ask of a scenario.
   ScenarioLimits scenario;
 };
 
-class Plan {
+class Sweep {
  public:
   /// Reads the sweep file. Throws ConfigError naming the file, line and axis of the first
   /// problem: an unknown key, an empty axis, a range whose step or factor is 0, not a finite
@@ -72,14 +72,14 @@ class Plan {
   /// `checkpoint`, if set, is called before each value or point is tried on the base (a large
   /// base takes a while to resolve): what it throws passes through, which is how a caller
   /// stops a long check.
-  static Plan load(const std::string& path, bool force = false, const std::function<void()>& checkpoint = {});
+  static Sweep load(const std::string& path, bool force = false, const std::function<void()>& checkpoint = {});
   /// The same from the sweep file's text; `path` places the files it names and is named in
   /// messages.
-  static Plan parse(const std::string& text, const std::string& path, bool force = false, const PlanLimits& limits = {},
+  static Sweep parse(const std::string& text, const std::string& path, bool force = false, const SweepLimits& limits = {},
                     const std::function<void()>& checkpoint = {});
   /// The plan json() wrote (`origin` names it in errors). Throws ConfigError if it is not one,
   /// or is one of an earlier pcsim, which recorded no fingerprint of its base.
-  static Plan from_json(const std::string& text, const std::string& origin);
+  static Sweep from_json(const std::string& text, const std::string& origin);
 
   const std::string& file() const noexcept { return file_; }
   /// The keys the runs override, in the sweep file's order: the axes of results.csv.

@@ -1,6 +1,6 @@
 // Sweep files: the runs they make, their ids, and the bad ones refused naming the axis.
 #include "support/files.hpp"
-#include "sweep/plan.hpp"
+#include "sweep/sweep.hpp"
 #include "sweep/result_line.hpp"
 #include "sweep/results_file.hpp"
 
@@ -19,7 +19,7 @@
 
 namespace fs = std::filesystem;
 using pagecache::ConfigError;
-using pagecache::sweep::Plan;
+using pagecache::sweep::Sweep;
 using pagecache::testing::scratch;
 using pagecache::testing::slurp;
 
@@ -33,7 +33,7 @@ fs::path sweep_file(const std::string& name, const std::string& text) {
   return file;
 }
 
-Plan plan_of(const std::string& name, const std::string& text) { return Plan::load(sweep_file(name, text).string()); }
+Sweep plan_of(const std::string& name, const std::string& text) { return Sweep::load(sweep_file(name, text).string()); }
 
 void expect_refused(const std::string& name, const std::string& text, const std::vector<std::string>& fragments) {
   try {
@@ -46,7 +46,7 @@ void expect_refused(const std::string& name, const std::string& text, const std:
   }
 }
 
-std::vector<std::string> ids(const Plan& plan) {
+std::vector<std::string> ids(const Sweep& plan) {
   std::vector<std::string> out;
   for (std::size_t i = 0; i < plan.size(); ++i) out.push_back(plan.run(i).id);
   return out;
@@ -55,7 +55,7 @@ std::vector<std::string> ids(const Plan& plan) {
 }  // namespace
 
 TEST_CASE("a grid sweeps every combination, the last axis fastest", "[sweep]") {
-  const Plan plan = plan_of("grid", kBase + R"(
+  const Sweep plan = plan_of("grid", kBase + R"(
 [[axes]]
 key = "pipelines.count"
 range = { from = 1, to = 3, step = 1 }
@@ -105,7 +105,7 @@ values = [2, 1, 4]
 
 TEST_CASE("a run is found by its values in a grown grid or among points, and only there", "[sweep]") {
   // The grown sweep of the test above: a result recorded under the first plan is placed by its values.
-  const Plan grown = plan_of("find_grid", kBase + R"(
+  const Sweep grown = plan_of("find_grid", kBase + R"(
 [[axes]]
 key = "hosts.0.page_cache.dirty_ratio"
 values = [0.1, 0.2, 0.4]
@@ -124,7 +124,7 @@ values = [2, 1, 4]
   CHECK_FALSE(grown.index_of({{"pipelines.count", "3"}, {"hosts.0.page_cache.dirty_ratio", "0.2"}}));  // not a value of its axis
   CHECK_FALSE(grown.index_of({{"pipelines.count", "1"}}));                                             // a key missing
   CHECK_FALSE(grown.index_of({{"pipelines.count", "1"}, {"hosts.0.page_cache.dirty_ratio", "0.2"}, {"title", "\"x\""}}));  // one too many
-  const Plan points = plan_of("find_points", kBase + R"(
+  const Sweep points = plan_of("find_points", kBase + R"(
 [[points]]
 "pipelines.count" = 2
 [[points]]
@@ -137,7 +137,7 @@ values = [2, 1, 4]
 }
 
 TEST_CASE("ranges: integers, floats without residue, log ranges", "[sweep]") {
-  const Plan floats = plan_of("floats", kBase + R"(
+  const Sweep floats = plan_of("floats", kBase + R"(
 [[axes]]
 key = "hosts.0.page_cache.dirty_ratio"
 range = { from = 0.1, to = 0.5, step = 0.1 }
@@ -145,7 +145,7 @@ range = { from = 0.1, to = 0.5, step = 0.1 }
   std::vector<std::string> values;
   for (std::size_t i = 0; i < floats.size(); ++i) values.push_back(floats.run(i).overrides[0].toml);
   CHECK(values == std::vector<std::string>{"0.1", "0.2", "0.3", "0.4", "0.5"});
-  const Plan logs = plan_of("logs", kBase + R"(
+  const Sweep logs = plan_of("logs", kBase + R"(
 [[axes]]
 key = "pipelines.count"
 range = { from = 1, to = 32, factor = 2 }
@@ -156,7 +156,7 @@ range = { from = 1, to = 32, factor = 2 }
 }
 
 TEST_CASE("explicit points set only what they name", "[sweep]") {
-  const Plan plan = plan_of("points", kBase + R"(
+  const Sweep plan = plan_of("points", kBase + R"(
 [[points]]
 "pipelines.count" = 2
 [[points]]
@@ -169,7 +169,7 @@ TEST_CASE("explicit points set only what they name", "[sweep]") {
   CHECK(plan.scenario(plan.run(0)).hosts.front().memory == 268'000'000'000);
   CHECK(plan.scenario(plan.run(1)).hosts.front().memory == 128'000'000'000);
   // The plan as sweep-plan.json holds it makes the same runs.
-  const Plan again = Plan::from_json(plan.json(), "test");
+  const Sweep again = Sweep::from_json(plan.json(), "test");
   CHECK(ids(again) == ids(plan));
   CHECK(again.run(1).overrides[1].shown == "128 GB");
 }
@@ -190,7 +190,7 @@ TEST_CASE("bad sweep files are refused, naming the axis", "[sweep][errors]") {
                                    "[[axes]]\nkey = \"hosts.0.page_cache.dirty_ratio\"\nrange = { from = 0.1, to = 0.4, step = 0.0001 }\n"
                                    "[[axes]]\nkey = \"pipelines.cpu_time\"\nrange = { from = 1, to = 1000, step = 1 }\n";
   expect_refused("huge", huge, {"90030000 runs", "axis 'pipelines.count' 30 x", "--force"});
-  CHECK(Plan::load(sweep_file("huge_forced", huge).string(), true).size() == 90'030'000);
+  CHECK(Sweep::load(sweep_file("huge_forced", huge).string(), true).size() == 90'030'000);
 }
 
 TEST_CASE("a range's length is computed before its values are made; one that is not a finite number says so", "[sweep][errors]") {

@@ -1,4 +1,4 @@
-#include "workload/plans.hpp"
+#include "workload/prepared_run.hpp"
 
 #include "workload/access_pattern.hpp"
 
@@ -29,7 +29,7 @@ void check_memory_groups(const Scenario& scenario) {
 
 }  // namespace
 
-Plans::Plans(const Scenario& scenario, const Platform& platform, const FileIndex& files) {
+PreparedRun::PreparedRun(const Scenario& scenario, const Platform& platform, const FileIndex& files) {
   TaskIndex names;  // the task names met so far: a run of pipelines has a few
   sets_ = platform.file_sets();
   set_names_.reserve(scenario.file_sets.size());  // set_index_ views its strings
@@ -38,15 +38,15 @@ Plans::Plans(const Scenario& scenario, const Platform& platform, const FileIndex
     set_index_.emplace(set_names_.back(), static_cast<std::uint32_t>(set_names_.size() - 1));
   }
   reserve(scenario);
-  plan_applications(scenario.apps, platform, files, names);
+  prepare_applications(scenario.apps, platform, files, names);
   first_workflow_task_ = tasks_.size();
   check_memory_groups(scenario);
-  plan_workflows(scenario.workflows, platform, files, names);
+  prepare_workflows(scenario.workflows, platform, files, names);
   task_names_.shrink_to_fit();
 }
 
 // Exact sizes: at 10^5 pipelines a doubling array's spare half would be tens of MB.
-void Plans::reserve(const Scenario& scenario) {
+void PreparedRun::reserve(const Scenario& scenario) {
   std::size_t tasks = 0;
   std::size_t files = 0;
   const auto count = [&](const std::vector<TaskSpec>& of) {
@@ -56,11 +56,11 @@ void Plans::reserve(const Scenario& scenario) {
   for (const AppSpec& app : scenario.apps) count(app.tasks);
   for (const WorkflowSpec& w : scenario.workflows) count(w.tasks);
   tasks_.reserve(tasks);
-  planned_files_.reserve(files);
+  task_files_.reserve(files);
   apps_.reserve(scenario.apps.size());
 }
 
-void Plans::plan_applications(const std::vector<AppSpec>& apps, const Platform& platform, const FileIndex& files, TaskIndex& names) {
+void PreparedRun::prepare_applications(const std::vector<AppSpec>& apps, const Platform& platform, const FileIndex& files, TaskIndex& names) {
   std::unordered_map<std::string_view, std::uint32_t> earlier;  // only if some application waits (the loader checked the names)
   const bool waits = std::any_of(apps.begin(), apps.end(), [](const AppSpec& app) { return !app.after.empty(); });
   for (const AppSpec& app : apps) {
@@ -74,25 +74,25 @@ void Plans::plan_applications(const std::vector<AppSpec>& apps, const Platform& 
     const GroupRef group = app.memory_max > 0 ? host.add_memory_group(app.memory_max, app.memory_high) : GroupRef{};
     apps_.push_back({app.name, &host, static_cast<std::uint32_t>(tasks_.size()), static_cast<std::uint32_t>(app.tasks.size())});
     for (const TaskSpec& task : app.tasks) {
-      plan_task(task, platform.files(), files, names);
+      prepare_task(task, platform.files(), files, names);
       tasks_.back().group = group;
     }
   }
 }
 
-void Plans::plan_workflows(const std::vector<WorkflowSpec>& workflows, const Platform& platform, const FileIndex& files, TaskIndex& names) {
+void PreparedRun::prepare_workflows(const std::vector<WorkflowSpec>& workflows, const Platform& platform, const FileIndex& files, TaskIndex& names) {
   for (const WorkflowSpec& w : workflows) {
     if (w.hosts.empty()) throw ConfigError(fmt::format("workflow '{}': no host to run on", w.name));
     for (const std::string& h : w.hosts) platform.host_named(h, "workflow", w.name);
     for (const TaskSpec& task : w.tasks) {
       if (!task.host.empty()) platform.host_named(task.host, "task", task.name);
-      plan_task(task, platform.files(), files, names);
+      prepare_task(task, platform.files(), files, names);
     }
   }
 }
 
-void Plans::plan_task(const TaskSpec& task, const std::vector<PlacedFile>& placed, const FileIndex& files, TaskIndex& names) {
-  TaskPlan& plan = tasks_.emplace_back();
+void PreparedRun::prepare_task(const TaskSpec& task, const std::vector<PlacedFile>& placed, const FileIndex& files, TaskIndex& names) {
+  PreparedTask& plan = tasks_.emplace_back();
   const auto [known, added] = names.try_emplace(task.name, static_cast<std::uint32_t>(task_names_.size()));
   if (added) task_names_.push_back(task.name);
   plan.name = known->second;
@@ -100,29 +100,29 @@ void Plans::plan_task(const TaskSpec& task, const std::vector<PlacedFile>& place
     for (const std::string& name : list) {
       const auto it = files.find(name);
       if (it == files.end()) throw ConfigError(fmt::format("task '{}': no file named '{}'", task.name, name));
-      planned_files_.push_back(it->second);
+      task_files_.push_back(it->second);
     }
-    return static_cast<std::uint32_t>(planned_files_.size());
+    return static_cast<std::uint32_t>(task_files_.size());
   };
-  plan.reads = static_cast<std::uint32_t>(planned_files_.size());
+  plan.reads = static_cast<std::uint32_t>(task_files_.size());
   plan.writes = add(task.reads);
   plan.deletes = add(task.writes);
   plan.end = add(task.deletes);
   plan.chunk_size = task.chunk_size;
   std::int64_t reading = 0;
   for (std::uint32_t f = plan.reads; f < plan.writes; ++f) {
-    const PlacedFile& file = placed[planned_files_[f]];
+    const PlacedFile& file = placed[task_files_[f]];
     reading = std::min(reading + file.host->file_size(file.ref), units::kMaxBytes * 2);
   }
   plan.memory = std::max<std::int64_t>(0, task.memory - reading);
   plan.compute = task.compute;
   plan.fsync = task.fsync;
   plan.direct_io = task.direct_io;
-  plan_accesses(task, plan, placed, files);
+  prepare_accesses(task, plan, placed, files);
 }
 
 // Scenarios built in code skip the loader's checks: what the run relies on is checked here.
-void Plans::plan_accesses(const TaskSpec& task, TaskPlan& plan, const std::vector<PlacedFile>& placed, const FileIndex& files) {
+void PreparedRun::prepare_accesses(const TaskSpec& task, PreparedTask& plan, const std::vector<PlacedFile>& placed, const FileIndex& files) {
   plan.accesses = static_cast<std::uint32_t>(accesses_.size());
   for (const AccessSpec& a : task.accesses) {
     if (a.repeat < 1) throw ConfigError(fmt::format("task '{}': an access needs repeat >= 1", task.name));
@@ -130,7 +130,7 @@ void Plans::plan_accesses(const TaskSpec& task, TaskPlan& plan, const std::vecto
       if (task.direct_io && a.mode == AccessMode::Append) {
         throw ConfigError(fmt::format("task '{}': appends through O_DIRECT (direct_io) are not modelled yet", task.name));
       }
-      plan_file_access(task, a, accesses_.emplace_back(), placed, files);
+      prepare_file_access(task, a, accesses_.emplace_back(), placed, files);
       epochs_ += static_cast<std::size_t>(a.repeat);
       continue;
     }
@@ -139,7 +139,7 @@ void Plans::plan_accesses(const TaskSpec& task, TaskPlan& plan, const std::vecto
     if (a.count < 0 || a.repeat < 1) {
       throw ConfigError(fmt::format("task '{}': an access of file set '{}' needs count >= 0 and repeat >= 1", task.name, a.file_set));
     }
-    AccessPlan& access = accesses_.emplace_back();
+    PreparedAccess& access = accesses_.emplace_back();
     access.set = sets_[set->second];
     access.set_index = set->second;
     const bool random = a.pattern == AccessPattern::Random;
@@ -157,7 +157,7 @@ void Plans::plan_accesses(const TaskSpec& task, TaskPlan& plan, const std::vecto
   plan.accesses_end = static_cast<std::uint32_t>(accesses_.size());
 }
 
-void Plans::plan_file_access(const TaskSpec& task, const AccessSpec& a, AccessPlan& access, const std::vector<PlacedFile>& placed,
+void PreparedRun::prepare_file_access(const TaskSpec& task, const AccessSpec& a, PreparedAccess& access, const std::vector<PlacedFile>& placed,
                              const FileIndex& files) const {
   const auto it = files.find(a.file);
   if (it == files.end()) throw ConfigError(fmt::format("task '{}': no file named '{}'", task.name, a.file));

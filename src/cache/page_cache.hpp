@@ -104,7 +104,6 @@ class PageCache {
   const CacheSettings& settings() const noexcept { return settings_; }
   const Policy& policy() const noexcept { return *policy_; }
   CacheListeners& listeners() noexcept { return listeners_; }
-  const CacheListeners& listeners() const noexcept { return listeners_; }
   /// Runs check_invariants() after every mutating operation (tests). Debug builds check by
   /// default, amortised: one operation in blocks/4, as a full check visits every block.
   void set_checking(bool on) noexcept { checking_ = on, amortised_ = false; }

@@ -96,7 +96,7 @@ std::int64_t PageCache::evict_front(BlockId id, std::int64_t bytes, ListKind fro
   const Policy::Evicted gone{.file = block.file,
                              .from = from,
                              .bytes = block.size,
-                             .offset = block.ranged ? ranges_.offset(victim) : kNoOffset,
+                             .offset = block.ranged && arrivals_ ? ranges_.offset(victim) : kNoOffset,
                              .bits = block.policy_bits};
   totals_.evicted += gone.bytes;
   destroy(victim);

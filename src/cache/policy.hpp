@@ -112,7 +112,8 @@ class Policy {
   // Once per block or per read chunk, never per page: the stateless policies pay a call each.
   /// Data evicted by a reclaim walk: its file, the list it left (evict_clean's list;
   /// deactivate_oldest's victims come from the active list), its bytes, its offset (a file
-  /// held by range; else kNoOffset) and its block's policy bits.
+  /// held by range, told to a policy that places arrivals: one load fewer per eviction for the
+  /// others; else kNoOffset) and its block's policy bits.
   struct Evicted {
     FileId file = 0;
     ListKind from = ListKind::Inactive;

@@ -328,6 +328,9 @@ class PageCache {
   void add_new(FileId file, std::int64_t bytes, BlockState state, double now, Placement at = {});
   /// add_new's data on one node (its memory already counted as free there, or reserved).
   void add_new_on(NodeId node, FileId file, std::int64_t bytes, BlockState state, double now, Placement at);
+  /// The file's inactive block a read resumes at: where `from` left off if that block is still
+  /// there, unmoved, else the first.
+  BlockId resume_point(const FileEntry& entry, FileId file, ReadCursor from) const noexcept;
   /// reaccess under a policy that rereads in place: each block's bits updated, nothing moved.
   ReadCursor reaccess_in_place(FileId file, std::int64_t bytes, ReadCursor from);
   /// end_writeback's blocks the policy sends to the inactive list's front, in their order.

@@ -10,6 +10,16 @@
 
 namespace pagecache::cache {
 
+BlockId PageCache::resume_point(const FileEntry& entry, FileId file, ReadCursor from) const noexcept {
+  if (from.block != kNoBlock) {
+    const Block& b = blocks_[from.block];
+    if (b.size > 0 && b.file == file && b.list == ListKind::Inactive && b.order == from.order) {
+      return from.after ? FileOrder::next(blocks_, from.block) : from.block;
+    }
+  }
+  return entry.inactive.front();
+}
+
 ReadCursor PageCache::reaccess(FileId file, std::int64_t bytes, double now, ReadCursor from) {
   PC_ASSERT(bytes >= 0 && bytes <= cached(file));
   PC_ASSERT_MSG(!ranged(file), "a file held by range is re-accessed by range (read_range)");
@@ -55,13 +65,7 @@ ReadCursor PageCache::reaccess(FileId file, std::int64_t bytes, double now, Read
     return at != kNoBlock ? ReadCursor{.block = at, .after = false, .order = blocks_[at].order} : ReadCursor{};
   };
   // Where this read left off, if that block is still there, unmoved.
-  BlockId start = entry.inactive.front();
-  if (from.block != kNoBlock) {
-    const Block& b = blocks_[from.block];
-    if (b.size > 0 && b.file == file && b.list == ListKind::Inactive && b.order == from.order) {
-      start = from.after ? FileOrder::next(blocks_, from.block) : from.block;
-    }
-  }
+  const BlockId start = resume_point(entry, file, from);
   ReadCursor cursor = touch_inactive(start);
   // Active blocks: taken from the front of the file's active list and moved to the back, so
   // that none is met twice.
@@ -112,13 +116,7 @@ ReadCursor PageCache::reaccess_in_place(FileId file, std::int64_t bytes, ReadCur
   // Inactive data from where this read left off (if that block is still there, unmoved),
   // then active data; then, if the read wants more (others read or evicted meanwhile), the
   // inactive data again from the front, as reaccess does.
-  BlockId start = entry.inactive.front();
-  if (from.block != kNoBlock) {
-    const Block& b = blocks_[from.block];
-    if (b.size > 0 && b.file == file && b.list == ListKind::Inactive && b.order == from.order) {
-      start = from.after ? FileOrder::next(blocks_, from.block) : from.block;
-    }
-  }
+  const BlockId start = resume_point(entry, file, from);
   const BlockId last = touch(start, entry.inactive.back());
   ReadCursor cursor = last != kNoBlock ? ReadCursor{.block = last, .after = true, .order = blocks_[last].order} : ReadCursor{};
   touch(entry.active.front(), entry.active.back());
